@@ -1,0 +1,439 @@
+// Python view of a loaded Database: counts and summaries as small dicts and
+// lists, big arrays as zero-copy numpy views owned by the Database object.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <map>
+#include <optional>
+
+#include "db/compare.hpp"
+#include "db/database.hpp"
+#include "io/readers.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace xroute {
+namespace {
+
+using IntView = nb::ndarray<nb::numpy, const int32_t>;
+using IntArray = nb::ndarray<nb::numpy, int32_t>;
+
+// A read-only view of `count` rows of `cols` int32 each, starting at `data`.
+// The caller binds it with rv_policy::reference_internal, so the view keeps
+// the Database alive.
+IntView view(const void* data, size_t count, size_t cols) {
+  static const int32_t kEmpty[1] = {0};
+  const int32_t* p = count ? static_cast<const int32_t*>(data) : kEmpty;
+  if (cols == 1) {
+    const size_t shape[1] = {count};
+    return IntView(p, 1, shape, nb::handle());
+  }
+  const size_t shape[2] = {count, cols};
+  return IntView(p, 2, shape, nb::handle());
+}
+
+// A new array that owns its (copied) data.
+IntArray ownedArray(std::vector<int32_t>&& values, size_t cols) {
+  auto* heap = new std::vector<int32_t>(std::move(values));
+  nb::capsule owner(heap, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
+  const size_t rows = cols ? heap->size() / cols : 0;
+  static int32_t kEmpty[1] = {0};
+  int32_t* data = heap->empty() ? kEmpty : heap->data();
+  if (cols == 1) {
+    const size_t shape[1] = {rows};
+    return IntArray(data, 1, shape, owner);
+  }
+  const size_t shape[2] = {rows, cols};
+  return IntArray(data, 2, shape, owner);
+}
+
+const char* layerTypeName(LayerType t) {
+  switch (t) {
+    case LayerType::Routing: return "ROUTING";
+    case LayerType::Cut: return "CUT";
+    case LayerType::Masterslice: return "MASTERSLICE";
+    case LayerType::Overlap: return "OVERLAP";
+    case LayerType::Implant: return "IMPLANT";
+    case LayerType::Other: return "OTHER";
+  }
+  return "OTHER";
+}
+
+const char* directionName(Direction d) {
+  switch (d) {
+    case Direction::Horizontal: return "HORIZONTAL";
+    case Direction::Vertical: return "VERTICAL";
+    case Direction::None: return "";
+  }
+  return "";
+}
+
+const char* statusName(PlaceStatus s) {
+  switch (s) {
+    case PlaceStatus::Unplaced: return "UNPLACED";
+    case PlaceStatus::Placed: return "PLACED";
+    case PlaceStatus::Fixed: return "FIXED";
+    case PlaceStatus::Cover: return "COVER";
+  }
+  return "UNPLACED";
+}
+
+nb::tuple rectTuple(const Rect& r) { return nb::make_tuple(r.xlo, r.ylo, r.xhi, r.yhi); }
+
+nb::dict layerDict(const Layer& l) {
+  nb::dict d;
+  d["name"] = l.name;
+  d["type"] = layerTypeName(l.type);
+  d["routing_index"] = l.routingIndex;
+  d["cut_index"] = l.cutIndex;
+  d["direction"] = directionName(l.direction);
+  d["pitch"] = nb::make_tuple(l.pitchX, l.pitchY);
+  d["offset"] = nb::make_tuple(l.offsetX, l.offsetY);
+  d["width"] = l.width;
+  d["min_width"] = l.minWidth;
+  d["min_area"] = l.minArea;
+  d["min_spacing"] = l.minSpacing();
+  nb::list eols;
+  for (const EolRule& e : l.eolRules) {
+    nb::dict r;
+    r["space"] = e.space;
+    r["eol_width"] = e.eolWidth;
+    r["within"] = e.within;
+    r["parallel_edge"] = e.parallelEdge;
+    r["par_space"] = e.parSpace;
+    r["par_within"] = e.parWithin;
+    r["two_edges"] = e.twoEdges;
+    eols.append(r);
+  }
+  d["eol_rules"] = eols;
+  nb::list spacings;
+  for (const SpacingRule& s : l.spacings) {
+    nb::dict r;
+    r["space"] = s.space;
+    r["range"] = s.hasRange ? nb::object(nb::make_tuple(s.rangeLo, s.rangeHi)) : nb::none();
+    r["same_net"] = s.sameNet;
+    spacings.append(r);
+  }
+  d["spacing_rules"] = spacings;
+  nb::list cuts;
+  for (const CutSpacingRule& c : l.cutSpacings) {
+    nb::dict r;
+    r["space"] = c.space;
+    r["center_to_center"] = c.centerToCenter;
+    r["same_net"] = c.sameNet;
+    r["adjacent_cuts"] = c.adjacentCuts;
+    r["cut_within"] = c.cutWithin;
+    cuts.append(r);
+  }
+  d["cut_spacing_rules"] = cuts;
+  nb::list corners;
+  for (const CornerSpacingRule& c : l.cornerSpacings) {
+    nb::dict r;
+    r["convex_corner"] = c.convexCorner;
+    r["concave_corner"] = c.concaveCorner;
+    r["except_eol"] = c.exceptEol;
+    r["eol_width"] = c.eolWidth;
+    r["widths"] = c.widths;
+    r["spacings"] = c.spacings;
+    corners.append(r);
+  }
+  d["corner_spacing_rules"] = corners;
+  nb::dict table;
+  table["prls"] = l.prlTable.prls;
+  table["widths"] = l.prlTable.widths;
+  nb::list rows;
+  const size_t cols = l.prlTable.prls.size();
+  for (size_t i = 0; i < l.prlTable.widths.size() && cols; ++i) {
+    rows.append(std::vector<Dbu>(l.prlTable.spacing.begin() + i * cols,
+                                 l.prlTable.spacing.begin() + (i + 1) * cols));
+  }
+  table["spacing"] = rows;
+  d["spacing_table"] = table;
+  nb::list props;
+  for (const auto& [k, v] : l.properties) props.append(nb::make_tuple(k, v));
+  d["properties"] = props;
+  return d;
+}
+
+nb::list shapeList(const Tech& tech, const std::vector<MacroShape>& shapes) {
+  nb::list out;
+  for (const MacroShape& s : shapes) {
+    out.append(nb::make_tuple(tech.layer(s.layer).name, s.rect.xlo, s.rect.ylo, s.rect.xhi, s.rect.yhi));
+  }
+  return out;
+}
+
+const Component& componentByName(const Database& db, const std::string& name) {
+  const CompId id = db.design.findComponent(name);
+  if (!id.valid()) throw nb::key_error(("no component named " + name).c_str());
+  return db.design.components[*id];
+}
+
+NetId netByIndex(const Database& db, int32_t net) {
+  if (net < 0 || net >= static_cast<int32_t>(db.design.nets.size())) throw nb::index_error("net index out of range");
+  return NetId(net);
+}
+
+void addCounts(std::map<std::string, int>& into, const std::vector<std::pair<std::string, int>>& from) {
+  for (const auto& [k, v] : from) into[k] += v;
+}
+
+}  // namespace
+}  // namespace xroute
+
+using namespace xroute;
+
+void bindDatabase(nb::module_& m) {
+  nb::class_<Database>(m, "Database", "A loaded design: technology (LEF) + design (DEF) + guides.")
+      .def_prop_ro("design_name", [](const Database& d) { return d.design.name; }, "DESIGN name from the DEF.")
+      .def_prop_ro("lef_paths", [](const Database& d) { return d.lefPaths; }, "LEF files read, in order.")
+      .def_prop_ro("def_path", [](const Database& d) { return d.defPath; }, "DEF file read.")
+      .def_prop_ro("guide_path", [](const Database& d) { return d.guidePath; }, "Guide file read, or ''.")
+      .def_prop_ro("dbu_per_micron", [](const Database& d) { return d.design.dbuPerMicron; },
+                   "DEF UNITS DISTANCE MICRONS.")
+      .def_prop_ro("lef_dbu_per_micron", [](const Database& d) { return d.tech.dbuPerMicron; },
+                   "LEF UNITS DATABASE MICRONS.")
+      .def_prop_ro("manufacturing_grid", [](const Database& d) { return d.tech.manufacturingGrid; },
+                   "MANUFACTURINGGRID in DBU (0 if none).")
+      .def_prop_ro("die_area", [](const Database& d) { return rectTuple(d.design.dieArea); },
+                   "DIEAREA bounding box (xlo, ylo, xhi, yhi) in DBU.")
+      .def(
+          "counts",
+          [](const Database& d) {
+            nb::dict c;
+            c["layers"] = d.tech.layers.size();
+            c["routing_layers"] = d.tech.routingLayers.size();
+            c["cut_layers"] = d.tech.cutLayers.size();
+            c["lef_vias"] = d.tech.vias.size();
+            c["via_rules"] = d.tech.viaRules.size();
+            c["sites"] = d.tech.sites.size();
+            c["macros"] = d.tech.macros.size();
+            c["rows"] = d.design.rows.size();
+            c["tracks"] = d.design.tracks.size();
+            c["gcell_patterns"] = d.design.gcellGrid.size();
+            c["def_vias"] = d.design.vias.size();
+            c["components"] = d.design.components.size();
+            c["io_pins"] = d.design.ioPins.size();
+            c["blockages"] = d.design.blockages.size();
+            c["special_nets"] = d.design.specialNets.size();
+            c["nets"] = d.design.nets.size();
+            c["net_pins"] = d.design.pinRefs.size();
+            c["guides"] = d.design.guideRects.size();
+            size_t wires = 0, vias = 0;
+            for (const Net& n : d.design.nets) {
+              wires += n.routing.wires.size();
+              vias += n.routing.vias.size();
+            }
+            c["route_wires"] = wires;
+            c["route_vias"] = vias;
+            return c;
+          },
+          "Counts of everything read, by kind.")
+      .def(
+          "skipped_statements",
+          [](const Database& d) {
+            std::map<std::string, int> all;
+            addCounts(all, d.tech.skippedStatements);
+            addCounts(all, d.design.skippedStatements);
+            return nb::cast(all);
+          },
+          "Statements the readers skipped (not understood), keyword -> count.")
+      .def_prop_ro("warning_count", [](const Database& d) { return d.tech.warningCount + d.design.warningCount; },
+                   "Warnings raised while reading (LEF + DEF).")
+      .def(
+          "layers", [](const Database& d) {
+            nb::list out;
+            for (const Layer& l : d.tech.layers) out.append(layerDict(l));
+            return out;
+          },
+          "Every LEF layer in order, as dicts (lengths in DBU, areas in DBU^2).")
+      .def(
+          "tracks",
+          [](const Database& d) {
+            nb::list out;
+            for (const TrackPattern& t : d.design.tracks) {
+              nb::dict r;
+              r["layer"] = d.tech.layer(t.layer).name;
+              r["axis"] = t.isX ? "X" : "Y";
+              r["start"] = t.start;
+              r["count"] = t.count;
+              r["step"] = t.step;
+              out.append(r);
+            }
+            return out;
+          },
+          "DEF TRACKS statements as dicts (DBU).")
+      .def(
+          "gcell_lines",
+          [](const Database& d, const std::string& axis) {
+            if (axis != "x" && axis != "y") throw nb::value_error("axis must be 'x' or 'y'");
+            std::vector<Dbu> lines = gcellLines(d.design, axis == "x");
+            return ownedArray(std::vector<int32_t>(lines.begin(), lines.end()), 1);
+          },
+          "axis"_a, "GCell grid line coordinates along 'x' or 'y' (DBU, sorted); empty without GCELLGRID.")
+      .def(
+          "net_names",
+          [](const Database& d) {
+            std::vector<std::string> names;
+            names.reserve(d.design.nets.size());
+            for (const Net& n : d.design.nets) names.push_back(n.name);
+            return names;
+          },
+          "Net names in DEF order (index = net id).")
+      .def("net_id", [](const Database& d, const std::string& name) { return *d.design.findNet(name); }, "name"_a,
+           "Net id by name, -1 if absent.")
+      .def_prop_ro(
+          "net_pin_start",
+          [](const Database& d) { return view(d.design.netPinStart.data(), d.design.netPinStart.size(), 1); },
+          nb::rv_policy::reference_internal, "int32[nets+1]: net i owns pin_refs[start[i]:start[i+1]].")
+      .def_prop_ro(
+          "pin_refs", [](const Database& d) { return view(d.design.pinRefs.data(), d.design.pinRefs.size(), 2); },
+          nb::rv_policy::reference_internal,
+          "int32[pins, 2]: (component id or -1 for an IO pin, macro pin index or IO pin id).")
+      .def_prop_ro(
+          "guide_start",
+          [](const Database& d) { return view(d.design.guideStart.data(), d.design.guideStart.size(), 1); },
+          nb::rv_policy::reference_internal, "int32[nets+1] (empty without guides): net i owns guide rows.")
+      .def_prop_ro(
+          "guide_rects",
+          [](const Database& d) { return view(d.design.guideRects.data(), d.design.guideRects.size(), 4); },
+          nb::rv_policy::reference_internal, "int32[guides, 4]: xlo, ylo, xhi, yhi in DBU.")
+      .def_prop_ro(
+          "guide_layers",
+          [](const Database& d) { return view(d.design.guideLayers.data(), d.design.guideLayers.size(), 1); },
+          nb::rv_policy::reference_internal, "int32[guides]: LEF layer index of each guide.")
+      .def(
+          "net_pins",
+          [](const Database& d, int32_t net) {
+            const NetId n = netByIndex(d, net);
+            nb::list out;
+            for (int32_t r = d.design.netPinStart[*n]; r < d.design.netPinStart[*n + 1]; ++r) {
+              const PinRef& ref = d.design.pinRefs[r];
+              if (ref.isIo()) {
+                out.append(nb::make_tuple("PIN", d.design.ioPins[ref.pin].name));
+              } else {
+                const Component& c = d.design.components[*ref.comp];
+                out.append(nb::make_tuple(c.name, d.tech.macros[*c.macro].pins[ref.pin].name));
+              }
+            }
+            return out;
+          },
+          "net"_a, "The pins of a net as (component, pin) pairs; IO pins as ('PIN', name).")
+      .def(
+          "net_pin_shapes",
+          [](const Database& d, int32_t net) {
+            const NetId n = netByIndex(d, net);
+            std::vector<PlacedShape> shapes;
+            {
+              nb::gil_scoped_release release;
+              shapes = netPinShapes(d.tech, d.design, n);
+            }
+            std::vector<int32_t> flat;
+            flat.reserve(shapes.size() * 6);
+            for (const PlacedShape& s : shapes) {
+              const int32_t row[6] = {s.pinRef - d.design.netPinStart[*n], *s.layer, s.rect.xlo, s.rect.ylo,
+                                      s.rect.xhi, s.rect.yhi};
+              flat.insert(flat.end(), row, row + 6);
+            }
+            return ownedArray(std::move(flat), 6);
+          },
+          "net"_a,
+          "int32[shapes, 6]: (pin index within the net, LEF layer index, xlo, ylo, xhi, yhi) in DBU, placed.")
+      .def(
+          "component",
+          [](const Database& d, const std::string& name) {
+            const Component& c = componentByName(d, name);
+            nb::dict r;
+            r["name"] = c.name;
+            r["macro"] = d.tech.macros[*c.macro].name;
+            r["location"] = nb::make_tuple(c.location.x, c.location.y);
+            r["orient"] = std::string(orientName(c.orient));
+            r["status"] = statusName(c.status);
+            return r;
+          },
+          "name"_a, "A component's macro, location (DBU), orientation and status.")
+      .def(
+          "component_pin_shapes",
+          [](const Database& d, const std::string& comp, const std::string& pin) {
+            const Component& c = componentByName(d, comp);
+            const Macro& m = d.tech.macros[*c.macro];
+            auto it = m.pinIndex.find(pin);
+            if (it == m.pinIndex.end()) throw nb::key_error(("macro " + m.name + " has no pin " + pin).c_str());
+            const Transform t = componentTransform(d.tech, c);
+            nb::list out;
+            for (const MacroShape& s : m.pins[it->second].shapes) {
+              const Rect r = t.apply(s.rect);
+              out.append(nb::make_tuple(d.tech.layer(s.layer).name, r.xlo, r.ylo, r.xhi, r.yhi));
+            }
+            return out;
+          },
+          "component"_a, "pin"_a, "A component pin's shapes placed in design coordinates: (layer, xlo, ylo, xhi, yhi).")
+      .def(
+          "macro",
+          [](const Database& d, const std::string& name) {
+            const MacroId id = d.tech.findMacro(name);
+            if (!id.valid()) throw nb::key_error(("no macro named " + name).c_str());
+            const Macro& m = d.tech.macros[*id];
+            nb::dict r;
+            r["name"] = m.name;
+            r["class"] = m.macroClass;
+            r["origin"] = nb::make_tuple(m.origin.x, m.origin.y);
+            r["size"] = nb::make_tuple(m.width, m.height);
+            r["site"] = m.site;
+            nb::dict pins;
+            for (const MacroPin& p : m.pins) {
+              nb::dict pd;
+              pd["direction"] = p.direction;
+              pd["use"] = p.use;
+              pd["shapes"] = shapeList(d.tech, p.shapes);
+              pins[p.name.c_str()] = pd;
+            }
+            r["pins"] = pins;
+            r["obstructions"] = shapeList(d.tech, m.obstructions);
+            return r;
+          },
+          "name"_a, "A LEF macro: class, origin, size, pins (with shapes in macro coordinates, DBU) and OBS.")
+      .def(
+          "macro_names",
+          [](const Database& d) {
+            std::vector<std::string> names;
+            for (const Macro& m : d.tech.macros) names.push_back(m.name);
+            return names;
+          },
+          "LEF macro names in order.")
+      .def(
+          "write_def",
+          [](const Database& d, const std::string& path) {
+            nb::gil_scoped_release release;
+            writeDef(path, d.tech, d.design);
+          },
+          "path"_a, "Writes the design as DEF (atomically: temporary file, then rename).")
+      .def(
+          "def_text",
+          [](const Database& d) {
+            nb::gil_scoped_release release;
+            return writeDefText(d.tech, d.design);
+          },
+          "The design as DEF text.")
+      .def(
+          "compare",
+          [](const Database& a, const Database& b, size_t max_diffs) {
+            nb::gil_scoped_release release;
+            return compareDesigns(a.design, b.design, max_diffs);
+          },
+          "other"_a, "max_diffs"_a = 20, "Differences between two designs (empty list = equal).");
+
+  m.def(
+      "load",
+      [](const std::vector<std::string>& lef_paths, const std::string& def_path,
+         const std::optional<std::string>& guide_path) {
+        nb::gil_scoped_release release;
+        return new Database(loadDatabase(lef_paths, def_path, guide_path.value_or("")));
+      },
+      "lef_paths"_a, "def_path"_a, "guide_path"_a = nb::none(), nb::rv_policy::take_ownership,
+      "Reads LEF files, a DEF and optionally a guide file. Raises xroute_cli.errors.InputError on bad input.");
+}

@@ -1,0 +1,19 @@
+#include "db/database.hpp"
+
+#include "io/readers.hpp"
+
+namespace xroute {
+
+Database loadDatabase(const std::vector<std::string>& lefPaths, const std::string& defPath,
+                      const std::string& guidePath) {
+  Database db;
+  db.lefPaths = lefPaths;
+  db.defPath = defPath;
+  db.guidePath = guidePath;
+  for (const std::string& lef : lefPaths) readLef(lef, db.tech);
+  readDef(defPath, db.tech, db.design);
+  if (!guidePath.empty()) readGuides(guidePath, db.tech, db.design);
+  return db;
+}
+
+}  // namespace xroute

@@ -1,0 +1,25 @@
+// One loaded design: its technology, its design, and where they came from.
+// This is the object Python holds.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "db/design.hpp"
+#include "db/tech.hpp"
+
+namespace xroute {
+
+struct Database {
+  Tech tech;
+  Design design;
+  std::vector<std::string> lefPaths;
+  std::string defPath;
+  std::string guidePath;  // empty when no guide was read
+};
+
+// Reads LEF files in order, then the DEF, then the guide file if given.
+Database loadDatabase(const std::vector<std::string>& lefPaths, const std::string& defPath,
+                      const std::string& guidePath);
+
+}  // namespace xroute

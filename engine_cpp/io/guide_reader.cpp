@@ -1,0 +1,78 @@
+// ISPD global-routing guide reader. The format, per net:
+//   <net name>
+//   (
+//   <xlo> <ylo> <xhi> <yhi> <layer name>
+//   ...
+//   )
+// Coordinates are DEF DBU. Guides end up in flat per-net arrays in DEF net
+// order, keeping file order within a net.
+#include "io/lexer.hpp"
+#include "io/readers.hpp"
+
+namespace xroute {
+
+namespace {
+
+struct GuideRow {
+  int32_t net;
+  Rect rect;
+  LayerId layer;
+};
+
+void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
+  std::vector<GuideRow> rows;
+  std::vector<int32_t> perNet(design.nets.size(), 0);
+  while (!lex.atEnd()) {
+    const Token nameTok = lex.next();
+    if (!nameTok.quoted && (nameTok.text == "(" || nameTok.text == ")")) {
+      lex.failAt(nameTok, "expected a net name, found " + quoteToken(nameTok.text));
+    }
+    const NetId net = design.findNet(nameTok.text);
+    if (!net.valid()) lex.failAt(nameTok, "net " + quoteToken(nameTok.text) + " is not in the DEF");
+    lex.expect("(");
+    while (true) {
+      const Token& t = lex.peek();
+      if (!t.quoted && t.text == ")") {
+        lex.next();
+        break;
+      }
+      const Dbu x1 = lex.dbu();
+      const Dbu y1 = lex.dbu();
+      const Dbu x2 = lex.dbu();
+      const Dbu y2 = lex.dbu();
+      const Token layerTok = lex.next();
+      const LayerId layer = tech.findLayer(layerTok.text);
+      if (!layer.valid()) lex.failAt(layerTok, "unknown layer " + quoteToken(layerTok.text));
+      if (tech.layer(layer).type != LayerType::Routing) {
+        lex.failAt(layerTok, "guide layer " + quoteToken(layerTok.text) + " is not a routing layer");
+      }
+      rows.push_back({*net, Rect::fromCorners({x1, y1}, {x2, y2}), layer});
+      ++perNet[*net];
+    }
+  }
+  // Counting sort by net id: stable, so file order is kept within a net.
+  design.guideStart.assign(design.nets.size() + 1, 0);
+  for (size_t i = 0; i < perNet.size(); ++i) design.guideStart[i + 1] = design.guideStart[i] + perNet[i];
+  design.guideRects.assign(rows.size(), Rect{});
+  design.guideLayers.assign(rows.size(), LayerId{});
+  std::vector<int32_t> fill(design.guideStart.begin(), design.guideStart.end() - 1);
+  for (const GuideRow& r : rows) {
+    const int32_t at = fill[r.net]++;
+    design.guideRects[at] = r.rect;
+    design.guideLayers[at] = r.layer;
+  }
+}
+
+}  // namespace
+
+void readGuides(const std::string& path, const Tech& tech, Design& design) {
+  Lexer lex = Lexer::fromFile(path);
+  parseGuides(lex, tech, design);
+}
+
+void readGuidesText(const std::string& name, std::string text, const Tech& tech, Design& design) {
+  Lexer lex(name, std::move(text));
+  parseGuides(lex, tech, design);
+}
+
+}  // namespace xroute

@@ -1,0 +1,189 @@
+#include "io/lexer.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace xroute {
+
+namespace {
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+}  // namespace
+
+std::string quoteToken(std::string_view text) {
+  std::string s(text.substr(0, 40));
+  for (char& c : s) {
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  }
+  if (text.size() > 40) s += "...";
+  return "'" + s + "'";
+}
+
+Lexer::Lexer(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {}
+
+Lexer Lexer::fromFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open file");
+  std::string text;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw InputError(path, 0, "cannot read file");
+  text.resize(static_cast<size_t>(size));
+  in.seekg(0, std::ios::beg);
+  if (size > 0 && !in.read(text.data(), size)) throw InputError(path, 0, "cannot read file");
+  return Lexer(path, std::move(text));
+}
+
+void Lexer::scan() {
+  if (hasLookahead_ || eof_) return;
+  if (pendingSemicolon_) {
+    pendingSemicolon_ = false;
+    lookahead_ = Token{std::string_view(";"), pendingSemicolonLine_, false};
+    hasLookahead_ = true;
+    return;
+  }
+  const size_t n = text_.size();
+  while (pos_ < n) {
+    const char c = text_[pos_];
+    if (c == '\n') {
+      ++curLine_;
+      ++pos_;
+    } else if (isSpace(c)) {
+      ++pos_;
+    } else if (c == '#') {
+      while (pos_ < n && text_[pos_] != '\n') ++pos_;
+    } else {
+      break;
+    }
+  }
+  if (pos_ >= n) {
+    eof_ = true;
+    return;
+  }
+  const int startLine = curLine_;
+  if (text_[pos_] == '"') {
+    const size_t start = ++pos_;
+    while (pos_ < n && text_[pos_] != '"') {
+      if (text_[pos_] == '\\' && pos_ + 1 < n) ++pos_;
+      if (text_[pos_] == '\n') ++curLine_;
+      ++pos_;
+    }
+    if (pos_ >= n) fail(startLine, "unterminated string");
+    lookahead_ = Token{std::string_view(text_).substr(start, pos_ - start), startLine, true};
+    ++pos_;  // closing quote
+    hasLookahead_ = true;
+    return;
+  }
+  const size_t start = pos_;
+  while (pos_ < n && !isSpace(text_[pos_])) ++pos_;
+  std::string_view tok = std::string_view(text_).substr(start, pos_ - start);
+  if (tok.size() > 1 && tok.back() == ';') {
+    tok.remove_suffix(1);
+    pendingSemicolon_ = true;
+    pendingSemicolonLine_ = startLine;
+  }
+  lookahead_ = Token{tok, startLine, false};
+  hasLookahead_ = true;
+}
+
+bool Lexer::atEnd() {
+  scan();
+  return !hasLookahead_;
+}
+
+const Token& Lexer::peek() {
+  scan();
+  if (!hasLookahead_) fail(curLine_, "unexpected end of file");
+  return lookahead_;
+}
+
+Token Lexer::next() {
+  scan();
+  if (!hasLookahead_) fail(curLine_, "unexpected end of file");
+  hasLookahead_ = false;
+  lastLine_ = lookahead_.line;
+  return lookahead_;
+}
+
+bool Lexer::accept(std::string_view w) {
+  scan();
+  if (!hasLookahead_ || lookahead_.quoted || lookahead_.text != w) return false;
+  next();
+  return true;
+}
+
+void Lexer::expect(std::string_view w) {
+  scan();
+  if (!hasLookahead_) fail(curLine_, "unexpected end of file, expected '" + std::string(w) + "'");
+  if (lookahead_.quoted || lookahead_.text != w) {
+    failAt(lookahead_, "expected '" + std::string(w) + "', found " + quoteToken(lookahead_.text));
+  }
+  next();
+}
+
+std::string_view Lexer::word() { return next().text; }
+
+std::string Lexer::word(std::string_view what) {
+  scan();
+  if (!hasLookahead_) fail(curLine_, "unexpected end of file, expected " + std::string(what));
+  const Token t = next();
+  if (!t.quoted && t.text == ";") failAt(t, "expected " + std::string(what) + ", found ';'");
+  return std::string(t.text);
+}
+
+int64_t Lexer::integer() {
+  const Token t = next();
+  int64_t v = 0;
+  const char* b = t.text.data();
+  const char* e = b + t.text.size();
+  if (b != e && *b == '+') ++b;
+  auto [p, ec] = std::from_chars(b, e, v);
+  if (ec != std::errc() || p != e || b == e) failAt(t, "expected an integer, found " + quoteToken(t.text));
+  return v;
+}
+
+double Lexer::number() {
+  const Token t = next();
+  double v = 0;
+  const char* b = t.text.data();
+  const char* e = b + t.text.size();
+  if (b != e && *b == '+') ++b;
+  auto [p, ec] = std::from_chars(b, e, v);
+  if (ec != std::errc() || p != e || b == e || !std::isfinite(v)) {
+    failAt(t, "expected a number, found " + quoteToken(t.text));
+  }
+  return v;
+}
+
+Dbu Lexer::microns(int dbuPerMicron) {
+  const Token copy = peek();
+  const double v = number() * dbuPerMicron;
+  if (!(std::fabs(v) < 2.0e9)) failAt(copy, "length out of range: " + quoteToken(copy.text));
+  return static_cast<Dbu>(std::llround(v));
+}
+
+Dbu Lexer::dbu() {
+  const Token copy = peek();
+  const int64_t v = integer();
+  if (v > std::numeric_limits<Dbu>::max() || v < std::numeric_limits<Dbu>::min()) {
+    failAt(copy, "coordinate out of range: " + quoteToken(copy.text));
+  }
+  return static_cast<Dbu>(v);
+}
+
+int Lexer::skipStatement() {
+  int count = 0;
+  while (true) {
+    const Token t = next();
+    ++count;
+    if (!t.quoted && t.text == ";") return count;
+  }
+}
+
+void Lexer::fail(int line, const std::string& message) const { throw InputError(path_, line, message); }
+
+void Lexer::failAt(const Token& t, const std::string& message) const { throw InputError(path_, t.line, message); }
+
+}  // namespace xroute

@@ -1,0 +1,69 @@
+// Tokenizer shared by the LEF, DEF and guide readers. Tokens are separated by
+// white space; "#" starts a comment to the end of the line; double-quoted
+// strings may hold spaces and span lines; a ';' glued to the end of a word is
+// split off as its own token. Tokens are views into the file text held by the
+// lexer, so they live as long as the lexer.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "geom/geom.hpp"
+#include "io/input_error.hpp"
+
+namespace xroute {
+
+struct Token {
+  std::string_view text;
+  int line = 0;         // 1-based line where the token starts
+  bool quoted = false;  // was a "string" (text excludes the quotes)
+};
+
+class Lexer {
+ public:
+  Lexer(std::string path, std::string text);
+  // Reads the whole file; throws InputError when it cannot be read.
+  static Lexer fromFile(const std::string& path);
+
+  bool atEnd();
+  const Token& peek();
+  Token next();                        // throws at end of file
+  bool accept(std::string_view word);  // consume the next token if it is `word`
+  void expect(std::string_view word);  // throws unless the next token is `word`
+  std::string_view word();             // any token (the name of something)
+  std::string word(std::string_view what);  // a token, naming `what` in the error
+  int64_t integer();                   // throws unless an integer
+  double number();                     // throws unless a number
+  // A length in microns converted to DBU (rounded to nearest); throws if it
+  // does not fit a Dbu.
+  Dbu microns(int dbuPerMicron);
+  // A DEF integer coordinate that must fit a Dbu.
+  Dbu dbu();
+  // Skips tokens up to and including the next ';'. Returns the number skipped.
+  int skipStatement();
+
+  [[noreturn]] void fail(int line, const std::string& message) const;
+  [[noreturn]] void failAt(const Token& t, const std::string& message) const;
+  const std::string& path() const { return path_; }
+  int line() const { return lastLine_; }  // line of the last token taken
+
+ private:
+  void scan();  // fills lookahead_ if empty
+
+  std::string path_;
+  std::string text_;
+  size_t pos_ = 0;
+  int curLine_ = 1;
+  int lastLine_ = 1;
+  bool hasLookahead_ = false;
+  bool pendingSemicolon_ = false;
+  int pendingSemicolonLine_ = 0;
+  Token lookahead_;
+  bool eof_ = false;
+};
+
+// Quotes a token for an error message, shortened if long.
+std::string quoteToken(std::string_view text);
+
+}  // namespace xroute

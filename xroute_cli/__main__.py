@@ -1,0 +1,3 @@
+from xroute_cli.app import main
+
+main()
