@@ -436,4 +436,21 @@ void bindDatabase(nb::module_& m) {
       },
       "lef_paths"_a, "def_path"_a, "guide_path"_a = nb::none(), nb::rv_policy::take_ownership,
       "Reads LEF files, a DEF and optionally a guide file. Raises xroute_cli.errors.InputError on bad input.");
+
+  m.def(
+      "load_lef",
+      [](const std::vector<std::string>& lef_paths) {
+        nb::gil_scoped_release release;
+        auto* db = new Database();
+        try {
+          for (const std::string& lef : lef_paths) readLef(lef, db->tech);
+        } catch (...) {
+          delete db;
+          throw;
+        }
+        db->lefPaths = lef_paths;
+        return db;
+      },
+      "lef_paths"_a, nb::rv_policy::take_ownership,
+      "Reads LEF files only (the design part stays empty). Raises InputError on bad input.");
 }
