@@ -7,6 +7,7 @@
 
 #include "db/design.hpp"
 #include "db/tech.hpp"
+#include "io/input_error.hpp"
 
 namespace xroute {
 
