@@ -237,3 +237,73 @@ def test_io_pin_nets_resolved() -> None:
     p = d._db.io_pin("iopin5")
     assert p["net"] == "ionet5" and p["net_id"] == d.net_id("ionet5")
     assert p["orient"] == "E" and p["location"] == (0, 1810944)
+
+
+SKIPPY_DEF = """VERSION 5.8 ;
+NAMESCASESENSITIVE ON ;
+DESIGN skippy ;
+TECHNOLOGY tech ;
+UNITS DISTANCE MICRONS 2000 ;
+HISTORY made by hand ;
+PROPERTYDEFINITIONS
+  COMPONENTPIN designRuleWidth REAL ;
+  DESIGN FE_CORE_BOX_LL_X REAL 1.0 ;
+END PROPERTYDEFINITIONS
+DIEAREA ( 0 0 ) ( 20000 20000 ) ;
+ROW R0 CoreSite 0 0 N DO 10 BY 1 STEP 400 0 + PROPERTY rowp 1 ;
+NONDEFAULTRULES 1 ;
+- wide + LAYER Metal1 WIDTH 200 ;
+END NONDEFAULTRULES
+REGIONS 1 ;
+- r1 ( 0 0 ) ( 1000 1000 ) + TYPE FENCE ;
+END REGIONS
+COMPONENTS 2 ;
+- u1 OR4X1 + SOURCE NETLIST + WEIGHT 5 + PLACED ( 400 0 ) N ;
+- u2 NAND3X2 + UNPLACED + PROPERTY p "a + b ;" ;
+END COMPONENTS
+PINS 2 ;
+- in1 + NET n1 + SPECIAL + DIRECTION INPUT + USE SIGNAL
+  + PORT + LAYER Metal2 ( -70 0 ) ( 70 140 ) + PLACED ( 0 5000 ) E ;
+- lonely + NET not_in_nets + DIRECTION OUTPUT ;
+END PINS
+BLOCKAGES 1 ;
+- LAYER Metal2 + PUSHDOWN + SPACING 100 RECT ( 0 0 ) ( 100 100 ) POLYGON ( 0 0 ) ( 10 0 ) ( 0 10 ) ;
+END BLOCKAGES
+NETS 3 ;
+- n1 ( PIN in1 ) ( u1 D ) + NONDEFAULTRULE wide + WEIGHT 2 ;
+- MUSTJOIN ( u1 A ) ;
+- n2 ( u1 Y ) ( u2 A + SYNTHESIZED ) + SOURCE TEST + PROPERTY q 1 ;
+END NETS
+GROUPS 1 ;
+- g1 u1 u2 + REGION r1 ;
+END GROUPS
+BEGINEXT "tag"
+  CREATOR "me" ;
+ENDEXT
+END DESIGN
+"""
+
+
+def test_skipped_statements_counted(tmp_path: Path) -> None:
+    found = _found("ispd18_sample")
+    path = tmp_path / "skippy.def"
+    path.write_text(SKIPPY_DEF)
+    d = load_design(lef=found.lef, def_=path)
+    skipped = d._db.skipped_statements()
+    for key, count in {
+        "NAMESCASESENSITIVE": 1, "TECHNOLOGY": 1, "HISTORY": 1, "PROPERTYDEFINITIONS": 1, "ROW.PROPERTY": 1,
+        "NONDEFAULTRULES": 1, "REGIONS": 1, "COMPONENTS.SOURCE": 1, "COMPONENTS.WEIGHT": 1,
+        "COMPONENTS.PROPERTY": 1, "PINS.SPECIAL": 1, "BLOCKAGES.PUSHDOWN": 1, "BLOCKAGES.SPACING": 1,
+        "NETS.NONDEFAULTRULE": 1, "NETS.WEIGHT": 1, "NETS.MUSTJOIN": 1, "NETS.SYNTHESIZED": 1, "NETS.SOURCE": 1,
+        "NETS.PROPERTY": 1, "GROUPS": 1, "BEGINEXT": 1,
+    }.items():
+        assert skipped.get(key) == count, key
+    c = d.counts()
+    assert (c["components"], c["io_pins"], c["nets"], c["net_pins"], c["blockages"]) == (2, 2, 2, 4, 1)
+    assert d.component("u2")["status"] == "UNPLACED"
+    assert d._db.io_pin("in1")["shapes"] == [("Metal2", 0, 4930, 140, 5070)]
+    # A pin whose net NETS lacks is kept with its net name and no net id.
+    lonely = d._db.io_pin("lonely")
+    assert lonely["net"] == "not_in_nets" and lonely["net_id"] == -1
+    out = d.write_def(tmp_path / "out.def")
+    assert load_design(lef=found.lef, def_=out).compare(d) == []
