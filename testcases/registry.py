@@ -81,8 +81,8 @@ def not_found_message(name: str, roots: list[Path]) -> str:
     searched = ", ".join(str(r) for r in roots) or "(nothing)"
     return (
         f"testcase '{name}' not found; searched {searched}; to add it, put "
-        f"{name}.input.lef/.def/.guide in {SHARED_RELATIVE}/{name}/ beside the project "
-        f"or in <folder>/{name}/ and set {ENV_VAR}=<folder> (list known ones: xroute testcases)"
+        f"{name}/{name}.input.{{lef,def,guide}} under {SHARED_RELATIVE.as_posix()} (beside the project) "
+        f"or under a folder listed in {ENV_VAR}; 'xroute testcases' lists the known ones"
     )
 
 

@@ -50,8 +50,9 @@ def _choose_package() -> None:
     removed = [entry for entry in sys.path if _is_repo_root(entry)]
     sys.path[:] = kept
     spec = importlib.util.find_spec("xroute_cli._engine") if importlib.util.find_spec("xroute_cli") else None
-    if spec is None:
-        sys.path[:0] = removed  # nothing installed either: keep the source tree (pure-Python tests still run)
+    if spec is None:  # nothing usable installed either: keep the source tree (pure-Python tests still run)
+        sys.modules.pop("xroute_cli", None)
+        sys.path[:0] = removed
 
 
 _choose_package()
