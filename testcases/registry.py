@@ -36,9 +36,14 @@ class FoundTestcase:
     guide: Path | None  # None when the folder has no guide file
 
 
-def _project_root() -> Path:
-    """The folder that holds the ``testcases`` package (the repository root in a checkout)."""
-    return Path(__file__).resolve().parent.parent
+def _checkout_root() -> Path | None:
+    """The repository root when this package runs from a source checkout, else None.
+
+    The root is the folder that holds the ``testcases`` package and ``pyproject.toml``;
+    an installed copy (in site-packages) has no such folder.
+    """
+    root = Path(__file__).resolve().parent.parent
+    return root if (root / "pyproject.toml").is_file() else None
 
 
 def _cache_dir() -> Path:
@@ -50,13 +55,15 @@ def search_path() -> list[Path]:
     """The folders searched for testcases, in order, without duplicates.
 
     1. each entry of ``$XROUTE_TESTCASES`` (``os.pathsep``-separated);
-    2. ``../shared/testcases`` relative to the project root (the repository root of a
+    2. ``../shared/testcases`` relative to the repository root (when running from a
        source checkout), then relative to the current directory (for an installed
        package run from the project root);
     3. the user cache ``$XDG_CACHE_HOME/xroute/testcases`` (default ``~/.cache/xroute/testcases``).
     """
     candidates = [Path(p).expanduser() for p in os.environ.get(ENV_VAR, "").split(os.pathsep) if p.strip()]
-    candidates.append(_project_root() / SHARED_RELATIVE)
+    checkout = _checkout_root()
+    if checkout is not None:
+        candidates.append(checkout / SHARED_RELATIVE)
     candidates.append(Path.cwd() / SHARED_RELATIVE)
     candidates.append(_cache_dir())
     out: list[Path] = []

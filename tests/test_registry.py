@@ -49,10 +49,20 @@ def test_search_path_order(isolated: Path, monkeypatch: pytest.MonkeyPatch) -> N
     a, b = isolated / "a", isolated / "b"
     monkeypatch.setenv(ENV_VAR, f"{a}{os.pathsep}{b}")
     paths = search_path()
-    project_shared = (Path(registry.__file__).resolve().parent.parent / ".." / "shared" / "testcases").resolve()
+    checkout = Path(registry.__file__).resolve().parent.parent  # the repository root, if a source checkout
+    in_checkout = (checkout / "pyproject.toml").is_file()
+    project_shared = [(checkout / ".." / "shared" / "testcases").resolve()] if in_checkout else []
     cwd_shared = (isolated / "shared" / "testcases").resolve()  # tmp/proj/../shared/testcases
     cache = (isolated / "cache" / "xroute" / "testcases").resolve()
-    assert paths == [a.resolve(), b.resolve(), project_shared, cwd_shared, cache]
+    assert paths == [a.resolve(), b.resolve(), *project_shared, cwd_shared, cache]
+
+
+def test_installed_package_searches_beside_the_current_directory(isolated: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(registry, "_checkout_root", lambda: None)  # as in site-packages
+    assert search_path() == [
+        (isolated / "shared" / "testcases").resolve(),
+        (isolated / "cache" / "xroute" / "testcases").resolve(),
+    ]
 
 
 def test_search_path_dedupes_and_ignores_empty_entries(isolated: Path, monkeypatch: pytest.MonkeyPatch) -> None:
