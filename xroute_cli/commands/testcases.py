@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -123,14 +124,8 @@ def _footer(data: dict[str, Any]) -> str:
         f"Search path (first match wins):\n{roots}\n"
         f"To add an ISPD testcase: download it from the contest site ({sites}), then put "
         f"<name>/<name>.input.lef, .def and .guide under ../shared/testcases beside the project, "
-        f"or under any folder you list in ${data['env_var']} (separated by '{_pathsep()}')."
+        f"or under any folder you list in ${data['env_var']} (separated by '{os.pathsep}')."
     )
-
-
-def _pathsep() -> str:
-    import os
-
-    return os.pathsep
 
 
 def testcases(
