@@ -1,21 +1,25 @@
 """Known testcases (ISPD-2018/2019 detailed-routing contests), the search path that finds them, and static regions."""
 
-from testcases.registry import (
+from testcases.known import (
+    KNOWN_BY_NAME,
     KNOWN_TESTCASES,
     STATIC_REGIONS,
-    FoundTestcase,
     KnownTestcase,
     StaticRegion,
-    find_testcase,
-    search_path,
+    known_testcase,
 )
+from testcases.registry import ENV_VAR, FoundTestcase, find_testcase, locate_all, search_path
 
 __all__ = [
+    "ENV_VAR",
+    "KNOWN_BY_NAME",
     "KNOWN_TESTCASES",
     "STATIC_REGIONS",
     "FoundTestcase",
     "KnownTestcase",
     "StaticRegion",
     "find_testcase",
+    "known_testcase",
+    "locate_all",
     "search_path",
 ]

@@ -1,4 +1,10 @@
-"""PLACEHOLDER registry: replaced by the full one (published sizes, static regions)."""
+"""Where testcases are found: the search path and the lookup by name.
+
+A testcase folder ``<root>/<name>/`` holds ``<name>.input.lef`` and ``<name>.input.def``
+and, optionally, ``<name>.input.guide`` (the contest's naming), or the plain
+``<name>.lef`` / ``<name>.def`` / ``<name>.guide``. Files are read as they are: no
+compressed (.gz) variants. The roots, in order, are given by :func:`search_path`.
+"""
 
 from __future__ import annotations
 
@@ -6,44 +12,108 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from testcases.known import KNOWN_TESTCASES, KnownTestcase
 from xroute_cli.errors import TestcaseNotFound
 
 ENV_VAR = "XROUTE_TESTCASES"
+SHARED_RELATIVE = Path("..") / "shared" / "testcases"  # relative to the project root
 
-
-@dataclass(frozen=True)
-class KnownTestcase:
-    name: str
-
-
-@dataclass(frozen=True)
-class StaticRegion:
-    name: str
+# File name patterns, tried in this order: (lef, def, guide).
+_PATTERNS = (
+    ("{n}.input.lef", "{n}.input.def", "{n}.input.guide"),
+    ("{n}.lef", "{n}.def", "{n}.guide"),
+)
 
 
 @dataclass(frozen=True)
 class FoundTestcase:
+    """A testcase located on disk."""
+
     name: str
     folder: Path
     lef: Path
     def_: Path
-    guide: Path | None
+    guide: Path | None  # None when the folder has no guide file
 
 
-KNOWN_TESTCASES: tuple[KnownTestcase, ...] = ()
-STATIC_REGIONS: tuple[StaticRegion, ...] = ()
+def _checkout_root() -> Path | None:
+    """The repository root when this package runs from a source checkout, else None.
+
+    The root is the folder that holds the ``testcases`` package and ``pyproject.toml``;
+    an installed copy (in site-packages) has no such folder.
+    """
+    root = Path(__file__).resolve().parent.parent
+    return root if (root / "pyproject.toml").is_file() else None
+
+
+def _cache_dir() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+    return Path(base).expanduser() / "xroute" / "testcases"
 
 
 def search_path() -> list[Path]:
-    paths = [Path(p) for p in os.environ.get(ENV_VAR, "").split(os.pathsep) if p]
-    paths.append(Path(__file__).resolve().parent.parent.parent / "shared" / "testcases")
-    return paths
+    """The folders searched for testcases, in order, without duplicates.
+
+    1. each entry of ``$XROUTE_TESTCASES`` (``os.pathsep``-separated);
+    2. ``../shared/testcases`` relative to the repository root (when running from a
+       source checkout), then relative to the current directory (for an installed
+       package run from the project root);
+    3. the user cache ``$XDG_CACHE_HOME/xroute/testcases`` (default ``~/.cache/xroute/testcases``).
+    """
+    candidates = [Path(p).expanduser() for p in os.environ.get(ENV_VAR, "").split(os.pathsep) if p.strip()]
+    checkout = _checkout_root()
+    if checkout is not None:
+        candidates.append(checkout / SHARED_RELATIVE)
+    candidates.append(Path.cwd() / SHARED_RELATIVE)
+    candidates.append(_cache_dir())
+    out: list[Path] = []
+    for path in candidates:
+        resolved = path.resolve()
+        if resolved not in out:
+            out.append(resolved)
+    return out
+
+
+def _match(folder: Path, name: str) -> FoundTestcase | None:
+    for lef_pat, def_pat, guide_pat in _PATTERNS:
+        lef, def_ = folder / lef_pat.format(n=name), folder / def_pat.format(n=name)
+        if lef.is_file() and def_.is_file():
+            guide = folder / guide_pat.format(n=name)
+            return FoundTestcase(name, folder, lef, def_, guide if guide.is_file() else None)
+    return None
+
+
+def not_found_message(name: str, roots: list[Path]) -> str:
+    """One line: what was searched and how to add the testcase."""
+    searched = ", ".join(str(r) for r in roots) or "(nothing)"
+    return (
+        f"testcase '{name}' not found; searched {searched}; to add it, put "
+        f"{name}/{name}.input.{{lef,def,guide}} under {SHARED_RELATIVE.as_posix()} (beside the project) "
+        f"or under a folder listed in {ENV_VAR}; 'xroute testcases' lists the known ones"
+    )
 
 
 def find_testcase(name: str) -> FoundTestcase:
-    for root in search_path():
-        folder = root / name
-        lef, def_, guide = (folder / f"{name}.input.{ext}" for ext in ("lef", "def", "guide"))
-        if lef.is_file() and def_.is_file():
-            return FoundTestcase(name, folder, lef, def_, guide if guide.is_file() else None)
-    raise TestcaseNotFound(f"testcase {name} not found")
+    """The first folder ``<root>/<name>`` on the search path that holds the testcase's LEF and DEF.
+
+    Names the registry does not list are found the same way. Raises
+    :class:`~xroute_cli.errors.TestcaseNotFound` naming the folders searched.
+    """
+    roots = search_path()
+    if name and "/" not in name and os.sep not in name and name not in (".", ".."):
+        for root in roots:
+            found = _match(root / name, name)
+            if found is not None:
+                return found
+    raise TestcaseNotFound(not_found_message(name, roots))
+
+
+def locate_all() -> list[tuple[KnownTestcase, FoundTestcase | None]]:
+    """Every known testcase with where it was found (None when not on the search path)."""
+    out: list[tuple[KnownTestcase, FoundTestcase | None]] = []
+    for known in KNOWN_TESTCASES:
+        try:
+            out.append((known, find_testcase(known.name)))
+        except TestcaseNotFound:
+            out.append((known, None))
+    return out

@@ -1,20 +1,48 @@
-"""The ``xroute`` command: assembles the subcommands (one module each)."""
+"""The ``xroute`` command: assembles the subcommands (one module each) and turns user errors into one line.
+
+Errors: any :class:`~xroute_cli.errors.XrouteError` (bad input file, unknown testcase)
+or ``OSError`` (unreadable file) raised by a command is printed as one line
+``error: <file>:<line>: <message>`` on stderr and exits with status 2, without a
+traceback. Usage errors keep Typer's status 2. Anything else is a bug and shows its
+traceback.
+"""
 
 from __future__ import annotations
 
+from typing import Any
+
 import typer
+from typer.core import TyperGroup
 
-app = typer.Typer(no_args_is_help=True, add_completion=False, help="xroute: a detailed router with learnable net ordering.")
+from xroute_cli.commands import info, testcases
+from xroute_cli.console import USER_ERRORS, print_error
+
+EXIT_USER_ERROR = 2
 
 
-@app.command()
-def info(testcase: str) -> None:
-    """Print a summary of a design."""
-    from xroute_cli.design import load_design
+class XrouteGroup(TyperGroup):
+    """The top-level command group: reports user errors from any subcommand as one line."""
 
-    d = load_design(testcase)
-    print(d)
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            return super().invoke(ctx)
+        except USER_ERRORS as exc:
+            print_error(exc)
+            ctx.exit(EXIT_USER_ERROR)
+
+
+app = typer.Typer(
+    cls=XrouteGroup,
+    name="xroute",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    help="xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy.",
+)
+app.command(name="info")(info.info)
+app.command(name="testcases")(testcases.testcases)
 
 
 def main() -> None:
-    app()
+    """Console-script entry point (``xroute``)."""
+    app(prog_name="xroute")

@@ -1,0 +1,234 @@
+"""The ``xroute`` command through Typer's CliRunner (and once through a real process)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+import xroute_cli
+from testcases import ENV_VAR, find_testcase
+from xroute_cli.app import app
+from xroute_cli.console import error_line
+from xroute_cli.errors import InputError
+from xroute_cli.errors import TestcaseNotFound as NotFound
+
+
+WIDE = {"COLUMNS": "200"}  # tables wide enough that no cell wraps, whatever the caller's terminal
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    try:
+        return CliRunner(mix_stderr=False)  # Click < 8.2 mixes stderr into stdout by default
+    except TypeError:
+        return CliRunner()  # Click >= 8.2: result.stderr is always separate
+
+
+def _line(output: str, label: str) -> str:
+    """The table row whose first cell is ``label``."""
+    for line in output.splitlines():
+        cells = [c.strip() for c in line.replace("│", "|").split("|")]
+        cells = [c for c in cells if c]
+        if cells and cells[0] == label:
+            return line
+    raise AssertionError(f"no row {label!r} in:\n{output}")
+
+
+# -- help -------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("args", [[], ["info"], ["testcases"]])
+def test_help(runner: CliRunner, args: list[str]) -> None:
+    result = runner.invoke(app, [*args, "--help"])
+    assert result.exit_code == 0, result.output
+    assert "Usage" in result.output
+    if not args:
+        assert "info" in result.output and "testcases" in result.output
+
+
+def test_no_arguments_shows_help(runner: CliRunner) -> None:
+    result = runner.invoke(app, [])
+    assert "Usage" in result.output
+    assert result.exit_code in (0, 2)  # Click >= 8.2 exits 2 when no_args_is_help prints help
+
+
+# -- info ---------------------------------------------------------------------------------------
+
+
+def test_info_table_of_ispd18_sample(runner: CliRunner, testcase) -> None:
+    testcase("ispd18_sample")
+    result = runner.invoke(app, ["info", "ispd18_sample"], env=WIDE)
+    assert result.exit_code == 0, result.output + result.stderr
+    out = result.output
+    assert "22" in _line(out, "components")
+    assert "11" in _line(out, "nets")
+    assert "2000" in _line(out, "DBU per micron")
+    assert "(83600, 71820) - (104400, 91200)" in _line(out, "die area (DBU)")
+    assert "10.4 x 9.69" in _line(out, "die area (µm)")
+    assert "Metal1" in out and "ROUTING" in out
+
+
+def test_info_json_of_ispd18_sample(runner: CliRunner, testcase) -> None:
+    found = testcase("ispd18_sample")
+    result = runner.invoke(app, ["info", "ispd18_sample", "--json"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data["components"] == 22
+    assert data["nets"] == 11
+    assert data["design"] == "ispd18_sample"
+    assert data["dbu_per_micron"] == 2000
+    assert data["die_area"]["dbu"] == [83600, 71820, 104400, 91200]
+    assert data["files"]["def"] == str(found.def_)
+    assert data["io_pins"] == 0
+    assert data["routing_layers"] == 9
+    assert sum(data["pins"]["histogram"].values()) == data["nets"]
+    assert data["pins"]["total"] == data["counts"]["net_pins"]
+    assert isinstance(data["guides"], int) and data["guides"] > 0
+    assert [layer["name"] for layer in data["layers"] if layer["type"] == "ROUTING"][0] == "Metal1"
+
+
+def test_info_without_guide_says_so(runner: CliRunner, testcase) -> None:
+    testcase("ispd19_test3")
+    result = runner.invoke(app, ["info", "ispd19_test3", "--json"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data["guides"] is None and data["files"]["guide"] is None
+    assert (data["components"], data["nets"], data["io_pins"]) == (8283, 8953, 57)
+    assert data["gcell_grid"] is not None
+
+
+def test_info_missing_testcase(runner: CliRunner) -> None:
+    result = runner.invoke(app, ["info", "no_such_testcase_xyz"])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith("error: testcase 'no_such_testcase_xyz' not found")
+    assert ENV_VAR in lines[0]
+    assert "Traceback" not in result.output + result.stderr
+
+
+def test_info_missing_def_file(runner: CliRunner, tmp_path: Path) -> None:
+    lef = tmp_path / "x.lef"
+    lef.write_text("")
+    missing = tmp_path / "missing.def"
+    result = runner.invoke(app, ["info", "--lef", str(lef), "--def", str(missing)])
+    assert result.exit_code == 2
+    line = result.stderr.strip()
+    assert line.startswith(f"error: {missing}: ") and "not found" in line and "\n" not in line
+
+
+def test_info_malformed_def_names_file_and_line(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    lef = testcase("ispd18_sample").lef
+    bad = tmp_path / "bad.def"
+    bad.write_text(
+        "VERSION 5.8 ;\n"
+        "DESIGN bad ;\n"
+        "UNITS DISTANCE MICRONS 2000 ;\n"
+        "DIEAREA ( 0 0 ) ( 1000 oops ) ;\n"
+        "END DESIGN\n"
+    )
+    result = runner.invoke(app, ["info", "--lef", str(lef), "--def", str(bad)])
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith(f"error: {bad}:4: ")
+    assert "Traceback" not in result.output + result.stderr
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["info"],  # nothing to read
+        ["info", "--lef", "a.lef"],  # no DEF
+        ["info", "ispd18_sample", "--def", "a.def"],  # both a name and files
+        ["info", "--bogus"],
+    ],
+)
+def test_info_usage_errors(runner: CliRunner, args: list[str]) -> None:
+    result = runner.invoke(app, args)
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output + result.stderr
+
+
+# -- testcases --------------------------------------------------------------------------------
+
+
+def test_testcases_lists_found_and_missing(runner: CliRunner, testcase) -> None:
+    found = testcase("ispd18_test1")
+    try:
+        find_testcase("ispd18_test5")
+        pytest.skip("ispd18_test5 is on the search path here")
+    except NotFound:
+        pass
+    result = runner.invoke(app, ["testcases"], env=WIDE)
+    assert result.exit_code == 0, result.output
+    assert str(found.folder.parent) in _line(result.output, "ispd18_test1")
+    assert "not found" in _line(result.output, "ispd18_test5")
+    assert "XROUTE_TESTCASES" in result.output and "ispd.cc/contests/18" in result.output
+    assert "Region10" in result.output
+
+    data = json.loads(runner.invoke(app, ["testcases", "--json"]).stdout)
+    rows = {row["name"]: row for row in data["testcases"]}
+    assert rows["ispd18_test1"]["found"] == str(found.folder)
+    assert rows["ispd18_test5"]["found"] is None
+    assert rows["ispd18_test5"]["nets"] == 72394
+
+
+def test_testcases_json(runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    folder = tmp_path / "ispd19_test7"
+    folder.mkdir()
+    for ext in ("lef", "def"):
+        (folder / f"ispd19_test7.input.{ext}").write_text("")
+    monkeypatch.setenv(ENV_VAR, str(tmp_path))
+    result = runner.invoke(app, ["testcases", "--json"])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["search_path"][0] == str(tmp_path.resolve())
+    assert len(data["testcases"]) == 24
+    row = next(r for r in data["testcases"] if r["name"] == "ispd19_test7")
+    assert row["found"] == str(folder.resolve())
+    assert row["files"]["guide"] is None
+    regions = {r["name"]: r for r in data["static_regions"]}
+    assert len(regions) == 10
+    assert regions["Region9"]["testcase_found"] is True
+    assert regions["Region9"]["lower_left"] == [612000, 1314000]
+
+
+# -- errors ---------------------------------------------------------------------------------------
+
+
+def test_error_line_format() -> None:
+    assert error_line(InputError("expected a number, got 'oops'", "/x/a.def", 12)) == (
+        "error: /x/a.def:12: expected a number, got 'oops'"
+    )
+    assert error_line(InputError("DEF file not found", "/x/a.def", 0)) == "error: /x/a.def: DEF file not found"
+    assert error_line(NotFound("testcase 'a' not found;\n  searched b")) == (
+        "error: testcase 'a' not found; searched b"
+    )
+    assert error_line(FileNotFoundError(2, "No such file or directory", "/x/y")) == (
+        "error: /x/y: No such file or directory"
+    )
+
+
+def test_real_process_prints_one_line_without_traceback(tmp_path: Path) -> None:
+    """The console-script path (``main()``), not only CliRunner, turns user errors into one line."""
+    package_parent = str(Path(xroute_cli.__file__).resolve().parent.parent)
+    env = {**os.environ, "PYTHONPATH": package_parent, ENV_VAR: str(tmp_path)}
+    proc = subprocess.run(
+        [sys.executable, "-m", "xroute_cli", "info", "no_such_testcase_xyz"],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 2
+    assert proc.stdout == ""
+    assert proc.stderr.count("\n") == 1
+    assert proc.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")

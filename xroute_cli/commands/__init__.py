@@ -1,0 +1,1 @@
+"""The subcommands of ``xroute``, one module each; :mod:`xroute_cli.app` assembles them."""
