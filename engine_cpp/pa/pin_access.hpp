@@ -1,0 +1,54 @@
+// Pin access: for every pin a net connects (every entry of Design::pinRefs),
+// a few legal points where a route may start or end, best first.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "db/design.hpp"
+#include "db/tech.hpp"
+#include "grid/tracks.hpp"
+
+namespace xroute {
+
+// Exits a route may take from an access point.
+enum AccessDir : uint8_t {
+  kAccessUp = 1,      // a via to the routing layer above (upVia)
+  kAccessEast = 2,    // planar on the pin's layer, towards +x
+  kAccessWest = 4,
+  kAccessNorth = 8,   // towards +y
+  kAccessSouth = 16,
+};
+
+struct AccessPoint {
+  Point at;              // DBU, inside (or on the edge of) a shape of the pin
+  int32_t z = 0;         // routing index of the pin shape's layer
+  uint8_t dirs = 0;      // AccessDir bits
+  ViaId upVia;           // LEF via used for kAccessUp (legal at this point)
+  int32_t cost = 0;      // 0 = on-track in both axes; larger = worse (half-track, centre, ...)
+};
+
+struct PinAccessSettings {
+  int maxPointsPerPin = 3;   // keep at most this many, best first
+  int threads = 1;
+};
+
+// Flat per-pinRef table: pinRef i owns points[start[i] .. start[i+1]).
+struct PinAccessTable {
+  std::vector<int32_t> start;       // size pinRefs.size() + 1
+  std::vector<AccessPoint> points;
+
+  int32_t count(int32_t pinRef) const { return start[pinRef + 1] - start[pinRef]; }
+  const AccessPoint* begin(int32_t pinRef) const { return points.data() + start[pinRef]; }
+  const AccessPoint* end(int32_t pinRef) const { return points.data() + start[pinRef + 1]; }
+};
+
+// Computes access points for every pinRef. Unique component classes (macro,
+// orientation, position modulo the track pitches) are computed once and
+// reused. Every pin with at least one shape on a routing layer gets at least
+// one point (a fallback at the centre of its largest shape when no legal
+// point exists; such points have a high cost).
+PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
+                                const PinAccessSettings& settings);
+
+}  // namespace xroute
