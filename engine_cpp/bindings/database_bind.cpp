@@ -2,6 +2,7 @@
 // lists, big arrays as zero-copy numpy views owned by the Database object.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/map.h>
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
@@ -389,6 +390,7 @@ void bindDatabase(nb::module_& m) {
               nb::dict pd;
               pd["direction"] = p.direction;
               pd["use"] = p.use;
+              pd["port_count"] = p.portCount;
               pd["shapes"] = shapeList(d.tech, p.shapes);
               pins[p.name.c_str()] = pd;
             }
@@ -397,6 +399,66 @@ void bindDatabase(nb::module_& m) {
             return r;
           },
           "name"_a, "A LEF macro: class, origin, size, pins (with shapes in macro coordinates, DBU) and OBS.")
+      .def(
+          "via",
+          [](const Database& d, const std::string& name) {
+            const ViaId id = d.tech.findVia(name);
+            if (!id.valid()) throw nb::key_error(("no LEF via named " + name).c_str());
+            const Via& v = d.tech.vias[*id];
+            auto layerName = [&](LayerId l) { return l.valid() ? d.tech.layer(l).name : std::string(); };
+            nb::dict r;
+            r["name"] = v.name;
+            r["default"] = v.isDefault;
+            r["bottom"] = layerName(v.bottom);
+            r["cut"] = layerName(v.cut);
+            r["top"] = layerName(v.top);
+            nb::list shapes;
+            for (const ViaShape& s : v.shapes) {
+              shapes.append(nb::make_tuple(d.tech.layer(s.layer).name, s.rect.xlo, s.rect.ylo, s.rect.xhi, s.rect.yhi));
+            }
+            r["shapes"] = shapes;
+            return r;
+          },
+          "name"_a, "A LEF VIA: default flag, bottom/cut/top layer names and shapes (layer, xlo, ylo, xhi, yhi) in DBU.")
+      .def(
+          "via_rule",
+          [](const Database& d, const std::string& name) {
+            const ViaRuleId id = d.tech.findViaRule(name);
+            if (!id.valid()) throw nb::key_error(("no VIARULE named " + name).c_str());
+            const ViaRule& v = d.tech.viaRules[*id];
+            nb::dict r;
+            r["name"] = v.name;
+            r["generate"] = v.generate;
+            r["default"] = v.isDefault;
+            nb::list layers;
+            for (const ViaRuleLayer& l : v.layers) {
+              nb::dict ld;
+              ld["layer"] = d.tech.layer(l.layer).name;
+              ld["enclosure"] = nb::make_tuple(l.enclosure1, l.enclosure2);
+              ld["width"] = l.hasWidth ? nb::object(nb::make_tuple(l.widthLo, l.widthHi)) : nb::none();
+              ld["rect"] = rectTuple(l.cutRect);
+              ld["spacing"] = nb::make_tuple(l.spacingX, l.spacingY);
+              layers.append(ld);
+            }
+            r["layers"] = layers;
+            return r;
+          },
+          "name"_a, "A LEF VIARULE: generate/default flags and its layers in order (DBU).")
+      .def(
+          "sites",
+          [](const Database& d) {
+            nb::list out;
+            for (const Site& s : d.tech.sites) {
+              nb::dict r;
+              r["name"] = s.name;
+              r["class"] = s.siteClass;
+              r["size"] = nb::make_tuple(s.width, s.height);
+              r["symmetry"] = s.symmetry;
+              out.append(r);
+            }
+            return out;
+          },
+          "LEF SITEs in order: name, class, size (DBU), symmetry.")
       .def(
           "macro_names",
           [](const Database& d) {

@@ -1,10 +1,559 @@
-// PLACEHOLDER: the DEF reader is being written.
+// DEF reader: header statements, DIEAREA, ROW, TRACKS, GCELLGRID,
+// COMPONENTS, PINS, BLOCKAGES, and the sections we skip. VIAS are in
+// def_vias.cpp, NETS and SPECIALNETS in def_nets.cpp.
+//
+// Coordinates are DEF integers (DBU) as written. Anything legal that we do
+// not keep is skipped and counted in Design::skippedStatements; anything
+// malformed or unknown throws InputError with the offending token's line.
+#include <algorithm>
+#include <limits>
+
+#include "io/def_parser.hpp"
 #include "io/readers.hpp"
-#include "io/lexer.hpp"
 
 namespace xroute {
-void readDef(const std::string& path, const Tech& tech, Design& design) { readDefText(path, "", tech, design); }
-void readDefText(const std::string& name, std::string, const Tech&, Design&) {
-  throw InputError(name, 0, "DEF reader not built yet");
+
+namespace {
+
+// Sections we do not use: skipped up to "END <keyword>" and counted.
+constexpr std::string_view kSkippedSections[] = {
+    "PROPERTYDEFINITIONS", "NONDEFAULTRULES", "REGIONS", "GROUPS", "FILLS", "SCANCHAINS",
+    "STYLES", "SLOTS", "PINPROPERTIES", "IOTIMINGS", "FLOORPLANCONSTRAINTS", "TIMINGDISABLES",
+    "CONSTRAINTS", "ASSERTIONS"};
+
+// Statements "KEYWORD ... ;" we do not use.
+constexpr std::string_view kSkippedStatements[] = {"TECHNOLOGY", "HISTORY", "NAMESCASESENSITIVE",
+                                                    "NAMEMAPSTRINGS"};
+
+template <size_t N>
+bool contains(const std::string_view (&list)[N], std::string_view w) {
+  return std::find(std::begin(list), std::end(list), w) != std::end(list);
 }
+
+// A reserve() that a bogus huge declared count cannot turn into a huge allocation.
+size_t saneReserve(int declared) { return static_cast<size_t>(std::clamp(declared, 0, 1 << 20)); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Helpers
+
+void DefParser::countSkip(std::string_view key, int n) {
+  for (auto& [k, v] : design_.skippedStatements) {
+    if (k == key) {
+      v += n;
+      return;
+    }
+  }
+  design_.skippedStatements.emplace_back(std::string(key), n);
+}
+
+void DefParser::unexpected(const Token& t, const std::string& expected) const {
+  lex_.failAt(t, "expected " + expected + ", found " + quoteToken(t.text));
+}
+
+Point DefParser::readPoint() {
+  lex_.expect("(");
+  const Dbu x = lex_.dbu();
+  const Dbu y = lex_.dbu();
+  lex_.expect(")");
+  return {x, y};
+}
+
+LayerId DefParser::layerAt(const Token& t) const {
+  const LayerId id = tech_.findLayer(t.text);
+  if (!id.valid() || t.quoted) lex_.failAt(t, "unknown layer " + quoteToken(t.text));
+  return id;
+}
+
+LayerId DefParser::routingLayerAt(const Token& t) const {
+  const LayerId id = layerAt(t);
+  if (tech_.layer(id).type != LayerType::Routing) {
+    lex_.failAt(t, "layer " + quoteToken(t.text) + " is not a routing layer");
+  }
+  return id;
+}
+
+ViaRef DefParser::findVia(std::string_view name) const {
+  auto it = design_.viaIndex.find(name);
+  if (it != design_.viaIndex.end()) return ViaRef{*it->second, true};
+  const ViaId id = tech_.findVia(name);
+  return id.valid() ? ViaRef{*id, false} : ViaRef{};
+}
+
+Orient DefParser::orientAt(const Token& t) const {
+  Orient o = Orient::N;
+  if (t.quoted || !parseOrient(t.text, o)) lex_.failAt(t, "bad orientation " + quoteToken(t.text));
+  return o;
+}
+
+PlaceStatus DefParser::readPlacement(const Token& kw, Point& at, Orient& orient) {
+  at = readPoint();
+  orient = orientAt(lex_.next());
+  if (kw.text == "FIXED") return PlaceStatus::Fixed;
+  if (kw.text == "COVER") return PlaceStatus::Cover;
+  return PlaceStatus::Placed;
+}
+
+int DefParser::readSectionCount() {
+  const Token t = lex_.peek();
+  const int64_t n = lex_.integer();
+  if (n < 0 || n > std::numeric_limits<int>::max()) lex_.failAt(t, "bad section count " + quoteToken(t.text));
+  lex_.expect(";");
+  return static_cast<int>(n);
+}
+
+bool DefParser::atSectionEnd(std::string_view section, int declared, int found) {
+  const Token& t = lex_.peek();
+  if (is(t, "-")) return false;
+  if (!is(t, "END")) unexpected(t, "'-' or 'END " + std::string(section) + "'");
+  const Token end = lex_.next();
+  lex_.expect(section);
+  if (declared != found) {
+    lex_.failAt(end, std::string(section) + " " + std::to_string(declared) + " declared, " +
+                         std::to_string(found) + " found");
+  }
+  return true;
+}
+
+void DefParser::skipToOptionEnd() {
+  while (true) {
+    const Token& t = lex_.peek();
+    if (is(t, "+") || is(t, ";")) return;
+    lex_.next();
+  }
+}
+
+void DefParser::skipSection(std::string_view keyword) {
+  const std::string name(keyword);
+  const std::string endKeyword = keyword == "BEGINEXT" ? "ENDEXT" : "END";
+  int statements = 0;
+  while (true) {
+    const Token t = lex_.next();
+    if (keyword == "BEGINEXT") {
+      if (is(t, "ENDEXT")) break;
+      continue;
+    }
+    if (is(t, "END") && peekIs(keyword)) {
+      lex_.next();
+      break;
+    }
+    if (is(t, ";")) ++statements;
+  }
+  countSkip(name + " section");
+  if (statements > 0) countSkip(name + " statements", statements);
+}
+
+// ---------------------------------------------------------------------------
+// Top level
+
+void DefParser::parse() {
+  design_.netPinStart.assign(1, 0);
+  bool ended = false;
+  while (!lex_.atEnd()) {
+    const Token t = lex_.next();
+    if (t.quoted) unexpected(t, "a DEF statement");
+    const std::string_view k = t.text;
+    if (k == "END") {
+      lex_.expect("DESIGN");
+      ended = true;
+      break;
+    } else if (k == "VERSION") {
+      design_.version = lex_.word("a version number");
+      lex_.expect(";");
+    } else if (k == "DIVIDERCHAR") {
+      design_.dividerChar = lex_.word("a divider character");
+      lex_.expect(";");
+    } else if (k == "BUSBITCHARS") {
+      design_.busBitChars = lex_.word("bus bit characters");
+      lex_.expect(";");
+    } else if (k == "DESIGN") {
+      design_.name = lex_.word("a design name");
+      lex_.expect(";");
+    } else if (k == "UNITS") {
+      readUnits();
+    } else if (k == "DIEAREA") {
+      readDieArea();
+    } else if (k == "ROW") {
+      readRow();
+    } else if (k == "TRACKS") {
+      readTracks();
+    } else if (k == "GCELLGRID") {
+      readGCellGrid();
+    } else if (k == "VIAS") {
+      readVias();
+    } else if (k == "COMPONENTS") {
+      readComponents();
+    } else if (k == "PINS") {
+      readPins();
+    } else if (k == "BLOCKAGES") {
+      readBlockages();
+    } else if (k == "SPECIALNETS") {
+      readSpecialNets();
+    } else if (k == "NETS") {
+      readNets();
+    } else if (contains(kSkippedStatements, k)) {
+      lex_.skipStatement();
+      countSkip(k);
+    } else if (contains(kSkippedSections, k) || k == "BEGINEXT") {
+      skipSection(k);
+    } else {
+      unexpected(t, "a DEF statement");
+    }
+  }
+  if (!ended) lex_.fail(lex_.line(), "unexpected end of file: missing 'END DESIGN'");
+  if (!lex_.atEnd()) {
+    const Token& t = lex_.peek();
+    lex_.failAt(t, "unexpected text after END DESIGN: " + quoteToken(t.text));
+  }
+  resolveIoPinNets();
+}
+
+void DefParser::readUnits() {
+  lex_.expect("DISTANCE");
+  lex_.expect("MICRONS");
+  const Token t = lex_.peek();
+  const int64_t n = lex_.integer();
+  if (n <= 0 || n > 1000000) lex_.failAt(t, "bad DEF database units " + quoteToken(t.text));
+  if (tech_.dbuPerMicron != 0 && n != tech_.dbuPerMicron) {
+    lex_.failAt(t, "DEF UNITS DISTANCE MICRONS " + std::to_string(n) + " differs from the LEF's DATABASE MICRONS " +
+                       std::to_string(tech_.dbuPerMicron) + " (rescaling is not supported)");
+  }
+  design_.dbuPerMicron = static_cast<int>(n);
+  lex_.expect(";");
+}
+
+void DefParser::readDieArea() {
+  const int line = lex_.line();
+  std::vector<Point> pts;
+  while (!peekIs(";")) pts.push_back(readPoint());
+  lex_.next();
+  if (pts.size() < 2) lex_.fail(line, "DIEAREA needs at least 2 points");
+  Rect box = Rect::fromCorners(pts[0], pts[1]);
+  for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  design_.dieArea = box;
+  design_.diePolygon = std::move(pts);
+}
+
+void DefParser::readRow() {
+  Row row;
+  row.name = lex_.word("a row name");
+  const Token site = lex_.next();
+  if (is(site, ";") || tech_.siteIndex.find(site.text) == tech_.siteIndex.end()) {
+    lex_.failAt(site, "unknown site " + quoteToken(site.text));
+  }
+  row.site = std::string(site.text);
+  row.origin.x = lex_.dbu();
+  row.origin.y = lex_.dbu();
+  row.orient = orientAt(lex_.next());
+  if (lex_.accept("DO")) {
+    const Token nx = lex_.peek();
+    const int64_t x = lex_.integer();
+    lex_.expect("BY");
+    const int64_t y = lex_.integer();
+    if (x < 1 || y < 1 || x > 1000000000 || y > 1000000000) lex_.failAt(nx, "bad ROW repeat count");
+    row.numX = static_cast<int>(x);
+    row.numY = static_cast<int>(y);
+    if (lex_.accept("STEP")) {
+      row.stepX = lex_.dbu();
+      row.stepY = lex_.dbu();
+    }
+  }
+  while (lex_.accept("+")) {
+    const Token kw = lex_.next();
+    if (!is(kw, "PROPERTY")) unexpected(kw, "PROPERTY or ';'");
+    skipToOptionEnd();
+    countSkip("ROW + PROPERTY");
+  }
+  lex_.expect(";");
+  design_.rows.push_back(std::move(row));
+}
+
+void DefParser::readTracks() {
+  const Token axis = lex_.next();
+  if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
+  TrackPattern pat;
+  pat.isX = axis.text == "X";
+  pat.start = lex_.dbu();
+  lex_.expect("DO");
+  const Token countTok = lex_.peek();
+  const int64_t count = lex_.integer();
+  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad track count " + quoteToken(countTok.text));
+  pat.count = static_cast<int>(count);
+  lex_.expect("STEP");
+  pat.step = lex_.dbu();
+  if (lex_.accept("MASK")) {
+    lex_.integer();
+    lex_.accept("SAMEMASK");
+    countSkip("TRACKS MASK");
+  }
+  int layers = 0;
+  if (lex_.accept("LAYER")) {
+    while (!peekIs(";")) {
+      pat.layer = layerAt(lex_.next());
+      design_.tracks.push_back(pat);
+      ++layers;
+    }
+  }
+  const Token semi = lex_.next();
+  if (layers == 0) lex_.failAt(semi, "TRACKS without a LAYER");
+}
+
+void DefParser::readGCellGrid() {
+  const Token axis = lex_.next();
+  if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
+  GCellPattern g;
+  g.isX = axis.text == "X";
+  g.start = lex_.dbu();
+  lex_.expect("DO");
+  const Token countTok = lex_.peek();
+  const int64_t count = lex_.integer();
+  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad GCELLGRID count " + quoteToken(countTok.text));
+  g.count = static_cast<int>(count);
+  lex_.expect("STEP");
+  g.step = lex_.dbu();
+  lex_.expect(";");
+  design_.gcellGrid.push_back(g);
+}
+
+// ---------------------------------------------------------------------------
+// COMPONENTS
+
+void DefParser::readComponents() {
+  const int declared = readSectionCount();
+  design_.components.reserve(design_.components.size() + saneReserve(declared));
+  design_.compIndex.reserve(design_.compIndex.size() + saneReserve(declared));
+  int found = 0;
+  while (!atSectionEnd("COMPONENTS", declared, found)) {
+    readComponent();
+    ++found;
+  }
+}
+
+void DefParser::readComponent() {
+  lex_.expect("-");
+  const Token nameTok = lex_.next();
+  if (is(nameTok, ";")) unexpected(nameTok, "a component name");
+  const Token macroTok = lex_.next();
+  const MacroId macro = tech_.findMacro(macroTok.text);
+  if (!macro.valid() || macroTok.quoted) lex_.failAt(macroTok, "unknown macro " + quoteToken(macroTok.text));
+  const CompId id(static_cast<int32_t>(design_.components.size()));
+  if (!design_.compIndex.emplace(std::string(nameTok.text), id).second) {
+    lex_.failAt(nameTok, "duplicate component " + quoteToken(nameTok.text));
+  }
+  Component& c = design_.components.emplace_back();
+  c.name = std::string(nameTok.text);
+  c.macro = macro;
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (!is(t, "+")) unexpected(t, "'+' or ';'");
+    const Token kw = lex_.next();
+    if (is(kw, "PLACED") || is(kw, "FIXED") || is(kw, "COVER")) {
+      c.status = readPlacement(kw, c.location, c.orient);
+    } else if (is(kw, "UNPLACED")) {
+      c.status = PlaceStatus::Unplaced;
+    } else if (is(kw, ";")) {
+      unexpected(kw, "a component option");
+    } else {
+      skipToOptionEnd();
+      countSkip("COMPONENTS + " + std::string(kw.text));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// PINS
+
+void DefParser::readPins() {
+  const int declared = readSectionCount();
+  design_.ioPins.reserve(design_.ioPins.size() + saneReserve(declared));
+  int found = 0;
+  while (!atSectionEnd("PINS", declared, found)) {
+    readPin();
+    ++found;
+  }
+}
+
+namespace {
+// One + PORT of a pin (the part before the first + PORT counts as a port).
+struct PinPort {
+  std::vector<IoPinShape> shapes;
+  PlaceStatus status = PlaceStatus::Unplaced;
+  Point location;
+  Orient orient = Orient::N;
+};
+}  // namespace
+
+void DefParser::readPin() {
+  lex_.expect("-");
+  const Token nameTok = lex_.next();
+  if (is(nameTok, ";")) unexpected(nameTok, "a pin name");
+  const IoPinId id(static_cast<int32_t>(design_.ioPins.size()));
+  if (!design_.ioPinIndex.emplace(std::string(nameTok.text), id).second) {
+    lex_.failAt(nameTok, "duplicate pin " + quoteToken(nameTok.text));
+  }
+  IoPin pin;
+  pin.name = std::string(nameTok.text);
+  std::vector<PinPort> ports(1);
+  bool explicitPorts = false;
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (!is(t, "+")) unexpected(t, "'+' or ';'");
+    const Token kw = lex_.next();
+    const std::string_view k = kw.quoted ? std::string_view() : kw.text;
+    if (k == "NET") {
+      pin.netName = lex_.word("a net name");
+    } else if (k == "DIRECTION") {
+      pin.direction = lex_.word("a direction");
+    } else if (k == "USE") {
+      pin.use = lex_.word("a pin use");
+    } else if (k == "PORT") {
+      if (explicitPorts) ports.emplace_back();
+      explicitPorts = true;
+    } else if (k == "LAYER") {
+      const LayerId layer = layerAt(lex_.next());
+      while (!peekIs("(")) {
+        const Token opt = lex_.next();
+        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
+          lex_.integer();
+          countSkip("PINS LAYER " + std::string(opt.text));
+        } else {
+          unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
+        }
+      }
+      const Point a = readPoint();
+      const Point b = readPoint();
+      ports.back().shapes.push_back({layer, Rect::fromCorners(a, b)});
+    } else if (k == "POLYGON") {
+      const LayerId layer = layerAt(lex_.next());
+      while (!peekIs("(")) {
+        const Token opt = lex_.next();
+        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
+          lex_.integer();
+        } else {
+          unexpected(opt, "'('");
+        }
+      }
+      std::vector<Point> pts;
+      while (peekIs("(")) pts.push_back(readPoint());
+      if (pts.size() < 3) lex_.fail(lex_.line(), "POLYGON needs at least 3 points");
+      Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+      for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+      ports.back().shapes.push_back({layer, box});
+      countSkip("PINS POLYGON (kept as its bounding box)");
+      ++design_.warningCount;
+    } else if (k == "VIA") {
+      const Token viaTok = lex_.next();
+      const ViaRef ref = findVia(viaTok.text);
+      if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
+      if (lex_.accept("MASK")) lex_.integer();
+      const Point at = readPoint();
+      for (const ViaShape& s : design_.via(tech_, ref).shapes) {
+        ports.back().shapes.push_back({s.layer, s.rect.translated(at)});
+      }
+    } else if (k == "PLACED" || k == "FIXED" || k == "COVER") {
+      PinPort& p = ports.back();
+      p.status = readPlacement(kw, p.location, p.orient);
+    } else if (k.empty() || k == ";") {
+      unexpected(kw, "a pin option");
+    } else {
+      skipToOptionEnd();
+      countSkip("PINS + " + std::string(k));
+    }
+  }
+  // One placement for all ports: keep it; otherwise make the shapes absolute.
+  bool samePlacement = true;
+  for (const PinPort& p : ports) {
+    samePlacement = samePlacement && p.status == ports[0].status && p.location == ports[0].location &&
+                    p.orient == ports[0].orient;
+  }
+  if (samePlacement) {
+    pin.status = ports[0].status;
+    pin.location = ports[0].location;
+    pin.orient = ports[0].orient;
+    for (PinPort& p : ports) pin.shapes.insert(pin.shapes.end(), p.shapes.begin(), p.shapes.end());
+  } else {
+    pin.status = PlaceStatus::Unplaced;
+    for (PinPort& p : ports) {
+      if (p.status != PlaceStatus::Unplaced && pin.status == PlaceStatus::Unplaced) pin.status = p.status;
+      const Transform t{p.location, p.orient, 0, 0};
+      for (const IoPinShape& s : p.shapes) pin.shapes.push_back({s.layer, t.apply(s.rect)});
+    }
+    countSkip("PINS ports with different placements (shapes made absolute)");
+    ++design_.warningCount;
+  }
+  design_.ioPins.push_back(std::move(pin));
+}
+
+void DefParser::resolveIoPinNets() {
+  for (IoPin& p : design_.ioPins) p.net = design_.findNet(p.netName);
+}
+
+// ---------------------------------------------------------------------------
+// BLOCKAGES
+
+void DefParser::readBlockages() {
+  const int declared = readSectionCount();
+  int found = 0;
+  while (!atSectionEnd("BLOCKAGES", declared, found)) {
+    readBlockage();
+    ++found;
+  }
+}
+
+void DefParser::readBlockage() {
+  lex_.expect("-");
+  Blockage b;
+  const Token kind = lex_.next();
+  if (is(kind, "LAYER")) {
+    b.layer = layerAt(lex_.next());
+  } else if (is(kind, "PLACEMENT")) {
+    b.placement = true;
+  } else {
+    unexpected(kind, "LAYER or PLACEMENT");
+  }
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (is(t, "+")) {
+      const Token kw = lex_.next();
+      if (is(kw, "COMPONENT") || is(kw, "SPACING") || is(kw, "DESIGNRULEWIDTH") || is(kw, "MASK") ||
+          is(kw, "PARTIAL")) {
+        lex_.next();
+      } else if (!(is(kw, "PUSHDOWN") || is(kw, "EXCEPTPGNET") || is(kw, "SLOTS") || is(kw, "FILLS") ||
+                   is(kw, "SOFT"))) {
+        unexpected(kw, "a blockage option");
+      }
+      countSkip("BLOCKAGES + " + std::string(kw.text));
+    } else if (is(t, "RECT")) {
+      const Point a = readPoint();
+      const Point c = readPoint();
+      b.rects.push_back(Rect::fromCorners(a, c));
+    } else if (is(t, "POLYGON")) {
+      std::vector<Point> pts;
+      while (peekIs("(")) pts.push_back(readPoint());
+      if (pts.size() < 3) lex_.failAt(t, "POLYGON needs at least 3 points");
+      b.polygons.push_back(std::move(pts));
+    } else {
+      unexpected(t, "RECT, POLYGON, '+' or ';'");
+    }
+  }
+  design_.blockages.push_back(std::move(b));
+}
+
+// ---------------------------------------------------------------------------
+// Entry points
+
+void readDef(const std::string& path, const Tech& tech, Design& design) {
+  Lexer lex = Lexer::fromFile(path);
+  DefParser(lex, tech, design).parse();
+}
+
+void readDefText(const std::string& name, std::string text, const Tech& tech, Design& design) {
+  Lexer lex(name, std::move(text));
+  DefParser(lex, tech, design).parse();
+}
+
 }  // namespace xroute

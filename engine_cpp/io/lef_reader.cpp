@@ -1,8 +1,351 @@
-// PLACEHOLDER: the LEF reader is being written.
+// LEF reader: entry points, token helpers, the file-level statements (VERSION,
+// BUSBITCHARS, DIVIDERCHAR, UNITS, MANUFACTURINGGRID, CLEARANCEMEASURE,
+// PROPERTYDEFINITIONS, END LIBRARY), SITE, and the blocks that are skipped
+// whole (NONDEFAULTRULE, top-level SPACING, ARRAY, BEGINEXT). The other
+// blocks live in lef_layer.cpp, lef58.cpp, lef_via.cpp and lef_macro.cpp.
+#include <cctype>
+#include <charconv>
+#include <cmath>
+
+#include "io/lef_parser.hpp"
 #include "io/readers.hpp"
-#include "io/lexer.hpp"
 
 namespace xroute {
-void readLef(const std::string& path, Tech& tech) { throw InputError(path, 0, "LEF reader not built yet"); }
-void readLefText(const std::string& name, std::string, Tech&) { throw InputError(name, 0, "LEF reader not built yet"); }
+
+bool isNumberText(std::string_view text) {
+  const char* b = text.data();
+  const char* e = b + text.size();
+  if (b != e && *b == '+') ++b;
+  if (b == e) return false;
+  double v = 0;
+  auto [p, ec] = std::from_chars(b, e, v);
+  return ec == std::errc() && p == e;
+}
+
+LefParser::LefParser(Lexer& lex, Tech& tech) : lex_(lex), tech_(tech) {
+  for (size_t i = 0; i < tech_.skippedStatements.size(); ++i) {
+    skippedIndex_.emplace(tech_.skippedStatements[i].first, i);
+  }
+}
+
+// ---------------------------------------------------------------- tokens --
+
+void LefParser::failAt(const Token& t, const std::string& message) const { lex_.failAt(t, message); }
+
+void LefParser::failEof() const {
+  std::string msg = "unexpected end of file";
+  if (!open_.empty()) {
+    const OpenBlock& b = open_.back();
+    msg += " inside " + std::string(b.kind) + (b.name.empty() ? "" : " " + quoteToken(b.name)) +
+           " (opened at line " + std::to_string(b.line) + ")";
+  }
+  lex_.fail(lex_.line(), msg);
+}
+
+Token LefParser::next() {
+  if (lex_.atEnd()) failEof();
+  return lex_.next();
+}
+
+const Token& LefParser::peek() {
+  if (lex_.atEnd()) failEof();
+  return lex_.peek();
+}
+
+bool LefParser::peekIs(std::string_view word) {
+  const Token& t = peek();
+  return !t.quoted && t.text == word;
+}
+
+bool LefParser::accept(std::string_view word) {
+  if (lex_.atEnd()) failEof();
+  return lex_.accept(word);
+}
+
+void LefParser::expect(std::string_view word) {
+  if (lex_.atEnd()) failEof();
+  lex_.expect(word);
+}
+
+void LefParser::endStatement() {
+  if (lex_.atEnd()) failEof();
+  const Token& t = lex_.peek();
+  if (t.quoted || t.text != ";") failAt(t, "expected ';', found " + quoteToken(t.text));
+  lex_.next();
+}
+
+Token LefParser::name(std::string_view what) {
+  const Token t = next();
+  if (t.quoted) failAt(t, "expected " + std::string(what) + ", found the string \"" + std::string(t.text) + "\"");
+  if (t.text == ";") failAt(t, "expected " + std::string(what) + ", found ';'");
+  if (isNumberText(t.text)) failAt(t, "expected " + std::string(what) + ", found the number " + quoteToken(t.text));
+  return t;
+}
+
+Token LefParser::keyword(std::string_view where) {
+  const Token t = next();
+  const unsigned char c = t.text.empty() ? 0 : static_cast<unsigned char>(t.text.front());
+  if (t.quoted || !(std::isalpha(c) || c == '_')) {
+    failAt(t, "expected a statement in " + std::string(where) + ", found " +
+                  (t.quoted ? "a quoted string" : quoteToken(t.text)));
+  }
+  return t;
+}
+
+Dbu LefParser::dist() {
+  const Token& t = peek();
+  if (tech_.dbuPerMicron <= 0) {
+    failAt(t, "length " + quoteToken(t.text) + " before UNITS DATABASE MICRONS (units unknown)");
+  }
+  return lex_.microns(tech_.dbuPerMicron);
+}
+
+Area LefParser::area() {
+  const Token t = peek();
+  if (tech_.dbuPerMicron <= 0) {
+    failAt(t, "area " + quoteToken(t.text) + " before UNITS DATABASE MICRONS (units unknown)");
+  }
+  const double d = tech_.dbuPerMicron;
+  const double v = lex_.number() * d * d;
+  if (!(std::fabs(v) < 9.0e18)) failAt(t, "area out of range: " + quoteToken(t.text));
+  return static_cast<Area>(std::llround(v));
+}
+
+double LefParser::number() {
+  peek();
+  return lex_.number();
+}
+
+int64_t LefParser::integer() {
+  peek();
+  return lex_.integer();
+}
+
+Point LefParser::point() {
+  const Dbu x = dist();
+  const Dbu y = dist();
+  return {x, y};
+}
+
+Rect LefParser::rect() {
+  if (accept("MASK")) integer();
+  const Point a = point();
+  const Point b = point();
+  return Rect::fromCorners(a, b);
+}
+
+std::vector<Point> LefParser::polygon() {
+  if (accept("MASK")) integer();
+  const int line = peek().line;
+  std::vector<Point> pts;
+  while (!accept(";")) pts.push_back(point());
+  if (pts.size() < 3) lex_.fail(line, "POLYGON needs at least 3 points, found " + std::to_string(pts.size()));
+  return pts;
+}
+
+LayerId LefParser::layerRef() {
+  const Token t = name("a layer name");
+  const LayerId id = tech_.findLayer(t.text);
+  if (!id.valid()) failAt(t, "unknown layer " + quoteToken(t.text));
+  return id;
+}
+
+std::string LefParser::restOfStatement() {
+  std::string out;
+  while (true) {
+    const Token t = next();
+    if (!t.quoted && t.text == ";") return out;
+    if (!out.empty()) out += ' ';
+    out += t.text;
+  }
+}
+
+// ------------------------------------------------------ skip and count --
+
+void LefParser::count(std::string_view block, std::string_view keyword) {
+  std::string key;
+  key.reserve(block.size() + 1 + keyword.size());
+  key.append(block).append(".").append(keyword);
+  auto it = skippedIndex_.find(key);
+  if (it == skippedIndex_.end()) {
+    it = skippedIndex_.emplace(key, tech_.skippedStatements.size()).first;
+    tech_.skippedStatements.emplace_back(std::move(key), 0);
+  }
+  ++tech_.skippedStatements[it->second].second;
+  ++tech_.warningCount;
+}
+
+void LefParser::skipStatement(std::string_view block, const Token& keyword) {
+  while (true) {
+    const Token t = next();
+    if (!t.quoted && t.text == ";") break;
+  }
+  count(block, keyword.text);
+}
+
+void LefParser::skipBlock(std::string_view block, const Token& opener, std::string_view endName) {
+  Scope scope(*this, opener.text, endName, opener.line);
+  while (true) {
+    const Token t = next();
+    if (t.quoted || t.text != "END") continue;
+    if (endName.empty()) break;
+    if (lex_.atEnd()) failEof();
+    if (!lex_.peek().quoted && lex_.peek().text == endName) {
+      lex_.next();
+      break;
+    }
+  }
+  count(block, opener.text);
+}
+
+void LefParser::endBlock(std::string_view blockName) {
+  const Token t = next();
+  if (t.quoted || t.text != blockName) {
+    const OpenBlock& b = open_.back();
+    failAt(t, "END " + quoteToken(t.text) + " does not close " + std::string(b.kind) + " " + quoteToken(blockName) +
+                  " (opened at line " + std::to_string(b.line) + ")");
+  }
+}
+
+// ------------------------------------------------------------ the file --
+
+void LefParser::parse() {
+  while (!lex_.atEnd()) {
+    const Token kw = keyword("the LEF file");
+    const std::string_view k = kw.text;
+    if (k == "LAYER") {
+      parseLayer(kw);
+    } else if (k == "VIA") {
+      parseVia(kw);
+    } else if (k == "VIARULE") {
+      parseViaRule(kw);
+    } else if (k == "MACRO") {
+      parseMacro(kw);
+    } else if (k == "SITE") {
+      parseSite(kw);
+    } else if (k == "UNITS") {
+      parseUnits(kw);
+    } else if (k == "VERSION") {
+      tech_.version = restOfStatement();
+    } else if (k == "BUSBITCHARS" || k == "DIVIDERCHAR") {
+      const Token v = next();
+      if (!v.quoted) failAt(v, std::string(k) + " needs a quoted string, found " + quoteToken(v.text));
+      (k == "BUSBITCHARS" ? tech_.busBitChars : tech_.dividerChar) = std::string(v.text);
+      endStatement();
+    } else if (k == "MANUFACTURINGGRID") {
+      tech_.manufacturingGrid = dist();
+      endStatement();
+    } else if (k == "CLEARANCEMEASURE") {
+      const Token v = name("EUCLIDEAN or MAXXY");
+      if (v.text != "EUCLIDEAN" && v.text != "MAXXY") {
+        failAt(v, "CLEARANCEMEASURE must be EUCLIDEAN or MAXXY, found " + quoteToken(v.text));
+      }
+      tech_.clearanceMeasure = std::string(v.text);
+      endStatement();
+    } else if (k == "PROPERTYDEFINITIONS") {
+      parsePropertyDefinitions(kw);
+    } else if (k == "NONDEFAULTRULE" || k == "ARRAY") {
+      const Token n = name(k == "ARRAY" ? "an array name" : "a rule name");
+      skipBlock("LEF", kw, n.text);
+    } else if (k == "SPACING") {  // LEF 5.x "SPACING SAMENET ... END SPACING"
+      skipBlock("LEF", kw, "SPACING");
+    } else if (k == "BEGINEXT") {
+      Scope scope(*this, "BEGINEXT", "", kw.line);
+      while (true) {
+        const Token t = next();
+        if (!t.quoted && t.text == "ENDEXT") break;
+      }
+      count("LEF", k);
+    } else if (k == "END") {
+      const Token t = next();
+      if (t.quoted || t.text != "LIBRARY") failAt(t, "expected END LIBRARY, found END " + quoteToken(t.text));
+      if (!lex_.atEnd()) count("LEF", "text after END LIBRARY");
+      return;
+    } else {
+      skipStatement("LEF", kw);
+    }
+  }
+}
+
+void LefParser::parseUnits(const Token& opener) {
+  Scope scope(*this, "UNITS", "", opener.line);
+  while (true) {
+    const Token kw = keyword("UNITS");
+    if (kw.text == "END") {
+      endBlock("UNITS");
+      return;
+    }
+    if (kw.text != "DATABASE") {
+      skipStatement("UNITS", kw);
+      continue;
+    }
+    expect("MICRONS");
+    const Token v = peek();
+    const double d = number();
+    if (!(d >= 1 && d <= 1.0e6 && d == std::floor(d))) {
+      failAt(v, "UNITS DATABASE MICRONS must be a positive integer, found " + quoteToken(v.text));
+    }
+    const int dbu = static_cast<int>(d);
+    if (tech_.dbuPerMicron != 0 && tech_.dbuPerMicron != dbu) {
+      failAt(v, "UNITS DATABASE MICRONS " + std::to_string(dbu) + " differs from " +
+                    std::to_string(tech_.dbuPerMicron) + " read before");
+    }
+    tech_.dbuPerMicron = dbu;
+    endStatement();
+  }
+}
+
+void LefParser::parsePropertyDefinitions(const Token& opener) {
+  Scope scope(*this, "PROPERTYDEFINITIONS", "", opener.line);
+  while (true) {
+    const Token kw = keyword("PROPERTYDEFINITIONS");
+    if (kw.text == "END") {
+      endBlock("PROPERTYDEFINITIONS");
+      return;
+    }
+    skipStatement("PROPERTYDEFINITIONS", kw);  // "LAYER LEF58_X STRING ;": declares, stores nothing
+  }
+}
+
+void LefParser::parseSite(const Token& opener) {
+  const Token n = name("a site name");
+  if (tech_.siteIndex.count(n.text)) failAt(n, "duplicate SITE " + quoteToken(n.text));
+  Scope scope(*this, "SITE", n.text, opener.line);
+  Site site;
+  site.name = std::string(n.text);
+  while (true) {
+    const Token kw = keyword("SITE");
+    const std::string_view k = kw.text;
+    if (k == "END") {
+      endBlock(site.name);
+      break;
+    } else if (k == "CLASS") {
+      site.siteClass = restOfStatement();
+    } else if (k == "SYMMETRY") {
+      site.symmetry = restOfStatement();
+    } else if (k == "SIZE") {
+      site.width = dist();
+      expect("BY");
+      site.height = dist();
+      endStatement();
+    } else {
+      skipStatement("SITE", kw);
+    }
+  }
+  tech_.siteIndex.emplace(site.name, SiteId(static_cast<int32_t>(tech_.sites.size())));
+  tech_.sites.push_back(std::move(site));
+}
+
+// ------------------------------------------------------- entry points --
+
+void readLef(const std::string& path, Tech& tech) {
+  Lexer lex = Lexer::fromFile(path);
+  LefParser(lex, tech).parse();
+}
+
+void readLefText(const std::string& name, std::string text, Tech& tech) {
+  Lexer lex(name, std::move(text));
+  LefParser(lex, tech).parse();
+}
+
 }  // namespace xroute

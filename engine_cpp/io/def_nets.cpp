@@ -1,0 +1,415 @@
+// DEF NETS and SPECIALNETS: net pins into the flat Design::pinRefs array,
+// and routing paths into wires, vias and patches.
+//
+// A path "LAYER ( a ) ( b ) ( c ) VIA ( d )" gives one straight wire per
+// consecutive pair of points (a-b, b-c on LAYER), a via at the current point
+// (c), after which the path goes on on the via's other layer (c-d). "*"
+// repeats the previous coordinate. A path of one point and nothing else gives
+// a point wire (from == to).
+#include <algorithm>
+
+#include "io/def_parser.hpp"
+
+namespace xroute {
+
+namespace {
+
+bool isOrientName(const Token& t) {
+  Orient o;
+  return !t.quoted && parseOrient(t.text, o);
+}
+
+// Where a path stands: its layer, the current point and what it produced.
+struct PathCursor {
+  LayerId layer;
+  bool havePoint = false;
+  Point at;        // DBU
+  Dbu ext = -1;    // DBU, extension written at the current point (-1 = none)
+  bool emitted = false;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Path helpers (members so they can use the lexer and the counters)
+
+namespace {
+
+// Reads "( x|* y|* [ext] )"; "*" repeats the cursor's coordinate.
+Point readPathPoint(Lexer& lex, const PathCursor& cur, Dbu& ext) {
+  const Token open = lex.next();
+  if (open.quoted || open.text != "(") lex.failAt(open, "expected '(', found " + quoteToken(open.text));
+  Point p;
+  for (int i = 0; i < 2; ++i) {
+    const Token& t = lex.peek();
+    Dbu& v = i == 0 ? p.x : p.y;
+    if (!t.quoted && t.text == "*") {
+      if (!cur.havePoint) lex.failAt(t, "'*' with no previous point");
+      lex.next();
+      v = i == 0 ? cur.at.x : cur.at.y;
+    } else {
+      v = lex.dbu();
+    }
+  }
+  ext = -1;
+  const Token& t = lex.peek();
+  if (t.quoted || t.text != ")") {
+    const Token e = t;
+    ext = lex.dbu();
+    if (ext < 0) lex.failAt(e, "negative wire extension");
+  }
+  lex.expect(")");
+  return p;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// SPECIALNETS
+
+void DefParser::readSpecialNets() {
+  const int declared = readSectionCount();
+  design_.specialNets.reserve(design_.specialNets.size() + static_cast<size_t>(std::min(declared, 1 << 16)));
+  int found = 0;
+  while (!atSectionEnd("SPECIALNETS", declared, found)) {
+    readSpecialNet();
+    ++found;
+  }
+}
+
+void DefParser::readSpecialNet() {
+  lex_.expect("-");
+  SpecialNet net;
+  net.name = lex_.word("a net name");
+  while (peekIs("(")) {
+    lex_.next();
+    std::string comp = lex_.word("a component name");
+    std::string pin = lex_.word("a pin name");
+    if (lex_.accept("+")) {
+      lex_.expect("SYNTHESIZED");
+      countSkip("SPECIALNETS pin + SYNTHESIZED");
+    }
+    lex_.expect(")");
+    net.pins.emplace_back(std::move(comp), std::move(pin));
+  }
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (!is(t, "+")) unexpected(t, "'+' or ';'");
+    const Token kw = lex_.next();
+    const std::string_view k = kw.quoted ? std::string_view() : kw.text;
+    if (k == "ROUTED" || k == "FIXED" || k == "COVER") {
+      if (k != "ROUTED") countSkip("SPECIALNETS + " + std::string(k) + " (written back as ROUTED)");
+      readSpecialWiring(net);
+    } else if (k == "SHIELD") {
+      lex_.word("a shield net name");
+      countSkip("SPECIALNETS + SHIELD (written back as ROUTED)");
+      readSpecialWiring(net);
+    } else if (k == "USE") {
+      net.use = lex_.word("a net use");
+    } else if (k == "RECT") {
+      const LayerId layer = layerAt(lex_.next());
+      if (lex_.accept("+")) {
+        lex_.expect("MASK");
+        lex_.integer();
+      }
+      const Point a = readPoint();
+      const Point b = readPoint();
+      net.rects.push_back({layer, Rect::fromCorners(a, b)});
+    } else if (k == "POLYGON") {
+      const LayerId layer = layerAt(lex_.next());
+      if (lex_.accept("+")) {
+        lex_.expect("MASK");
+        lex_.integer();
+      }
+      std::vector<Point> pts;
+      while (peekIs("(")) pts.push_back(readPoint());
+      if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+      Rect r{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+      for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+      net.rects.push_back({layer, r});
+      countSkip("SPECIALNETS POLYGON (kept as its bounding box)");
+      ++design_.warningCount;
+    } else if (k == "VIA") {
+      const Token viaTok = lex_.next();
+      const ViaRef ref = findVia(viaTok.text);
+      if (!ref.valid() || viaTok.quoted) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
+      if (isOrientName(lex_.peek())) {
+        const Token o = lex_.next();
+        if (o.text != "N") {
+          countSkip("SPECIALNETS via orientation (ignored)");
+          ++design_.warningCount;
+        }
+      }
+      if (!peekIs("(")) unexpected(lex_.peek(), "'('");
+      while (peekIs("(")) net.vias.push_back({ref, readPoint(), std::string()});
+    } else if (k.empty() || k == ";") {
+      unexpected(kw, "a special net option");
+    } else {
+      skipToOptionEnd();
+      countSkip("SPECIALNETS + " + std::string(k));
+    }
+  }
+  design_.specialNets.push_back(std::move(net));
+}
+
+void DefParser::readSpecialWiring(SpecialNet& net) {
+  if (peekIs("+")) return;  // "+ ROUTED + RECT ...": the shape is a net-level option
+  while (true) {
+    PathCursor cur;
+    cur.layer = routingLayerAt(lex_.next());
+    const Dbu width = lex_.dbu();
+    if (width < 0) lex_.fail(lex_.line(), "negative wire width");
+    std::string shape;
+    while (peekIs("+")) {
+      lex_.next();
+      const Token kw = lex_.next();
+      if (is(kw, "SHAPE")) {
+        shape = lex_.word("a shape type");
+      } else if (is(kw, "STYLE") || is(kw, "MASK")) {
+        lex_.integer();
+        countSkip("SPECIALNETS wire + " + std::string(kw.text));
+      } else {
+        unexpected(kw, "SHAPE, STYLE or MASK");
+      }
+    }
+    if (!peekIs("(")) unexpected(lex_.peek(), "'(' starting the wire's points");
+    while (true) {
+      const Token& t = lex_.peek();
+      if (is(t, "(")) {
+        Dbu ext = -1;
+        const int line = t.line;
+        const Point p = readPathPoint(lex_, cur, ext);
+        if (ext >= 0) {
+          countSkip("SPECIALNETS point extension (ignored: special wires are flush)");
+          ++design_.warningCount;
+        }
+        if (cur.havePoint) {
+          if (p.x != cur.at.x && p.y != cur.at.y) lex_.fail(line, "diagonal wire");
+          net.wires.push_back({cur.layer, width, shape, cur.at, p});
+          cur.emitted = true;
+        }
+        cur.at = p;
+        cur.havePoint = true;
+      } else if (is(t, "MASK")) {
+        lex_.next();
+        lex_.integer();
+        countSkip("SPECIALNETS point MASK");
+      } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
+        if (cur.havePoint && !cur.emitted) net.wires.push_back({cur.layer, width, shape, cur.at, cur.at});
+        if (!is(t, "NEW")) return;
+        lex_.next();
+        break;
+      } else {
+        const Token viaTok = lex_.next();
+        if (viaTok.quoted || viaTok.text == ")") unexpected(viaTok, "a point or a via name");
+        const ViaRef ref = findVia(viaTok.text);
+        if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
+        if (!cur.havePoint) lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " before any point");
+        if (isOrientName(lex_.peek())) {
+          const Token o = lex_.next();
+          if (o.text != "N") {
+            countSkip("SPECIALNETS via orientation (ignored)");
+            ++design_.warningCount;
+          }
+        }
+        int numX = 1, numY = 1;
+        Dbu stepX = 0, stepY = 0;
+        if (lex_.accept("DO")) {
+          const Token nt = lex_.peek();
+          const int64_t nx = lex_.integer();
+          lex_.expect("BY");
+          const int64_t ny = lex_.integer();
+          if (nx < 1 || ny < 1 || nx * ny > 1000000) lex_.failAt(nt, "bad via array size");
+          numX = static_cast<int>(nx);
+          numY = static_cast<int>(ny);
+          lex_.expect("STEP");
+          stepX = lex_.dbu();
+          stepY = lex_.dbu();
+        }
+        for (int i = 0; i < numX; ++i) {
+          for (int j = 0; j < numY; ++j) {
+            net.vias.push_back({ref, Point{cur.at.x + i * stepX, cur.at.y + j * stepY}, shape});
+          }
+        }
+        const Via& via = design_.via(tech_, ref);
+        if (cur.layer == via.bottom) {
+          cur.layer = via.top;
+        } else if (cur.layer == via.top) {
+          cur.layer = via.bottom;
+        } else {
+          lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " does not connect to layer " +
+                                  quoteToken(tech_.layer(cur.layer).name));
+        }
+        cur.emitted = true;
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// NETS
+
+void DefParser::readNets() {
+  const int declared = readSectionCount();
+  design_.nets.reserve(design_.nets.size() + static_cast<size_t>(std::min(declared, 1 << 22)));
+  design_.netIndex.reserve(design_.netIndex.size() + static_cast<size_t>(std::min(declared, 1 << 22)));
+  int found = 0;
+  while (!atSectionEnd("NETS", declared, found)) {
+    readNet();
+    ++found;
+  }
+}
+
+void DefParser::readNet() {
+  lex_.expect("-");
+  const Token nameTok = lex_.next();
+  if (is(nameTok, ";")) unexpected(nameTok, "a net name");
+  if (is(nameTok, "MUSTJOIN")) {
+    lex_.skipStatement();
+    countSkip("NETS MUSTJOIN");
+    return;
+  }
+  const NetId id(static_cast<int32_t>(design_.nets.size()));
+  if (!design_.netIndex.emplace(std::string(nameTok.text), id).second) {
+    lex_.failAt(nameTok, "duplicate net " + quoteToken(nameTok.text));
+  }
+  Net& net = design_.nets.emplace_back();
+  net.name = std::string(nameTok.text);
+  while (peekIs("(")) {
+    lex_.next();
+    const Token compTok = lex_.next();
+    const Token pinTok = lex_.next();
+    if (is(compTok, ")") || is(pinTok, ")")) unexpected(is(compTok, ")") ? compTok : pinTok, "a pin reference");
+    if (is(compTok, "PIN")) {
+      auto it = design_.ioPinIndex.find(pinTok.text);
+      if (it == design_.ioPinIndex.end()) lex_.failAt(pinTok, "unknown pin " + quoteToken(pinTok.text));
+      design_.pinRefs.push_back({CompId(), *it->second});
+    } else if (is(compTok, "*")) {
+      countSkip("NETS ( * pin ) references (not expanded)");
+      ++design_.warningCount;
+    } else {
+      auto it = design_.compIndex.find(compTok.text);
+      if (it == design_.compIndex.end()) lex_.failAt(compTok, "unknown component " + quoteToken(compTok.text));
+      const Macro& macro = tech_.macros[*design_.components[*it->second].macro];
+      auto pit = macro.pinIndex.find(pinTok.text);
+      if (pit == macro.pinIndex.end()) {
+        lex_.failAt(pinTok, "component " + quoteToken(compTok.text) + " (macro " + macro.name + ") has no pin " +
+                                quoteToken(pinTok.text));
+      }
+      design_.pinRefs.push_back({it->second, pit->second});
+    }
+    if (lex_.accept("+")) {
+      lex_.expect("SYNTHESIZED");
+      countSkip("NETS pin + SYNTHESIZED");
+    }
+    lex_.expect(")");
+  }
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (!is(t, "+")) unexpected(t, "'+' or ';'");
+    const Token kw = lex_.next();
+    const std::string_view k = kw.quoted ? std::string_view() : kw.text;
+    if (k == "ROUTED" || k == "FIXED" || k == "COVER" || k == "NOSHIELD") {
+      if (k != "ROUTED") countSkip("NETS + " + std::string(k) + " (written back as ROUTED)");
+      readRegularWiring(net);
+    } else if (k == "USE") {
+      net.use = lex_.word("a net use");
+    } else if (k.empty() || k == ";") {
+      unexpected(kw, "a net option");
+    } else {
+      skipToOptionEnd();
+      countSkip("NETS + " + std::string(k));
+    }
+  }
+  design_.netPinStart.push_back(static_cast<int32_t>(design_.pinRefs.size()));
+}
+
+void DefParser::readRegularWiring(Net& net) {
+  NetRouting& r = net.routing;
+  while (true) {
+    PathCursor cur;
+    cur.layer = routingLayerAt(lex_.next());
+    while (true) {
+      if (lex_.accept("TAPER")) {
+        countSkip("NETS wire TAPER");
+      } else if (lex_.accept("TAPERRULE")) {
+        lex_.word("a rule name");
+        countSkip("NETS wire TAPERRULE");
+      } else if (lex_.accept("STYLE")) {
+        lex_.integer();
+        countSkip("NETS wire STYLE");
+      } else {
+        break;
+      }
+    }
+    if (!peekIs("(")) unexpected(lex_.peek(), "'(' starting the wire's points");
+    while (true) {
+      const Token& t = lex_.peek();
+      if (is(t, "(")) {
+        Dbu ext = -1;
+        const int line = t.line;
+        const Point p = readPathPoint(lex_, cur, ext);
+        if (cur.havePoint) {
+          if (p.x != cur.at.x && p.y != cur.at.y) lex_.fail(line, "diagonal wire");
+          r.wires.push_back({cur.layer, cur.at, p, 0, cur.ext, ext});
+          cur.emitted = true;
+        }
+        cur.at = p;
+        cur.ext = ext;
+        cur.havePoint = true;
+      } else if (is(t, "MASK")) {
+        lex_.next();
+        lex_.integer();
+        countSkip("NETS point MASK");
+      } else if (is(t, "RECT")) {
+        const Token rectTok = lex_.next();
+        if (!cur.havePoint) lex_.failAt(rectTok, "RECT before any point");
+        lex_.expect("(");
+        const Dbu x1 = lex_.dbu(), y1 = lex_.dbu(), x2 = lex_.dbu(), y2 = lex_.dbu();
+        lex_.expect(")");
+        const Point a{cur.at.x + x1, cur.at.y + y1}, b{cur.at.x + x2, cur.at.y + y2};
+        r.patches.push_back({cur.layer, Rect::fromCorners(a, b)});
+        cur.emitted = true;
+      } else if (is(t, "VIRTUAL")) {
+        lex_.next();
+        cur.at = readPoint();
+        cur.ext = -1;
+        cur.havePoint = true;
+        countSkip("NETS VIRTUAL points");
+      } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
+        if (cur.havePoint && !cur.emitted) r.wires.push_back({cur.layer, cur.at, cur.at, 0, cur.ext, cur.ext});
+        if (!is(t, "NEW")) return;
+        lex_.next();
+        break;
+      } else {
+        const Token viaTok = lex_.next();
+        if (viaTok.quoted || viaTok.text == ")") unexpected(viaTok, "a point or a via name");
+        const ViaRef ref = findVia(viaTok.text);
+        if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
+        if (!cur.havePoint) lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " before any point");
+        if (isOrientName(lex_.peek())) {
+          const Token o = lex_.next();
+          if (o.text != "N") {
+            countSkip("NETS via orientation (ignored)");
+            ++design_.warningCount;
+          }
+        }
+        r.vias.push_back({ref, cur.at});
+        const Via& via = design_.via(tech_, ref);
+        if (cur.layer == via.bottom) {
+          cur.layer = via.top;
+        } else if (cur.layer == via.top) {
+          cur.layer = via.bottom;
+        } else {
+          lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " does not connect to layer " +
+                                  quoteToken(tech_.layer(cur.layer).name));
+        }
+        cur.emitted = true;
+      }
+    }
+  }
+}
+
+}  // namespace xroute

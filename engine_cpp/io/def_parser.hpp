@@ -1,0 +1,80 @@
+// Internal to the DEF reader: the parser state shared by its files
+// (def_reader.cpp: header statements, COMPONENTS, PINS, BLOCKAGES;
+// def_vias.cpp: VIAS; def_nets.cpp: NETS, SPECIALNETS and routing paths).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "db/design.hpp"
+#include "db/tech.hpp"
+#include "io/lexer.hpp"
+
+namespace xroute {
+
+// Fills `via.shapes` (and bottom/cut/top) of a DEF via generated from a
+// VIARULE: a rows x cols cut array centred on the origin with pitch
+// cutSize + cutSpacing, metal = the cut array's box grown by the enclosures;
+// + ORIGIN shifts everything, + OFFSET shifts each metal layer further.
+// + PATTERN (rows listed from the bottom up) drops cuts. Returns false with
+// `error` set if the pattern is malformed.
+bool generateViaShapes(DefVia& v, std::string& error);
+
+class DefParser {
+ public:
+  DefParser(Lexer& lex, const Tech& tech, Design& design) : lex_(lex), tech_(tech), design_(design) {}
+
+  void parse();
+
+ private:
+  // def_reader.cpp
+  void readUnits();
+  void readDieArea();
+  void readRow();
+  void readTracks();
+  void readGCellGrid();
+  void readComponents();
+  void readComponent();
+  void readPins();
+  void readPin();
+  void readBlockages();
+  void readBlockage();
+  void skipSection(std::string_view keyword);
+
+  // def_vias.cpp
+  void readVias();
+  void readVia();
+
+  // def_nets.cpp
+  void readSpecialNets();
+  void readSpecialNet();
+  void readNets();
+  void readNet();
+  // One ROUTED/FIXED/COVER/... wiring statement after its keyword, up to (not
+  // including) the next net-level '+' or ';'.
+  void readRegularWiring(Net& net);
+  void readSpecialWiring(SpecialNet& net);
+  void resolveIoPinNets();
+
+  // Shared helpers (def_reader.cpp).
+  static bool is(const Token& t, std::string_view w) { return !t.quoted && t.text == w; }
+  bool peekIs(std::string_view w) { return !lex_.atEnd() && is(lex_.peek(), w); }
+  Point readPoint();                      // "( x y )"
+  LayerId layerAt(const Token& t) const;  // throws on an unknown layer
+  LayerId routingLayerAt(const Token& t) const;
+  ViaRef findVia(std::string_view name) const;  // invalid if unknown
+  Orient orientAt(const Token& t) const;        // throws on a bad orientation
+  PlaceStatus readPlacement(const Token& kw, Point& at, Orient& orient);  // after PLACED/FIXED/COVER
+  int readSectionCount();                 // "n ;" after a section keyword
+  // Expects "END <section>" next (or a '-' item was expected); checks counts.
+  bool atSectionEnd(std::string_view section, int declared, int found);
+  void skipToOptionEnd();                 // skip tokens up to the next '+' or ';' (not consumed)
+  void countSkip(std::string_view key, int n = 1);
+  [[noreturn]] void unexpected(const Token& t, const std::string& expected) const;
+
+  Lexer& lex_;
+  const Tech& tech_;
+  Design& design_;
+};
+
+}  // namespace xroute

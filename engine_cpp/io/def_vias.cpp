@@ -1,0 +1,253 @@
+// DEF VIAS section: fixed vias (+ RECT / + POLYGON) and vias generated from
+// a LEF VIARULE with their parameters (+ CUTSIZE, + LAYERS, + CUTSPACING,
+// + ENCLOSURE, + ROWCOL, + ORIGIN, + OFFSET, + PATTERN).
+#include "io/def_parser.hpp"
+
+namespace xroute {
+
+namespace {
+
+int hexValue(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+// Expands one row definition ("F0", "R4F", "" = all cuts) into `cols` flags.
+bool expandRow(std::string_view def, int cols, std::vector<char>& row, std::string& error) {
+  row.assign(cols, def.empty() ? 1 : 0);
+  if (def.empty()) return true;
+  std::vector<int> digits;
+  for (size_t i = 0; i < def.size(); ++i) {
+    if (def[i] == 'R' || def[i] == 'r') {
+      if (i + 2 >= def.size()) {
+        error = "bad repeat in PATTERN row '" + std::string(def) + "'";
+        return false;
+      }
+      const int n = hexValue(def[i + 1]);
+      const int d = hexValue(def[i + 2]);
+      if (n < 0 || d < 0) {
+        error = "bad repeat in PATTERN row '" + std::string(def) + "'";
+        return false;
+      }
+      digits.insert(digits.end(), n, d);
+      i += 2;
+    } else {
+      const int d = hexValue(def[i]);
+      if (d < 0) {
+        error = "bad hex digit in PATTERN row '" + std::string(def) + "'";
+        return false;
+      }
+      digits.push_back(d);
+    }
+  }
+  // Each hex digit gives 4 cuts, most significant bit first (left to right).
+  for (int c = 0; c < cols; ++c) {
+    const size_t digit = static_cast<size_t>(c / 4);
+    row[c] = digit < digits.size() && (digits[digit] & (8 >> (c % 4))) ? 1 : 0;
+  }
+  return true;
+}
+
+// Cut flags rows x cols (row 0 = bottom) from a PATTERN "n_def_n_def...".
+bool expandPattern(const DefVia& v, std::vector<char>& present, std::string& error) {
+  present.assign(static_cast<size_t>(v.rows) * v.cols, 1);
+  if (v.pattern.empty()) return true;
+  present.assign(present.size(), 0);
+  std::vector<std::string_view> parts;
+  std::string_view s = v.pattern;
+  while (true) {
+    const size_t u = s.find('_');
+    parts.push_back(s.substr(0, u));
+    if (u == std::string_view::npos) break;
+    s.remove_prefix(u + 1);
+  }
+  if (parts.size() % 2 != 0) {
+    error = "PATTERN '" + v.pattern + "' is not a list of count_row pairs";
+    return false;
+  }
+  int row = 0;
+  std::vector<char> flags;
+  for (size_t i = 0; i < parts.size(); i += 2) {
+    int repeat = 0;
+    if (parts[i].empty()) {
+      error = "PATTERN '" + v.pattern + "': empty row count";
+      return false;
+    }
+    for (char c : parts[i]) {
+      const int d = hexValue(c);
+      if (d < 0 || repeat > (1 << 20)) {
+        error = "PATTERN '" + v.pattern + "': bad row count";
+        return false;
+      }
+      repeat = repeat * 16 + d;
+    }
+    if (!expandRow(parts[i + 1], v.cols, flags, error)) return false;
+    for (int k = 0; k < repeat && row < v.rows; ++k, ++row) {
+      std::copy(flags.begin(), flags.end(), present.begin() + static_cast<size_t>(row) * v.cols);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool generateViaShapes(DefVia& d, std::string& error) {
+  Via& via = d.via;
+  via.shapes.clear();
+  via.bottom = d.botLayer;
+  via.cut = d.cutLayer;
+  via.top = d.topLayer;
+  std::vector<char> present;
+  if (!expandPattern(d, present, error)) return false;
+  const int64_t w = int64_t(d.cols) * d.cutSizeX + int64_t(d.cols - 1) * d.cutSpacingX;
+  const int64_t h = int64_t(d.rows) * d.cutSizeY + int64_t(d.rows - 1) * d.cutSpacingY;
+  if (w > 1000000000 || h > 1000000000) {
+    error = "generated via is too large";
+    return false;
+  }
+  const Dbu xlo = d.originX - static_cast<Dbu>(w / 2);
+  const Dbu ylo = d.originY - static_cast<Dbu>(h / 2);
+  const Rect array{xlo, ylo, xlo + static_cast<Dbu>(w), ylo + static_cast<Dbu>(h)};
+  const Rect bottom{array.xlo - d.botEncX + d.botOffX, array.ylo - d.botEncY + d.botOffY,
+                    array.xhi + d.botEncX + d.botOffX, array.yhi + d.botEncY + d.botOffY};
+  const Rect top{array.xlo - d.topEncX + d.topOffX, array.ylo - d.topEncY + d.topOffY,
+                 array.xhi + d.topEncX + d.topOffX, array.yhi + d.topEncY + d.topOffY};
+  via.shapes.push_back({d.botLayer, bottom});
+  for (int r = 0; r < d.rows; ++r) {
+    for (int c = 0; c < d.cols; ++c) {
+      if (!present[static_cast<size_t>(r) * d.cols + c]) continue;
+      const Dbu x = xlo + c * (d.cutSizeX + d.cutSpacingX);
+      const Dbu y = ylo + r * (d.cutSizeY + d.cutSpacingY);
+      via.shapes.push_back({d.cutLayer, Rect{x, y, x + d.cutSizeX, y + d.cutSizeY}});
+    }
+  }
+  via.shapes.push_back({d.topLayer, top});
+  return true;
+}
+
+void DefParser::readVias() {
+  const int declared = readSectionCount();
+  int found = 0;
+  while (!atSectionEnd("VIAS", declared, found)) {
+    readVia();
+    ++found;
+  }
+}
+
+void DefParser::readVia() {
+  lex_.expect("-");
+  const Token nameTok = lex_.next();
+  if (is(nameTok, ";")) unexpected(nameTok, "a via name");
+  const DefViaId id(static_cast<int32_t>(design_.vias.size()));
+  if (!design_.viaIndex.emplace(std::string(nameTok.text), id).second) {
+    lex_.failAt(nameTok, "duplicate via " + quoteToken(nameTok.text));
+  }
+  DefVia v;
+  v.via.name = std::string(nameTok.text);
+  bool haveShapes = false, haveCutSize = false, haveLayers = false;
+  int ruleLine = 0;
+  while (true) {
+    const Token t = lex_.next();
+    if (is(t, ";")) break;
+    if (!is(t, "+")) unexpected(t, "'+' or ';'");
+    const Token kw = lex_.next();
+    const std::string_view k = kw.quoted ? std::string_view() : kw.text;
+    if (k == "RECT" || k == "POLYGON") {
+      const LayerId layer = layerAt(lex_.next());
+      if (lex_.accept("+")) {
+        lex_.expect("MASK");
+        lex_.integer();
+        countSkip("VIAS + MASK");
+      }
+      Rect r;
+      if (k == "RECT") {
+        const Point a = readPoint();
+        const Point b = readPoint();
+        r = Rect::fromCorners(a, b);
+      } else {
+        std::vector<Point> pts;
+        while (peekIs("(")) pts.push_back(readPoint());
+        if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+        r = Rect{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+        for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+        countSkip("VIAS POLYGON (kept as its bounding box)");
+        ++design_.warningCount;
+      }
+      v.via.shapes.push_back({layer, r});
+      haveShapes = true;
+    } else if (k == "VIARULE") {
+      const Token ruleTok = lex_.next();
+      v.rule = tech_.findViaRule(ruleTok.text);
+      if (!v.rule.valid()) lex_.failAt(ruleTok, "unknown via rule " + quoteToken(ruleTok.text));
+      v.generated = true;
+      ruleLine = kw.line;
+    } else if (k == "CUTSIZE") {
+      v.cutSizeX = lex_.dbu();
+      v.cutSizeY = lex_.dbu();
+      haveCutSize = true;
+    } else if (k == "LAYERS") {
+      v.botLayer = routingLayerAt(lex_.next());
+      const Token cut = lex_.next();
+      v.cutLayer = layerAt(cut);
+      if (tech_.layer(v.cutLayer).type != LayerType::Cut) {
+        lex_.failAt(cut, "layer " + quoteToken(cut.text) + " is not a cut layer");
+      }
+      v.topLayer = routingLayerAt(lex_.next());
+      haveLayers = true;
+    } else if (k == "CUTSPACING") {
+      v.cutSpacingX = lex_.dbu();
+      v.cutSpacingY = lex_.dbu();
+    } else if (k == "ENCLOSURE") {
+      v.botEncX = lex_.dbu();
+      v.botEncY = lex_.dbu();
+      v.topEncX = lex_.dbu();
+      v.topEncY = lex_.dbu();
+    } else if (k == "ROWCOL") {
+      const Token rt = lex_.peek();
+      const int64_t rows = lex_.integer();
+      const int64_t cols = lex_.integer();
+      if (rows < 1 || cols < 1 || rows * cols > 1000000) lex_.failAt(rt, "bad ROWCOL");
+      v.rows = static_cast<int>(rows);
+      v.cols = static_cast<int>(cols);
+    } else if (k == "ORIGIN") {
+      v.originX = lex_.dbu();
+      v.originY = lex_.dbu();
+    } else if (k == "OFFSET") {
+      v.botOffX = lex_.dbu();
+      v.botOffY = lex_.dbu();
+      v.topOffX = lex_.dbu();
+      v.topOffY = lex_.dbu();
+    } else if (k == "PATTERN") {
+      v.pattern = lex_.word("a cut pattern");
+    } else if (k.empty() || k == ";") {
+      unexpected(kw, "a via option");
+    } else {
+      skipToOptionEnd();
+      countSkip("VIAS + " + std::string(k));
+    }
+  }
+  if (v.generated && haveShapes) lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " has both VIARULE and RECT");
+  if (v.generated) {
+    if (!haveCutSize || !haveLayers) {
+      lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " needs + CUTSIZE and + LAYERS with its VIARULE");
+    }
+    std::string error;
+    if (!generateViaShapes(v, error)) lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + ": " + error);
+  } else {
+    // Bottom/top: the lowest and highest routing layers (LEF order); cut: a cut layer.
+    for (const ViaShape& s : v.via.shapes) {
+      const Layer& l = tech_.layer(s.layer);
+      if (l.type == LayerType::Cut) {
+        if (!v.via.cut.valid()) v.via.cut = s.layer;
+      } else if (l.type == LayerType::Routing) {
+        if (!v.via.bottom.valid() || *s.layer < *v.via.bottom) v.via.bottom = s.layer;
+        if (!v.via.top.valid() || *s.layer > *v.via.top) v.via.top = s.layer;
+      }
+    }
+  }
+  design_.vias.push_back(std::move(v));
+}
+
+}  // namespace xroute

@@ -1,0 +1,253 @@
+// LEF LAYER blocks: TYPE, the routing-layer geometry and spacing rules, the
+// cut-layer width and spacing rules, and PROPERTY pairs (LEF58 strings are
+// parsed in lef58.cpp). Everything else in a layer is skipped and counted
+// under "LAYER.<KEYWORD>".
+#include "io/lef_parser.hpp"
+
+namespace xroute {
+
+namespace {
+
+bool typeFromName(std::string_view s, LayerType& out) {
+  if (s == "ROUTING") out = LayerType::Routing;
+  else if (s == "CUT") out = LayerType::Cut;
+  else if (s == "MASTERSLICE") out = LayerType::Masterslice;
+  else if (s == "OVERLAP") out = LayerType::Overlap;
+  else if (s == "IMPLANT") out = LayerType::Implant;
+  else return false;
+  return true;
+}
+
+}  // namespace
+
+void LefParser::parseLayer(const Token& opener) {
+  const Token n = name("a layer name");
+  if (tech_.findLayer(n.text).valid()) failAt(n, "duplicate LAYER " + quoteToken(n.text));
+  Scope scope(*this, "LAYER", n.text, opener.line);
+  Layer layer;
+  layer.name = std::string(n.text);
+  bool hasType = false;
+  while (true) {
+    const Token kw = keyword("LAYER");
+    const std::string_view k = kw.text;
+    if (k == "END") {
+      endBlock(layer.name);
+      break;
+    }
+    if (k == "TYPE") {
+      const Token t = name("a layer type");
+      if (hasType) failAt(kw, "second TYPE in LAYER " + quoteToken(layer.name));
+      if (!typeFromName(t.text, layer.type)) {
+        failAt(t, "unknown layer TYPE " + quoteToken(t.text) + " (ROUTING, CUT, MASTERSLICE, OVERLAP, IMPLANT)");
+      }
+      hasType = true;
+      endStatement();
+      continue;
+    }
+    if (k == "PROPERTY") {
+      parseLayerProperty(layer, kw);
+      continue;
+    }
+    const bool routing = layer.type == LayerType::Routing;
+    const bool cut = layer.type == LayerType::Cut;
+    if (!hasType && (k == "SPACING" || k == "SPACINGTABLE" || k == "WIDTH")) {
+      failAt(kw, std::string(k) + " before TYPE in LAYER " + quoteToken(layer.name));
+    }
+    if ((routing || cut) && k == "WIDTH") {
+      layer.width = dist();
+      endStatement();
+    } else if (routing && k == "DIRECTION") {
+      const Token d = name("HORIZONTAL or VERTICAL");
+      if (d.text == "HORIZONTAL") {
+        layer.direction = Direction::Horizontal;
+      } else if (d.text == "VERTICAL") {
+        layer.direction = Direction::Vertical;
+      } else if (d.text == "DIAG45" || d.text == "DIAG135") {
+        layer.direction = Direction::None;
+        count("LAYER.DIRECTION", d.text);
+      } else {
+        failAt(d, "unknown DIRECTION " + quoteToken(d.text));
+      }
+      endStatement();
+    } else if (routing && (k == "PITCH" || k == "OFFSET")) {
+      const Dbu a = dist();
+      const Dbu b = peekIs(";") ? a : dist();
+      endStatement();
+      if (k == "PITCH") {
+        layer.pitchX = a;
+        layer.pitchY = b;
+      } else {
+        layer.offsetX = a;
+        layer.offsetY = b;
+      }
+    } else if (routing && k == "MINWIDTH") {
+      layer.minWidth = dist();
+      endStatement();
+    } else if (routing && k == "AREA") {
+      layer.minArea = area();
+      endStatement();
+    } else if (routing && k == "SPACING") {
+      parseRoutingSpacing(layer, kw);
+    } else if (routing && k == "SPACINGTABLE") {
+      parseSpacingTable(layer, kw);
+    } else if (cut && k == "SPACING") {
+      parseCutSpacing(layer, kw);
+    } else if (k == "ACCURRENTDENSITY" || k == "DCCURRENTDENSITY") {
+      // "{AC|DC}CURRENTDENSITY kind value ;" or a table written as several
+      // ';'-ended statements (FREQUENCY / WIDTH / CUTAREA ... TABLEENTRIES ... ;).
+      next();  // PEAK / AVERAGE / RMS
+      const bool table = !isNumberText(peek().text);
+      bool seenEntries = !table;
+      while (true) {
+        const Token t = next();
+        if (t.quoted) continue;
+        if (t.text == "TABLEENTRIES") seenEntries = true;
+        if (t.text == ";" && seenEntries) break;
+      }
+      count("LAYER", k);
+    } else {
+      skipStatement("LAYER", kw);
+    }
+  }
+  if (!hasType) failAt(n, "LAYER " + quoteToken(layer.name) + " has no TYPE");
+
+  const LayerId id(static_cast<int32_t>(tech_.layers.size()));
+  if (layer.type == LayerType::Routing) {
+    layer.routingIndex = static_cast<int>(tech_.routingLayers.size());
+    tech_.routingLayers.push_back(id);
+  } else if (layer.type == LayerType::Cut) {
+    layer.cutIndex = static_cast<int>(tech_.cutLayers.size());
+    tech_.cutLayers.push_back(id);
+  }
+  tech_.layerIndex.emplace(layer.name, id);
+  tech_.layers.push_back(std::move(layer));
+}
+
+// SPACING s ;  |  SPACING s RANGE lo hi ;  |  SPACING s SAMENET ;
+// SPACING s ENDOFLINE w WITHIN d [PARALLELEDGE p WITHIN q [TWOEDGES]] ;
+// Any other form is skipped whole and counted as "LAYER.SPACING.<WORD>".
+void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
+  const Dbu space = dist();
+  if (accept(";")) {
+    layer.spacings.push_back({space, false, 0, 0, false});
+    return;
+  }
+  const Token t = peek();
+  if (!t.quoted && t.text == "RANGE") {
+    next();
+    SpacingRule r;
+    r.space = space;
+    r.hasRange = true;
+    r.rangeLo = dist();
+    r.rangeHi = dist();
+    if (accept(";")) {
+      layer.spacings.push_back(r);
+      return;
+    }
+  } else if (!t.quoted && t.text == "SAMENET") {
+    next();
+    if (accept(";")) {
+      layer.spacings.push_back({space, false, 0, 0, true});
+      return;
+    }
+  } else if (!t.quoted && t.text == "ENDOFLINE") {
+    next();
+    EolRule e;
+    e.space = space;
+    e.eolWidth = dist();
+    expect("WITHIN");
+    e.within = dist();
+    if (accept("PARALLELEDGE")) {
+      e.parallelEdge = true;
+      e.parSpace = dist();
+      expect("WITHIN");
+      e.parWithin = dist();
+      e.twoEdges = accept("TWOEDGES");
+    }
+    if (accept(";")) {
+      layer.eolRules.push_back(e);
+      return;
+    }
+  }
+  // A form this reader does not model: drop the whole statement, say which.
+  const Token stop = keyword("a LAYER SPACING statement");
+  skipStatement("LAYER.SPACING", stop);
+}
+
+// SPACING s [CENTERTOCENTER] [SAMENET] [ADJACENTCUTS n WITHIN d] ; on a cut
+// layer. Other forms (LAYER, AREA, PARALLELOVERLAP, ...) are skipped and
+// counted as "LAYER.SPACING.<WORD>".
+void LefParser::parseCutSpacing(Layer& layer, const Token& kw) {
+  CutSpacingRule r;
+  r.space = dist();
+  r.centerToCenter = accept("CENTERTOCENTER");
+  r.sameNet = accept("SAMENET");
+  if (accept("ADJACENTCUTS")) {
+    const Token nTok = peek();
+    const int64_t n = integer();
+    if (n < 1 || n > 8) failAt(nTok, "ADJACENTCUTS must be 1..8, found " + quoteToken(nTok.text));
+    r.adjacentCuts = static_cast<int>(n);
+    expect("WITHIN");
+    r.cutWithin = dist();
+  }
+  if (accept(";")) {
+    layer.cutSpacings.push_back(r);
+    return;
+  }
+  const Token stop = keyword("a cut LAYER SPACING statement");
+  skipStatement("LAYER.SPACING", stop);
+}
+
+// SPACINGTABLE PARALLELRUNLENGTH l1 .. ln  WIDTH w1 s11 .. s1n  WIDTH ... ;
+// TWOWIDTHS and INFLUENCE tables are skipped and counted.
+void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
+  const Token form = keyword("SPACINGTABLE");
+  if (form.text != "PARALLELRUNLENGTH") {
+    skipStatement("LAYER.SPACINGTABLE", form);
+    return;
+  }
+  if (!layer.prlTable.empty()) failAt(kw, "second SPACINGTABLE PARALLELRUNLENGTH in LAYER " + quoteToken(layer.name));
+  PrlSpacingTable table;
+  while (!peekIs("WIDTH") && !peekIs(";")) {
+    const Token t = peek();
+    const Dbu v = dist();
+    if (!table.prls.empty() && v < table.prls.back()) {
+      failAt(t, "PARALLELRUNLENGTH values must be ascending, found " + quoteToken(t.text));
+    }
+    table.prls.push_back(v);
+  }
+  if (table.prls.empty()) failAt(peek(), "SPACINGTABLE PARALLELRUNLENGTH needs at least one length");
+  while (!accept(";")) {
+    const Token w = peek();
+    if (w.quoted || w.text != "WIDTH") failAt(w, "expected WIDTH or ';' in SPACINGTABLE, found " + quoteToken(w.text));
+    next();
+    const Token wv = peek();
+    const Dbu width = dist();
+    if (!table.widths.empty() && width < table.widths.back()) {
+      failAt(wv, "SPACINGTABLE WIDTH values must be ascending, found " + quoteToken(wv.text));
+    }
+    table.widths.push_back(width);
+    for (size_t i = 0; i < table.prls.size(); ++i) table.spacing.push_back(dist());
+  }
+  if (table.widths.empty()) failAt(kw, "SPACINGTABLE PARALLELRUNLENGTH without a WIDTH row");
+  layer.prlTable = std::move(table);
+}
+
+// PROPERTY name value [name value ...] ; every pair is kept as written;
+// LEF58_CORNERSPACING is also parsed into rules. Other LEF58_* strings are
+// kept but not interpreted, and counted as "LAYER.PROPERTY.<NAME>".
+void LefParser::parseLayerProperty(Layer& layer, const Token& kw) {
+  do {
+    const Token pn = name("a property name");
+    const Token value = next();
+    if (!value.quoted && value.text == ";") failAt(value, "PROPERTY " + quoteToken(pn.text) + " has no value");
+    layer.properties.emplace_back(std::string(pn.text), std::string(value.text));
+    if (pn.text == "LEF58_CORNERSPACING" && value.quoted) {
+      parseLef58CornerSpacing(layer, value);
+    } else if (pn.text.substr(0, 6) == "LEF58_") {
+      count("LAYER.PROPERTY", pn.text);
+    }
+  } while (!accept(";"));
+}
+
+}  // namespace xroute
