@@ -20,7 +20,7 @@ namespace xroute {
 namespace {
 
 using ShapeArray = nb::ndarray<const int32_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using OriginArray = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using OriginArray = nb::ndarray<const int32_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
 nb::list markerList(const Tech& tech, const std::vector<Marker>& markers) {
   nb::list out;
@@ -33,15 +33,6 @@ nb::list markerList(const Tech& tech, const std::vector<Marker>& markers) {
     out.append(d);
   }
   return out;
-}
-
-int originAt(const OriginArray& a, size_t i) {
-  const nb::dlpack::dtype t = a.dtype();
-  if (t == nb::dtype<int8_t>()) return static_cast<const int8_t*>(a.data())[i];
-  if (t == nb::dtype<int32_t>()) return static_cast<const int32_t*>(a.data())[i];
-  if (t == nb::dtype<int64_t>()) return int(static_cast<const int64_t*>(a.data())[i]);
-  if (t == nb::dtype<uint8_t>()) return static_cast<const uint8_t*>(a.data())[i];
-  throw nb::type_error("origins must be an int8, uint8, int32 or int64 array");
 }
 
 DrcOptions makeOptions(bool skipFixed, const std::optional<std::tuple<int, int, int, int>>& window) {
@@ -66,7 +57,7 @@ void bindDrc(nb::module_& m) {
          std::optional<std::tuple<int, int, int, int>> window) {
         const size_t n = shapes.shape(0);
         if (shapes.shape(1) != 6) throw nb::value_error("shapes must have 6 columns: layer, xlo, ylo, xhi, yhi, net");
-        if (origins && (origins->ndim() != 1 || origins->shape(0) != n))
+        if (origins && origins->shape(0) != n)
           throw nb::value_error("origins must have one entry per shape");
         std::vector<DrcShape> list(n);
         const int32_t* p = shapes.data();
@@ -78,7 +69,7 @@ void bindDrc(nb::module_& m) {
           s.rect = Rect::fromCorners({p[1], p[2]}, {p[3], p[4]});
           s.net = p[5];
           if (origins) {
-            const int o = originAt(*origins, i);
+            const int32_t o = origins->data()[i];
             if (o < 0 || o > int(ShapeOrigin::SpecialNet)) throw nb::value_error("origin must be 0..4");
             s.origin = ShapeOrigin(o);
           } else {

@@ -124,8 +124,17 @@ void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& 
   }
 }
 
-// Merges markers of the same (type, layer, nets) whose boxes intersect into
-// one marker with the bounding box of the group.
+// Types whose markers come from pairs of rects, so that one contiguous
+// violation between two conductors can be cut into several pieces. Cut
+// spacing markers (one per pair of cuts) and min-area markers (one per
+// conductor) are never merged.
+bool mergeable(MarkerType t) {
+  return t == MarkerType::Short || t == MarkerType::MetalSpacing || t == MarkerType::EndOfLine ||
+         t == MarkerType::CutShort || t == MarkerType::CornerSpacing;
+}
+
+// Merges markers of a mergeable type with the same (type, layer, nets) whose
+// boxes intersect (touching counts) into one marker with their bounding box.
 std::vector<Marker> mergeTouching(std::vector<Marker> ms) {
   auto group = [](const Marker& m) { return std::make_tuple(m.type, *m.layer, m.net1, m.net2); };
   std::sort(ms.begin(), ms.end(), [&](const Marker& a, const Marker& b) {
@@ -135,7 +144,7 @@ std::vector<Marker> mergeTouching(std::vector<Marker> ms) {
   UnionFind uf(ms.size());
   for (size_t i = 0; i < ms.size(); ++i) {
     for (size_t j = i + 1; j < ms.size() && group(ms[j]) == group(ms[i]) && ms[j].box.xlo <= ms[i].box.xhi; ++j) {
-      if (ms[i].box.overlaps(ms[j].box)) uf.unite(int32_t(i), int32_t(j));
+      if (mergeable(ms[i].type) && ms[i].box.overlaps(ms[j].box)) uf.unite(int32_t(i), int32_t(j));
     }
   }
   std::vector<Marker> out;

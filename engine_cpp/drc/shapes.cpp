@@ -4,8 +4,9 @@
 // IO pin on no net -> one fresh id each after those (so it conflicts with
 // everything else). Pins of special nets (SPECIALNETS "( * VDD )", "( comp
 // pin )", "( PIN name )", or an IO pin whose + NET names the special net)
-// take the special net's id. Obstructions (cell OBS, DEF layer blockages)
-// get -1. Unplaced components and IO pins are skipped. Regular wires extend
+// take the special net's id; POWER / GROUND pins on no net share one id per
+// pin name. Obstructions (cell OBS, DEF layer blockages)
+// get -1; a cell's OBS is cut back where its own pins are. Unplaced components and IO pins are skipped. Regular wires extend
 // by half their width at each end unless an extension is given; special
 // wires end flush. Rectilinear polygons are cut into rects.
 #include <algorithm>
@@ -50,6 +51,29 @@ void polygonRects(const std::vector<Point>& pts, std::vector<Rect>& out) {
   }
 }
 
+void macroShapeRects(const MacroShape& s, const Transform& t, std::vector<Rect>& out) {
+  if (s.polygon.empty()) {
+    out.push_back(t.apply(s.rect));
+    return;
+  }
+  std::vector<Point> pts;
+  for (const Point& p : s.polygon) pts.push_back(t.apply(p));
+  polygonRects(pts, out);
+}
+
+// Appends the parts of `r` outside `cut` (up to four rects).
+void subtractRect(const Rect& r, const Rect& cut, std::vector<Rect>& out) {
+  if (cut.xlo >= r.xhi || cut.xhi <= r.xlo || cut.ylo >= r.yhi || cut.yhi <= r.ylo) {
+    out.push_back(r);
+    return;
+  }
+  if (cut.ylo > r.ylo) out.push_back({r.xlo, r.ylo, r.xhi, cut.ylo});
+  if (cut.yhi < r.yhi) out.push_back({r.xlo, cut.yhi, r.xhi, r.yhi});
+  const Dbu y0 = std::max(r.ylo, cut.ylo), y1 = std::min(r.yhi, cut.yhi);
+  if (cut.xlo > r.xlo) out.push_back({r.xlo, y0, cut.xlo, y1});
+  if (cut.xhi < r.xhi) out.push_back({cut.xhi, y0, r.xhi, y1});
+}
+
 bool placed(PlaceStatus s) { return s != PlaceStatus::Unplaced; }
 
 class Collector {
@@ -63,6 +87,7 @@ class Collector {
     if (layer.valid()) out_.push_back({layer, r, net, origin});
   }
   void addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin);
+  void addObstructions(const Component& c);
   void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin);
   void addComponentPin(int32_t comp, int32_t pin, int32_t net);
   void addIoPin(int32_t io, int32_t net);
@@ -76,15 +101,37 @@ class Collector {
 };
 
 void Collector::addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin) {
-  if (s.polygon.empty()) {
-    add(s.layer, t.apply(s.rect), net, origin);
-    return;
-  }
-  std::vector<Point> pts;
-  for (const Point& p : s.polygon) pts.push_back(t.apply(p));
   scratch_.clear();
-  polygonRects(pts, scratch_);
+  macroShapeRects(s, t, scratch_);
   for (const Rect& r : scratch_) add(s.layer, r, net, origin);
+}
+
+// A component's OBS minus its own pins: LEF abstracts often cover a block's
+// pins with OBS, and the pin stays accessible.
+void Collector::addObstructions(const Component& c) {
+  const Macro& m = tech_.macros[*c.macro];
+  if (m.obstructions.empty()) return;
+  const Transform t = componentTransform(tech_, c);
+  std::vector<std::pair<LayerId, Rect>> pins;
+  for (const MacroPin& pin : m.pins) {
+    for (const MacroShape& s : pin.shapes) {
+      scratch_.clear();
+      macroShapeRects(s, t, scratch_);
+      for (const Rect& r : scratch_) pins.push_back({s.layer, r});
+    }
+  }
+  std::vector<Rect> pieces, next;
+  for (const MacroShape& s : m.obstructions) {
+    pieces.clear();
+    macroShapeRects(s, t, pieces);
+    for (const auto& [layer, pin] : pins) {
+      if (layer != s.layer) continue;
+      next.clear();
+      for (const Rect& r : pieces) subtractRect(r, pin, next);
+      pieces.swap(next);
+    }
+    for (const Rect& r : pieces) add(s.layer, r, -1, ShapeOrigin::Obstruction);
+  }
 }
 
 void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin) {
@@ -147,20 +194,33 @@ std::vector<DrcShape> Collector::run() {
     for (size_t io = 0; io < design_.ioPins.size(); ++io)
       if (!design_.ioPins[io].net.valid() && design_.ioPins[io].netName == sn.name) addIoPin(int32_t(io), id);
   }
-  // Pins on no net: one id each.
+  // Pins on no net: one id each, except that POWER / GROUND pins of the same
+  // name share one (the rails of abutting cells are one conductor).
   int32_t nextId = nets + int32_t(design_.specialNets.size());
-  for (size_t c = 0; c < design_.components.size(); ++c)
-    for (size_t p = 0; p < compPinDone_[c].size(); ++p)
-      if (!compPinDone_[c][p] && placed(design_.components[c].status)) addComponentPin(int32_t(c), int32_t(p), nextId++);
+  StringMap<int32_t> supplyIds;
+  for (size_t c = 0; c < design_.components.size(); ++c) {
+    if (!placed(design_.components[c].status)) continue;
+    const Macro& m = tech_.macros[*design_.components[c].macro];
+    for (size_t p = 0; p < compPinDone_[c].size(); ++p) {
+      if (compPinDone_[c][p]) continue;
+      const MacroPin& pin = m.pins[p];
+      int32_t id = -1;
+      if (pin.use == "POWER" || pin.use == "GROUND") {
+        auto [it, added] = supplyIds.emplace(pin.name, nextId);
+        if (added) ++nextId;
+        id = it->second;
+      } else {
+        id = nextId++;
+      }
+      addComponentPin(int32_t(c), int32_t(p), id);
+    }
+  }
   for (size_t io = 0; io < design_.ioPins.size(); ++io)
     if (!ioPinDone_[io] && placed(design_.ioPins[io].status)) addIoPin(int32_t(io), nextId++);
 
   // Obstructions.
-  for (const Component& c : design_.components) {
-    if (!placed(c.status)) continue;
-    const Transform t = componentTransform(tech_, c);
-    for (const MacroShape& s : tech_.macros[*c.macro].obstructions) addMacroShape(s, t, -1, ShapeOrigin::Obstruction);
-  }
+  for (const Component& c : design_.components)
+    if (placed(c.status)) addObstructions(c);
   for (const Blockage& b : design_.blockages) {
     if (b.placement) continue;
     for (const Rect& r : b.rects) add(b.layer, r, -1, ShapeOrigin::Obstruction);
