@@ -192,3 +192,36 @@ def test_bad_input_is_refused(db):
     with pytest.raises(ValueError):
         _engine.check_shapes(db, np.array([[0, 0, 0, 10, 10, 1]], dtype=np.int32), np.array([9], dtype=np.int8))
     assert _engine.check_shapes(db, np.zeros((0, 6), dtype=np.int32)) == []
+
+
+def test_random_rects_match_a_brute_force_pair_check(db):
+    # Every rect its own net on M1, so each violating pair is one marker.
+    # Reference: all pairs, the LEF 5.8 table lookup written out again.
+    widths, prls, table = [0, 200, 400], [0, 500], [[100, 100], [100, 200], [300, 400]]
+
+    def need(w, prl):
+        row = max(i for i, v in enumerate(widths) if i == 0 or w > v)
+        col = max(j for j, v in enumerate(prls) if j == 0 or prl > v)
+        return table[row][col]
+
+    rng = random.Random(11)
+    rects = []
+    for net in range(150):
+        x, y = rng.randrange(0, 6000), rng.randrange(0, 6000)
+        rects.append((x, y, x + rng.randrange(50, 700), y + rng.randrange(50, 700)))
+    expected = set()
+    for i, a in enumerate(rects):
+        for j in range(i + 1, len(rects)):
+            b = rects[j]
+            dx = max(0, b[0] - a[2], a[0] - b[2])
+            dy = max(0, b[1] - a[3], a[1] - b[3])
+            if dx == 0 and dy == 0:
+                expected.add(("Short", (i, j)))
+                continue
+            prl = max(min(a[2], b[2]) - max(a[0], b[0]), min(a[3], b[3]) - max(a[1], b[1]))
+            w = max(min(a[2] - a[0], a[3] - a[1]), min(b[2] - b[0], b[3] - b[1]))
+            if dx * dx + dy * dy < need(w, prl) ** 2:
+                expected.add(("MetalSpacing", (i, j)))
+    got = {(m[0], m[3]) for m in check(db, [("M1", *r, n) for n, r in enumerate(rects)]) if m[0] != "MinArea"}
+    assert len(expected) > 50
+    assert got == expected
