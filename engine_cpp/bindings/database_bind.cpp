@@ -468,6 +468,108 @@ void bindDatabase(nb::module_& m) {
           },
           "LEF macro names in order.")
       .def(
+          "def_via",
+          [](const Database& d, const std::string& name) {
+            auto it = d.design.viaIndex.find(name);
+            if (it == d.design.viaIndex.end()) throw nb::key_error(("no DEF via named " + name).c_str());
+            const DefVia& v = d.design.vias[*it->second];
+            auto layerName = [&](LayerId l) { return l.valid() ? d.tech.layer(l).name : std::string(); };
+            nb::dict r;
+            r["name"] = v.via.name;
+            r["generated"] = v.generated;
+            r["rule"] = v.rule.valid() ? d.tech.viaRules[*v.rule].name : std::string();
+            r["rowcol"] = nb::make_tuple(v.rows, v.cols);
+            r["bottom"] = layerName(v.via.bottom);
+            r["cut"] = layerName(v.via.cut);
+            r["top"] = layerName(v.via.top);
+            nb::list shapes;
+            for (const ViaShape& s : v.via.shapes) {
+              shapes.append(nb::make_tuple(d.tech.layer(s.layer).name, s.rect.xlo, s.rect.ylo, s.rect.xhi, s.rect.yhi));
+            }
+            r["shapes"] = shapes;
+            return r;
+          },
+          "name"_a, "A DEF VIAS entry: generated flag, rule, (rows, cols), layers and shapes (layer, xlo, ylo, xhi, yhi) in DBU.")
+      .def(
+          "io_pin",
+          [](const Database& d, const std::string& name) {
+            auto it = d.design.ioPinIndex.find(name);
+            if (it == d.design.ioPinIndex.end()) throw nb::key_error(("no IO pin named " + name).c_str());
+            const IoPin& p = d.design.ioPins[*it->second];
+            nb::dict r;
+            r["name"] = p.name;
+            r["net"] = p.netName;
+            r["net_id"] = *p.net;
+            r["direction"] = p.direction;
+            r["use"] = p.use;
+            r["status"] = statusName(p.status);
+            r["location"] = nb::make_tuple(p.location.x, p.location.y);
+            r["orient"] = std::string(orientName(p.orient));
+            const Transform t{p.location, p.orient, 0, 0};
+            nb::list shapes;
+            for (const IoPinShape& s : p.shapes) {
+              const Rect q = t.apply(s.rect);
+              shapes.append(nb::make_tuple(d.tech.layer(s.layer).name, q.xlo, q.ylo, q.xhi, q.yhi));
+            }
+            r["shapes"] = shapes;
+            return r;
+          },
+          "name"_a, "A DEF PINS entry; shapes placed in design coordinates: (layer, xlo, ylo, xhi, yhi).")
+      .def(
+          "special_net",
+          [](const Database& d, const std::string& name) {
+            for (const SpecialNet& n : d.design.specialNets) {
+              if (n.name != name) continue;
+              nb::dict r;
+              r["name"] = n.name;
+              r["use"] = n.use;
+              nb::list pins, wires, vias, rects;
+              for (const auto& [c, p] : n.pins) pins.append(nb::make_tuple(c, p));
+              for (const SpecialWire& w : n.wires) {
+                wires.append(nb::make_tuple(d.tech.layer(w.layer).name, w.width, w.shape, w.from.x, w.from.y, w.to.x,
+                                            w.to.y));
+              }
+              for (const SpecialVia& v : n.vias) {
+                vias.append(nb::make_tuple(d.design.via(d.tech, v.via).name, v.at.x, v.at.y, v.shape));
+              }
+              for (const RoutePatch& p : n.rects) {
+                rects.append(nb::make_tuple(d.tech.layer(p.layer).name, p.rect.xlo, p.rect.ylo, p.rect.xhi, p.rect.yhi));
+              }
+              r["pins"] = pins;
+              r["wires"] = wires;
+              r["vias"] = vias;
+              r["rects"] = rects;
+              return r;
+            }
+            throw nb::key_error(("no special net named " + name).c_str());
+          },
+          "name"_a,
+          "A SPECIALNETS entry: pins, wires (layer, width, shape, x1, y1, x2, y2), vias (name, x, y, shape), "
+          "rects (layer, xlo, ylo, xhi, yhi); DBU.")
+      .def(
+          "net_routing",
+          [](const Database& d, int32_t net) {
+            const NetId n = netByIndex(d, net);
+            const NetRouting& rt = d.design.nets[*n].routing;
+            nb::list wires, vias, patches;
+            for (const RouteWire& w : rt.wires) {
+              wires.append(nb::make_tuple(d.tech.layer(w.layer).name, w.from.x, w.from.y, w.to.x, w.to.y, w.width,
+                                          w.extFrom, w.extTo));
+            }
+            for (const RouteVia& v : rt.vias) vias.append(nb::make_tuple(d.design.via(d.tech, v.via).name, v.at.x, v.at.y));
+            for (const RoutePatch& p : rt.patches) {
+              patches.append(nb::make_tuple(d.tech.layer(p.layer).name, p.rect.xlo, p.rect.ylo, p.rect.xhi, p.rect.yhi));
+            }
+            nb::dict r;
+            r["wires"] = wires;
+            r["vias"] = vias;
+            r["patches"] = patches;
+            return r;
+          },
+          "net"_a,
+          "A net's routing: wires (layer, x1, y1, x2, y2, width, ext_from, ext_to; width 0 = default, ext -1 = "
+          "half width), vias (name, x, y), patches (layer, xlo, ylo, xhi, yhi); DBU.")
+      .def(
           "write_def",
           [](const Database& d, const std::string& path) {
             nb::gil_scoped_release release;

@@ -87,7 +87,7 @@ void DefParser::readSpecialNet() {
     std::string pin = lex_.word("a pin name");
     if (lex_.accept("+")) {
       lex_.expect("SYNTHESIZED");
-      countSkip("SPECIALNETS pin + SYNTHESIZED");
+      countSkip("SPECIALNETS.SYNTHESIZED");
     }
     lex_.expect(")");
     net.pins.emplace_back(std::move(comp), std::move(pin));
@@ -99,11 +99,11 @@ void DefParser::readSpecialNet() {
     const Token kw = lex_.next();
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER") {
-      if (k != "ROUTED") countSkip("SPECIALNETS + " + std::string(k) + " (written back as ROUTED)");
+      if (k != "ROUTED") countSkip("SPECIALNETS." + std::string(k));
       readSpecialWiring(net);
     } else if (k == "SHIELD") {
       lex_.word("a shield net name");
-      countSkip("SPECIALNETS + SHIELD (written back as ROUTED)");
+      countSkip("SPECIALNETS.SHIELD");
       readSpecialWiring(net);
     } else if (k == "USE") {
       net.use = lex_.word("a net use");
@@ -128,7 +128,7 @@ void DefParser::readSpecialNet() {
       Rect r{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
       for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
       net.rects.push_back({layer, r});
-      countSkip("SPECIALNETS POLYGON (kept as its bounding box)");
+      countSkip("SPECIALNETS.POLYGON");
       ++design_.warningCount;
     } else if (k == "VIA") {
       const Token viaTok = lex_.next();
@@ -137,7 +137,7 @@ void DefParser::readSpecialNet() {
       if (isOrientName(lex_.peek())) {
         const Token o = lex_.next();
         if (o.text != "N") {
-          countSkip("SPECIALNETS via orientation (ignored)");
+          countSkip("SPECIALNETS.VIA.ORIENT");
           ++design_.warningCount;
         }
       }
@@ -147,7 +147,7 @@ void DefParser::readSpecialNet() {
       unexpected(kw, "a special net option");
     } else {
       skipToOptionEnd();
-      countSkip("SPECIALNETS + " + std::string(k));
+      countSkip("SPECIALNETS." + std::string(k));
     }
   }
   design_.specialNets.push_back(std::move(net));
@@ -168,7 +168,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
         shape = lex_.word("a shape type");
       } else if (is(kw, "STYLE") || is(kw, "MASK")) {
         lex_.integer();
-        countSkip("SPECIALNETS wire + " + std::string(kw.text));
+        countSkip("SPECIALNETS." + std::string(kw.text));
       } else {
         unexpected(kw, "SHAPE, STYLE or MASK");
       }
@@ -181,7 +181,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
         const int line = t.line;
         const Point p = readPathPoint(lex_, cur, ext);
         if (ext >= 0) {
-          countSkip("SPECIALNETS point extension (ignored: special wires are flush)");
+          countSkip("SPECIALNETS.EXT");
           ++design_.warningCount;
         }
         if (cur.havePoint) {
@@ -194,7 +194,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
       } else if (is(t, "MASK")) {
         lex_.next();
         lex_.integer();
-        countSkip("SPECIALNETS point MASK");
+        countSkip("SPECIALNETS.MASK");
       } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
         if (cur.havePoint && !cur.emitted) net.wires.push_back({cur.layer, width, shape, cur.at, cur.at});
         if (!is(t, "NEW")) return;
@@ -209,7 +209,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
         if (isOrientName(lex_.peek())) {
           const Token o = lex_.next();
           if (o.text != "N") {
-            countSkip("SPECIALNETS via orientation (ignored)");
+            countSkip("SPECIALNETS.VIA.ORIENT");
             ++design_.warningCount;
           }
         }
@@ -267,7 +267,7 @@ void DefParser::readNet() {
   if (is(nameTok, ";")) unexpected(nameTok, "a net name");
   if (is(nameTok, "MUSTJOIN")) {
     lex_.skipStatement();
-    countSkip("NETS MUSTJOIN");
+    countSkip("NETS.MUSTJOIN");
     return;
   }
   const NetId id(static_cast<int32_t>(design_.nets.size()));
@@ -286,7 +286,7 @@ void DefParser::readNet() {
       if (it == design_.ioPinIndex.end()) lex_.failAt(pinTok, "unknown pin " + quoteToken(pinTok.text));
       design_.pinRefs.push_back({CompId(), *it->second});
     } else if (is(compTok, "*")) {
-      countSkip("NETS ( * pin ) references (not expanded)");
+      countSkip("NETS.WILDCARDPIN");
       ++design_.warningCount;
     } else {
       auto it = design_.compIndex.find(compTok.text);
@@ -301,7 +301,7 @@ void DefParser::readNet() {
     }
     if (lex_.accept("+")) {
       lex_.expect("SYNTHESIZED");
-      countSkip("NETS pin + SYNTHESIZED");
+      countSkip("NETS.SYNTHESIZED");
     }
     lex_.expect(")");
   }
@@ -312,7 +312,7 @@ void DefParser::readNet() {
     const Token kw = lex_.next();
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER" || k == "NOSHIELD") {
-      if (k != "ROUTED") countSkip("NETS + " + std::string(k) + " (written back as ROUTED)");
+      if (k != "ROUTED") countSkip("NETS." + std::string(k));
       readRegularWiring(net);
     } else if (k == "USE") {
       net.use = lex_.word("a net use");
@@ -320,7 +320,7 @@ void DefParser::readNet() {
       unexpected(kw, "a net option");
     } else {
       skipToOptionEnd();
-      countSkip("NETS + " + std::string(k));
+      countSkip("NETS." + std::string(k));
     }
   }
   design_.netPinStart.push_back(static_cast<int32_t>(design_.pinRefs.size()));
@@ -333,13 +333,13 @@ void DefParser::readRegularWiring(Net& net) {
     cur.layer = routingLayerAt(lex_.next());
     while (true) {
       if (lex_.accept("TAPER")) {
-        countSkip("NETS wire TAPER");
+        countSkip("NETS.TAPER");
       } else if (lex_.accept("TAPERRULE")) {
         lex_.word("a rule name");
-        countSkip("NETS wire TAPERRULE");
+        countSkip("NETS.TAPERRULE");
       } else if (lex_.accept("STYLE")) {
         lex_.integer();
-        countSkip("NETS wire STYLE");
+        countSkip("NETS.STYLE");
       } else {
         break;
       }
@@ -362,7 +362,7 @@ void DefParser::readRegularWiring(Net& net) {
       } else if (is(t, "MASK")) {
         lex_.next();
         lex_.integer();
-        countSkip("NETS point MASK");
+        countSkip("NETS.MASK");
       } else if (is(t, "RECT")) {
         const Token rectTok = lex_.next();
         if (!cur.havePoint) lex_.failAt(rectTok, "RECT before any point");
@@ -377,7 +377,7 @@ void DefParser::readRegularWiring(Net& net) {
         cur.at = readPoint();
         cur.ext = -1;
         cur.havePoint = true;
-        countSkip("NETS VIRTUAL points");
+        countSkip("NETS.VIRTUAL");
       } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
         if (cur.havePoint && !cur.emitted) r.wires.push_back({cur.layer, cur.at, cur.at, 0, cur.ext, cur.ext});
         if (!is(t, "NEW")) return;
@@ -392,7 +392,7 @@ void DefParser::readRegularWiring(Net& net) {
         if (isOrientName(lex_.peek())) {
           const Token o = lex_.next();
           if (o.text != "N") {
-            countSkip("NETS via orientation (ignored)");
+            countSkip("NETS.VIA.ORIENT");
             ++design_.warningCount;
           }
         }

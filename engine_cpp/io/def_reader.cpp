@@ -3,8 +3,21 @@
 // def_vias.cpp, NETS and SPECIALNETS in def_nets.cpp.
 //
 // Coordinates are DEF integers (DBU) as written. Anything legal that we do
-// not keep is skipped and counted in Design::skippedStatements; anything
-// malformed or unknown throws InputError with the offending token's line.
+// not keep is skipped and counted in Design::skippedStatements under
+// "SECTION.KEYWORD" (e.g. "COMPONENTS.SOURCE"; a skipped section counts
+// under its own name); anything malformed or unknown throws InputError with
+// the offending token's line.
+//
+// Decisions (also in the report of the DEF task):
+// - A PINS entry whose + NET names a net that NETS lacks is allowed: netName
+//   is kept, IoPin::net stays invalid.
+// - UNITS must equal the LEF's DATABASE MICRONS (no rescaling).
+// - Kept approximately (counted and warned): POLYGONs of pins, vias and
+//   special nets (their bounding box); a pin's ports with different
+//   placements (shapes made absolute, placement dropped); via orientations
+//   other than N (ignored). Kept as ROUTED: FIXED/COVER/NOSHIELD/SHIELD
+//   wiring. Not kept: MASK, STYLE, TAPER, VIRTUAL, wildcard "( * pin )" refs
+//   in NETS, component SOURCE/WEIGHT/HALO..., blockage options.
 #include <algorithm>
 #include <limits>
 
@@ -125,23 +138,15 @@ void DefParser::skipToOptionEnd() {
 }
 
 void DefParser::skipSection(std::string_view keyword) {
-  const std::string name(keyword);
-  const std::string endKeyword = keyword == "BEGINEXT" ? "ENDEXT" : "END";
-  int statements = 0;
+  const bool ext = keyword == "BEGINEXT";
   while (true) {
     const Token t = lex_.next();
-    if (keyword == "BEGINEXT") {
-      if (is(t, "ENDEXT")) break;
-      continue;
-    }
-    if (is(t, "END") && peekIs(keyword)) {
-      lex_.next();
+    if (ext ? is(t, "ENDEXT") : (is(t, "END") && peekIs(keyword))) {
+      if (!ext) lex_.next();
       break;
     }
-    if (is(t, ";")) ++statements;
   }
-  countSkip(name + " section");
-  if (statements > 0) countSkip(name + " statements", statements);
+  countSkip(keyword);
 }
 
 // ---------------------------------------------------------------------------
@@ -263,7 +268,7 @@ void DefParser::readRow() {
     const Token kw = lex_.next();
     if (!is(kw, "PROPERTY")) unexpected(kw, "PROPERTY or ';'");
     skipToOptionEnd();
-    countSkip("ROW + PROPERTY");
+    countSkip("ROW.PROPERTY");
   }
   lex_.expect(";");
   design_.rows.push_back(std::move(row));
@@ -285,7 +290,7 @@ void DefParser::readTracks() {
   if (lex_.accept("MASK")) {
     lex_.integer();
     lex_.accept("SAMEMASK");
-    countSkip("TRACKS MASK");
+    countSkip("TRACKS.MASK");
   }
   int layers = 0;
   if (lex_.accept("LAYER")) {
@@ -357,7 +362,7 @@ void DefParser::readComponent() {
       unexpected(kw, "a component option");
     } else {
       skipToOptionEnd();
-      countSkip("COMPONENTS + " + std::string(kw.text));
+      countSkip("COMPONENTS." + std::string(kw.text));
     }
   }
 }
@@ -418,7 +423,7 @@ void DefParser::readPin() {
         const Token opt = lex_.next();
         if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
           lex_.integer();
-          countSkip("PINS LAYER " + std::string(opt.text));
+          countSkip("PINS.LAYER." + std::string(opt.text));
         } else {
           unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
         }
@@ -442,7 +447,7 @@ void DefParser::readPin() {
       Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
       for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
       ports.back().shapes.push_back({layer, box});
-      countSkip("PINS POLYGON (kept as its bounding box)");
+      countSkip("PINS.POLYGON");
       ++design_.warningCount;
     } else if (k == "VIA") {
       const Token viaTok = lex_.next();
@@ -460,7 +465,7 @@ void DefParser::readPin() {
       unexpected(kw, "a pin option");
     } else {
       skipToOptionEnd();
-      countSkip("PINS + " + std::string(k));
+      countSkip("PINS." + std::string(k));
     }
   }
   // One placement for all ports: keep it; otherwise make the shapes absolute.
@@ -481,7 +486,7 @@ void DefParser::readPin() {
       const Transform t{p.location, p.orient, 0, 0};
       for (const IoPinShape& s : p.shapes) pin.shapes.push_back({s.layer, t.apply(s.rect)});
     }
-    countSkip("PINS ports with different placements (shapes made absolute)");
+    countSkip("PINS.PORT.PLACEMENT");
     ++design_.warningCount;
   }
   design_.ioPins.push_back(std::move(pin));
@@ -526,7 +531,7 @@ void DefParser::readBlockage() {
                    is(kw, "SOFT"))) {
         unexpected(kw, "a blockage option");
       }
-      countSkip("BLOCKAGES + " + std::string(kw.text));
+      countSkip("BLOCKAGES." + std::string(kw.text));
     } else if (is(t, "RECT")) {
       const Point a = readPoint();
       const Point c = readPoint();

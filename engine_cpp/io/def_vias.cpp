@@ -159,7 +159,7 @@ void DefParser::readVia() {
       if (lex_.accept("+")) {
         lex_.expect("MASK");
         lex_.integer();
-        countSkip("VIAS + MASK");
+        countSkip("VIAS.MASK");
       }
       Rect r;
       if (k == "RECT") {
@@ -172,7 +172,7 @@ void DefParser::readVia() {
         if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
         r = Rect{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
         for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
-        countSkip("VIAS POLYGON (kept as its bounding box)");
+        countSkip("VIAS.POLYGON");
         ++design_.warningCount;
       }
       v.via.shapes.push_back({layer, r});
@@ -225,7 +225,7 @@ void DefParser::readVia() {
       unexpected(kw, "a via option");
     } else {
       skipToOptionEnd();
-      countSkip("VIAS + " + std::string(k));
+      countSkip("VIAS." + std::string(k));
     }
   }
   if (v.generated && haveShapes) lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " has both VIARULE and RECT");

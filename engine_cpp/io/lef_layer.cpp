@@ -227,7 +227,14 @@ void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
       failAt(wv, "SPACINGTABLE WIDTH values must be ascending, found " + quoteToken(wv.text));
     }
     table.widths.push_back(width);
-    for (size_t i = 0; i < table.prls.size(); ++i) table.spacing.push_back(dist());
+    for (size_t i = 0; i < table.prls.size(); ++i) {
+      if (peekIs("WIDTH") || peekIs(";")) {
+        failAt(peek(), "SPACINGTABLE row WIDTH " + std::string(wv.text) + " has " + std::to_string(i) +
+                           " spacing values, expected " + std::to_string(table.prls.size()) +
+                           " (one per PARALLELRUNLENGTH)");
+      }
+      table.spacing.push_back(dist());
+    }
   }
   if (table.widths.empty()) failAt(kw, "SPACINGTABLE PARALLELRUNLENGTH without a WIDTH row");
   layer.prlTable = std::move(table);

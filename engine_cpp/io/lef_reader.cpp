@@ -17,6 +17,9 @@ bool isNumberText(std::string_view text) {
   const char* e = b + text.size();
   if (b != e && *b == '+') ++b;
   if (b == e) return false;
+  // from_chars also takes "inf" and "nan": those are names, not numbers.
+  const char c = *b == '-' && b + 1 != e ? b[1] : *b;
+  if (!(std::isdigit(static_cast<unsigned char>(c)) || c == '.')) return false;
   double v = 0;
   auto [p, ec] = std::from_chars(b, e, v);
   return ec == std::errc() && p == e;
