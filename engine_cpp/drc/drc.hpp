@@ -50,6 +50,12 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
 std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design);
 
 std::string_view markerTypeName(MarkerType type);
+
+// Spacing a routing layer requires between shapes of widths w1 and w2 with a
+// parallel run length prl (DBU): the PRL table (row: last WIDTH strictly
+// below the larger width; column: last PRL strictly below prl), else the
+// plain SPACING rules that apply.
+Dbu requiredSpacing(const Layer& layer, Dbu w1, Dbu w2, Dbu prl);
 inline bool isFixedOrigin(ShapeOrigin o) { return o == ShapeOrigin::Pin || o == ShapeOrigin::Obstruction || o == ShapeOrigin::SpecialNet; }
 
 }  // namespace xroute

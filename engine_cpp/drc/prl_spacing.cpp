@@ -29,7 +29,7 @@ Dbu tableSpacing(const PrlSpacingTable& t, Dbu width, Dbu prl) {
   return t.at(row, col);
 }
 
-Dbu requiredSpacing(const Layer& l, Dbu w1, Dbu w2, Dbu prl) {
+Dbu layerSpacing(const Layer& l, Dbu w1, Dbu w2, Dbu prl) {
   if (!l.prlTable.empty() && !l.prlTable.prls.empty()) return tableSpacing(l.prlTable, std::max(w1, w2), prl);
   Dbu s = 0;
   for (const SpacingRule& r : l.spacings) {
@@ -41,6 +41,7 @@ Dbu requiredSpacing(const Layer& l, Dbu w1, Dbu w2, Dbu prl) {
 }
 
 }  // namespace
+
 
 void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSink& out) {
   const Layer& l = *ls.rules;
@@ -68,10 +69,16 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
       const Dbu overlapX = std::min(ra.xhi, rb.xhi) - std::max(ra.xlo, rb.xlo);
       const Dbu overlapY = std::min(ra.yhi, rb.yhi) - std::max(ra.ylo, rb.ylo);
       const Dbu prl = std::max(overlapX, overlapY);
-      const Dbu need = requiredSpacing(l, widthOf(a), widthOf(b), prl);
+      const Dbu need = layerSpacing(l, widthOf(a), widthOf(b), prl);
       if (closerThan(dx, dy, need, ls.euclidean)) addPairMarker(out, ls, MarkerType::MetalSpacing, gapBox(ra, rb), a, b);
     });
   }
 }
 
 }  // namespace xroute::drc
+
+namespace xroute {
+
+Dbu requiredSpacing(const Layer& layer, Dbu w1, Dbu w2, Dbu prl) { return drc::layerSpacing(layer, w1, w2, prl); }
+
+}  // namespace xroute

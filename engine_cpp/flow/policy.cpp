@@ -1,0 +1,65 @@
+#include "flow/policy.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+namespace xroute {
+
+namespace {
+
+class HeuristicPolicy final : public NetOrderPolicy {
+ public:
+  std::vector<int32_t> order(const RegionInfo&, const std::vector<NetCandidate>& c) override {
+    std::vector<int32_t> idx(c.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::stable_sort(idx.begin(), idx.end(), [&](int32_t a, int32_t b) {
+      const int64_t pa = int64_t(c[a].bbox.width()) + c[a].bbox.height();
+      const int64_t pb = int64_t(c[b].bbox.width()) + c[b].bbox.height();
+      if (pa != pb) return pa < pb;
+      if (c[a].terminals != c[b].terminals) return c[a].terminals > c[b].terminals;
+      return c[a].net < c[b].net;
+    });
+    return idx;
+  }
+  std::string name() const override { return "heuristic"; }
+};
+
+class RandomPolicy final : public NetOrderPolicy {
+ public:
+  explicit RandomPolicy(uint64_t seed) : seed_(seed) {}
+  std::vector<int32_t> order(const RegionInfo& r, const std::vector<NetCandidate>& c) override {
+    std::vector<int32_t> idx(c.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::seed_seq seq{uint32_t(seed_), uint32_t(seed_ >> 32), uint32_t(r.iteration), uint32_t(r.regionId)};
+    std::mt19937_64 rng(seq);
+    // Fisher-Yates with our own index draws (std::shuffle's use of the
+    // engine is implementation-defined; this keeps orders identical everywhere).
+    for (size_t i = idx.size(); i > 1; --i) {
+      const size_t j = static_cast<size_t>(rng() % i);
+      std::swap(idx[i - 1], idx[j]);
+    }
+    return idx;
+  }
+  std::string name() const override { return "random"; }
+
+ private:
+  uint64_t seed_;
+};
+
+}  // namespace
+
+std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy() { return std::make_unique<HeuristicPolicy>(); }
+std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed) { return std::make_unique<RandomPolicy>(seed); }
+
+bool isPermutation(const std::vector<int32_t>& order, size_t n) {
+  if (order.size() != n) return false;
+  std::vector<uint8_t> seen(n, 0);
+  for (int32_t i : order) {
+    if (i < 0 || static_cast<size_t>(i) >= n || seen[i]) return false;
+    seen[i] = 1;
+  }
+  return true;
+}
+
+}  // namespace xroute

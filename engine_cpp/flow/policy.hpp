@@ -1,0 +1,50 @@
+// The net-order seam: in every region the router asks a policy in which
+// order to route the region's nets. A policy sees the region and one
+// feature row per candidate net, and returns a permutation.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geom/geom.hpp"
+
+namespace xroute {
+
+struct RegionInfo {
+  int32_t iteration = 0;
+  int32_t regionId = 0;
+  Rect box;  // DBU
+};
+
+// What a policy knows about one candidate net of a region.
+struct NetCandidate {
+  int32_t net = -1;          // net id
+  int32_t pins = 0;          // pins of the net inside the region
+  int32_t terminals = 0;     // all terminals (pins + boundary crossings)
+  int32_t accessPoints = 0;  // terminal nodes in the grid
+  Rect bbox;                 // DBU, bounding box of the terminal nodes
+  int32_t netPins = 0;       // pins of the whole net
+};
+
+class NetOrderPolicy {
+ public:
+  virtual ~NetOrderPolicy() = default;
+  // A permutation of 0..candidates.size()-1 (indices into `candidates`).
+  virtual std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& candidates) = 0;
+  virtual std::string name() const = 0;
+};
+
+// Smallest terminal bounding box (half perimeter) first, then more
+// terminals first, then net id: short, constrained nets take the scarce
+// tracks before long flexible ones detour around them.
+std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy();
+
+// A uniformly random order, reproducible: seeded from (seed, iteration, region).
+std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed);
+
+// Checks that `order` is a permutation of 0..n-1.
+bool isPermutation(const std::vector<int32_t>& order, size_t n);
+
+}  // namespace xroute

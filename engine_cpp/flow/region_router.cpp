@@ -1,0 +1,427 @@
+#include "flow/region_router.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace xroute {
+
+namespace {
+
+struct TermSpec {
+  std::vector<Point> points;  // DBU
+  std::vector<int> zs;        // routing index per point
+  bool joined = true;
+  int32_t pinRef = -1;        // pin terminals
+  int32_t crossing = -1;      // free crossing terminals (iteration 0)
+};
+
+struct NetState {
+  RegionNetTask task;
+  std::vector<TermSpec> terms;
+  NetRouting kept;  // rip-up: routing outside the box
+  bool routed = false;
+  RegionNetResult result;
+};
+
+// Grid index range of the closed interval [lo, hi] (first > last when empty).
+void closedRange(const std::vector<Dbu>& v, Dbu lo, Dbu hi, int& first, int& last) {
+  first = static_cast<int>(std::lower_bound(v.begin(), v.end(), lo) - v.begin());
+  last = static_cast<int>(std::upper_bound(v.begin(), v.end(), hi) - v.begin()) - 1;
+}
+
+}  // namespace
+
+struct RegionRouter::Impl {
+  const RouteContext& ctx;
+  const RegionTask& task;
+  const CrossingPlan* plan;
+  std::unique_ptr<RegionGrid> grid;
+  std::vector<NetState> nets;
+  std::vector<NetCandidate> candidates;
+  std::unordered_map<int32_t, ViaId> apVia;  // access node -> via the pin access chose
+  std::vector<CrossingChoice> choices;
+  int64_t rounds = 0;
+
+  Impl(const RouteContext& c, const RegionTask& t, const CrossingPlan* p) : ctx(c), task(t), plan(p) {}
+
+  const Rect& box() const { return task.region.box; }
+  int routingIndex(LayerId l) const { return ctx.tech.layer(l).routingIndex; }
+
+  void gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>& ys) {
+    for (const RegionNetTask& t : task.nets) {
+      NetState ns;
+      ns.task = t;
+      ns.result.net = t.net;
+      ns.result.ripup = t.ripup;
+      for (int32_t pin : t.pins) {
+        TermSpec spec;
+        spec.pinRef = pin;
+        for (const AccessPoint* ap = ctx.access.begin(pin); ap != ctx.access.end(pin); ++ap) {
+          if (!box().contains(ap->at)) continue;
+          spec.points.push_back(ap->at);
+          spec.zs.push_back(ap->z);
+        }
+        if (!spec.points.empty()) ns.terms.push_back(std::move(spec));
+      }
+      if (t.ripup) {
+        std::vector<BoundaryTerminal> bterms;
+        ns.kept = clipOutside(ctx.tech, ctx.design, ctx.design.nets[t.net].routing, box(), &bterms);
+        for (const BoundaryTerminal& b : bterms) {
+          TermSpec spec;
+          spec.points.push_back(b.at);
+          spec.zs.push_back(b.zLo);
+          if (b.zHi != b.zLo) {
+            spec.points.push_back(b.at);
+            spec.zs.push_back(b.zHi);
+          }
+          ns.terms.push_back(std::move(spec));
+        }
+      }
+      if (plan) {
+        for (int32_t cid : t.crossings) {
+          const Crossing& c = plan->crossings[cid];
+          TermSpec spec;
+          if (c.chosen) {
+            spec.points.push_back(c.at);
+            spec.zs.push_back(c.z);
+          } else {
+            spec.joined = false;
+            spec.crossing = cid;
+          }
+          ns.terms.push_back(std::move(spec));
+        }
+      }
+      for (const TermSpec& s : ns.terms) {
+        for (const Point& p : s.points) {
+          xs.push_back(p.x);
+          ys.push_back(p.y);
+        }
+      }
+      nets.push_back(std::move(ns));
+    }
+  }
+
+  // Free crossing: nodes on the region edge within the span, on layers whose
+  // wires cross that edge (guide layers first; any such layer above the
+  // lowest when the guides name none).
+  void freeCrossingNodes(const Crossing& c, TermSpec& spec) {
+    const RegionGrid& g = *grid;
+    const bool edgeIsX = c.vertical;  // vertical edge x = coord: horizontal layers cross it
+    auto collect = [&](uint32_t mask) {
+      for (int z = 0; z < g.nz(); ++z) {
+        if (!(mask & (1u << z))) continue;
+        if (g.horizontal(z) != edgeIsX) continue;
+        const LayerTracks& lt = ctx.tracks.layers[z];
+        for (Dbu t : tracksIn(lt.pref, c.lo, c.hi)) {
+          spec.points.push_back(edgeIsX ? Point{c.coord, t} : Point{t, c.coord});
+          spec.zs.push_back(z);
+        }
+      }
+    };
+    collect(c.layerMask);
+    if (spec.points.empty()) {
+      uint32_t mask = 0;
+      for (int z = 1; z < g.nz(); ++z) mask |= 1u << z;
+      if (g.nz() == 1) mask = 1;
+      collect(mask);
+    }
+  }
+
+  void markFixed() {
+    RegionGrid& g = *grid;
+    const Rect win{box().xlo - ctx.halo, box().ylo - ctx.halo, box().xhi + ctx.halo, box().yhi + ctx.halo};
+    ctx.fixedIndex.query(win, [&](int32_t id) {
+      const DrcShape& s = ctx.fixedShapes[id];
+      const Layer& l = ctx.tech.layer(s.layer);
+      if (l.routingIndex >= 0) {
+        markMetal(g, ctx.rules, l.routingIndex, s.rect, s.net, true);
+      } else if (l.cutIndex >= 0) {
+        const int z = cutBelow(s.layer);
+        if (z >= 0) markCut(g, ctx.rules, z, s.rect, s.net);
+      }
+    });
+  }
+
+  // The routing index below a cut layer, -1 if unknown.
+  int cutBelow(LayerId cut) const {
+    for (size_t z = 0; z < ctx.vias.cuts.size(); ++z) {
+      if (ctx.tech.vias[*ctx.vias.cuts[z].via].cut == cut) return static_cast<int>(z);
+    }
+    return -1;
+  }
+
+  void markShapes(int32_t net, const std::vector<NetShape>& shapes, const Rect& win) {
+    RegionGrid& g = *grid;
+    for (const NetShape& s : shapes) {
+      if (!s.rect.overlaps(win)) continue;
+      const Layer& l = ctx.tech.layer(s.layer);
+      if (l.routingIndex >= 0) markMetal(g, ctx.rules, l.routingIndex, s.rect, net, false);
+      else if (l.cutIndex >= 0) {
+        const int z = cutBelow(s.layer);
+        if (z >= 0) markCut(g, ctx.rules, z, s.rect, net);
+      }
+    }
+  }
+
+  void markRouted() {
+    const Rect win{box().xlo - ctx.halo, box().ylo - ctx.halo, box().xhi + ctx.halo, box().yhi + ctx.halo};
+    std::unordered_map<int32_t, const NetState*> ripped;
+    for (const NetState& ns : nets) {
+      if (ns.task.ripup) ripped[ns.task.net] = &ns;
+    }
+    std::vector<NetShape> shapes;
+    for (int32_t n : ctx.netsNear(win)) {
+      shapes.clear();
+      auto it = ripped.find(n);
+      const NetRouting& r = it != ripped.end() ? it->second->kept : ctx.design.nets[n].routing;
+      netRoutingShapes(ctx.tech, ctx.design, r, shapes);
+      markShapes(n, shapes, win);
+    }
+  }
+
+  void markMarkers() {
+    RegionGrid& g = *grid;
+    for (const MarkerCost& m : task.markers) {
+      const Layer& l = ctx.tech.layer(m.layer);
+      int zlo = l.routingIndex, zhi = l.routingIndex;
+      if (zlo < 0) {
+        zlo = cutBelow(m.layer);
+        zhi = zlo + 1;
+        if (zlo < 0) continue;
+      }
+      for (int z = zlo; z <= zhi && z < g.nz(); ++z) {
+        const Dbu grow = ctx.tracks.layers[z].pitch;
+        int x0, x1, y0, y1;
+        closedRange(g.xs(), m.box.xlo - grow, m.box.xhi + grow, x0, x1);
+        closedRange(g.ys(), m.box.ylo - grow, m.box.yhi + grow, y0, y1);
+        for (int y = y0; y <= y1; ++y)
+          for (int x = x0; x <= x1; ++x) {
+            int32_t& c = g.markerCost[g.index(x, y, z)];
+            c = static_cast<int32_t>(std::min<int64_t>(int64_t(c) + m.cost, std::numeric_limits<int32_t>::max() / 2));
+          }
+      }
+    }
+  }
+
+  int32_t nodeAt(Point p, int z) const {
+    const int x = grid->xIndex(p.x), y = grid->yIndex(p.y);
+    if (x < 0 || y < 0 || z < 0 || z >= grid->nz()) return -1;
+    return grid->index(x, y, z);
+  }
+
+  void prepare() {
+    std::vector<Dbu> xs, ys;
+    gatherTerminals(xs, ys);
+    grid = std::make_unique<RegionGrid>(ctx.tracks, box(), std::move(xs), std::move(ys));
+    RegionGrid& g = *grid;
+    markFixed();
+    markRouted();
+    markMarkers();
+    for (NetState& ns : nets) {
+      for (TermSpec& s : ns.terms) {
+        if (s.crossing >= 0) freeCrossingNodes(plan->crossings[s.crossing], s);
+        for (size_t k = 0; k < s.points.size(); ++k) {
+          const int32_t v = nodeAt(s.points[k], s.zs[k]);
+          if (v < 0) continue;
+          if (s.crossing < 0) {
+            g.flags[v] |= s.pinRef >= 0 ? kAccess : kTerminal;
+            g.accessNet[v] = ns.task.net;
+            if (s.pinRef >= 0) g.accessPin[v] = s.pinRef;
+          }
+        }
+      }
+      for (const TermSpec& s : ns.terms) {
+        if (s.pinRef < 0) continue;
+        for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
+          const int32_t v = nodeAt(ap->at, ap->z);
+          if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
+        }
+      }
+      NetCandidate c;
+      c.net = ns.task.net;
+      c.netPins = ctx.design.pinCount(NetId(ns.task.net));
+      bool first = true;
+      for (const TermSpec& s : ns.terms) {
+        if (s.pinRef >= 0) ++c.pins;
+        ++c.terminals;
+        for (const Point& p : s.points) {
+          ++c.accessPoints;
+          const Rect r{p.x, p.y, p.x, p.y};
+          if (first) c.bbox = r;
+          else c.bbox.expandToInclude(r);
+          first = false;
+        }
+      }
+      candidates.push_back(c);
+    }
+  }
+
+  std::vector<uint8_t> guideMask(int32_t net) const {
+    const RegionGrid& g = *grid;
+    const Design& d = ctx.design;
+    std::vector<uint8_t> mask(g.size(), 0);
+    if (!d.hasGuides() || d.guideStart[net] == d.guideStart[net + 1]) {
+      std::fill(mask.begin(), mask.end(), 1);
+      return mask;
+    }
+    for (int32_t gi = d.guideStart[net]; gi < d.guideStart[net + 1]; ++gi) {
+      const Rect& r = d.guideRects[gi];
+      if (!r.overlaps(box())) continue;
+      const int z = routingIndex(d.guideLayers[gi]);
+      if (z < 0) continue;
+      int x0, x1, y0, y1;
+      closedRange(g.xs(), r.xlo, r.xhi, x0, x1);
+      closedRange(g.ys(), r.ylo, r.yhi, y0, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) mask[g.index(x, y, z)] = 1;
+    }
+    return mask;
+  }
+
+  void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out) {
+    const RegionGrid& g = *grid;
+    size_t i = 0;
+    while (i + 1 < path.size()) {
+      const int32_t u = path[i], v = path[i + 1];
+      const int zu = g.zOf(u), zv = g.zOf(v);
+      if (zu != zv) {
+        const int zl = std::min(zu, zv);
+        const int32_t lower = zu < zv ? u : v;
+        ViaId via = ctx.vias.cuts[zl].via;
+        auto it = apVia.find(lower);
+        if (it != apVia.end() && g.accessNet[lower] == net) via = it->second;
+        out.vias.push_back({ViaRef{*via, false}, g.point(u)});
+        ++i;
+        continue;
+      }
+      // A straight run on one layer.
+      const Point a = g.point(u);
+      const bool alongX = g.point(v).y == a.y;
+      size_t j = i + 1;
+      while (j + 1 < path.size() && g.zOf(path[j + 1]) == zu && (g.point(path[j + 1]).y == a.y) == alongX &&
+             (alongX ? g.point(path[j + 1]).y == a.y : g.point(path[j + 1]).x == a.x)) {
+        ++j;
+      }
+      RouteWire w;
+      w.layer = ctx.tracks.layers[zu].layer;
+      w.from = a;
+      w.to = g.point(path[j]);
+      out.wires.push_back(w);
+      i = j;
+    }
+  }
+
+  void markNewRouting(int32_t net, const NetRouting& added) {
+    std::vector<NetShape> shapes;
+    netRoutingShapes(ctx.tech, ctx.design, added, shapes);
+    const Rect win{box().xlo - ctx.halo, box().ylo - ctx.halo, box().xhi + ctx.halo, box().yhi + ctx.halo};
+    markShapes(net, shapes, win);
+  }
+
+  void routeNet(int32_t index, MazeWorkspace& ws) {
+    NetState& ns = nets[index];
+    if (ns.routed) return;
+    ns.routed = true;
+    ns.result.routed = true;
+    RegionGrid& g = *grid;
+    MazeNet mn;
+    mn.net = ns.task.net;
+    std::vector<int32_t> termOfSpec;
+    // Joined terminals (pins, fixed points) first, so the tree starts on metal.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (size_t t = 0; t < ns.terms.size(); ++t) {
+        const TermSpec& s = ns.terms[t];
+        if (s.joined != (pass == 0)) continue;
+        MazeTerminal mt;
+        mt.joined = s.joined;
+        for (size_t k = 0; k < s.points.size(); ++k) {
+          const int32_t v = nodeAt(s.points[k], s.zs[k]);
+          if (v >= 0 && g.exists(v)) mt.nodes.push_back(v);
+        }
+        std::sort(mt.nodes.begin(), mt.nodes.end());
+        mt.nodes.erase(std::unique(mt.nodes.begin(), mt.nodes.end()), mt.nodes.end());
+        mn.terminals.push_back(std::move(mt));
+        termOfSpec.push_back(static_cast<int32_t>(t));
+      }
+    }
+    if (mn.terminals.size() < 2) return;
+    const std::vector<uint8_t> mask = guideMask(ns.task.net);
+    mn.inGuide = &mask;
+    std::vector<std::vector<int32_t>> paths;
+    ns.result.unreached = routeMaze(g, task.costs, mn, ws, paths);
+    rounds += static_cast<int64_t>(paths.size());
+    for (const auto& p : paths) {
+      addPathGeometry(ns.task.net, p, ns.result.added);
+      for (int32_t v : p) g.routedNet[v] = ns.task.net;
+    }
+    // Record where the free crossings were reached.
+    for (size_t k = 0; k < mn.terminals.size(); ++k) {
+      const TermSpec& s = ns.terms[termOfSpec[k]];
+      if (s.crossing < 0) continue;
+      const auto& nodes = mn.terminals[k].nodes;
+      bool done = false;
+      for (const auto& p : paths) {
+        for (int32_t v : p) {
+          if (std::binary_search(nodes.begin(), nodes.end(), v)) {
+            choices.push_back({s.crossing, g.point(v), g.zOf(v)});
+            done = true;
+            break;
+          }
+        }
+        if (done) break;
+      }
+    }
+    markNewRouting(ns.task.net, ns.result.added);
+  }
+};
+
+RegionRouter::RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan)
+    : impl_(std::make_unique<Impl>(ctx, task, plan)) {}
+RegionRouter::~RegionRouter() = default;
+
+void RegionRouter::prepare() { impl_->prepare(); }
+const RegionGrid& RegionRouter::grid() const { return *impl_->grid; }
+const std::vector<NetCandidate>& RegionRouter::candidates() const { return impl_->candidates; }
+bool RegionRouter::isRouted(int32_t candidate) const { return impl_->nets[candidate].routed; }
+void RegionRouter::routeNet(int32_t index, MazeWorkspace& ws) { impl_->routeNet(index, ws); }
+
+void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
+  std::vector<int32_t> pending;
+  std::vector<NetCandidate> cands;
+  for (size_t i = 0; i < impl_->candidates.size(); ++i) {
+    if (impl_->nets[i].routed) continue;
+    pending.push_back(static_cast<int32_t>(i));
+    cands.push_back(impl_->candidates[i]);
+  }
+  if (pending.empty()) return;
+  RegionInfo info{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
+  const std::vector<int32_t> order = policy.order(info, cands);
+  if (!isPermutation(order, cands.size())) {
+    throw std::invalid_argument("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
+                                std::to_string(cands.size()) + " candidates");
+  }
+  for (int32_t k : order) routeNet(pending[k], ws);
+}
+
+RegionResult RegionRouter::finish() {
+  RegionResult r;
+  r.regionId = impl_->task.region.id;
+  for (NetState& ns : impl_->nets) r.nets.push_back(std::move(ns.result));
+  r.crossingChoices = std::move(impl_->choices);
+  r.gridNodes = impl_->grid ? static_cast<int64_t>(impl_->grid->size()) : 0;
+  r.mazeRounds = impl_->rounds;
+  return r;
+}
+
+RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
+                         NetOrderPolicy& policy, MazeWorkspace& ws) {
+  RegionRouter rr(ctx, task, plan);
+  rr.prepare();
+  rr.routeAll(policy, ws);
+  return rr.finish();
+}
+
+}  // namespace xroute

@@ -1,0 +1,93 @@
+// Routing one region: build its grid, mark what is already there, gather
+// each candidate net's terminals, then route the nets one at a time in the
+// order a policy gives. Steppable (prepare / routeNet / finish) so that a
+// learning environment can choose every next net.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "drc/drc.hpp"
+#include "flow/clip.hpp"
+#include "flow/crossings.hpp"
+#include "flow/policy.hpp"
+#include "flow/regions.hpp"
+#include "flow/route_context.hpp"
+#include "grid/region_grid.hpp"
+#include "route/maze.hpp"
+
+namespace xroute {
+
+// A DRC marker from an earlier pass, as a cost on the nodes around it.
+struct MarkerCost {
+  LayerId layer;
+  Rect box;         // DBU
+  int64_t cost = 0; // cost units added to each node near the box
+};
+
+// What one net does in a region.
+struct RegionNetTask {
+  int32_t net = -1;
+  bool ripup = false;                     // remove its routing inside the box first
+  std::vector<int32_t> pins;              // pinRefs whose access points inside the box are terminals
+  std::vector<int32_t> crossings;         // iteration 0: CrossingPlan ids touching this region
+};
+
+struct RegionTask {
+  Region region;
+  int32_t iteration = 0;
+  std::vector<RegionNetTask> nets;
+  std::vector<MarkerCost> markers;
+  MazeCosts costs;
+};
+
+struct RegionNetResult {
+  int32_t net = -1;
+  bool ripup = false;
+  NetRouting added;     // new routing inside the box
+  int unreached = 0;    // terminals the maze could not reach
+  bool routed = false;
+};
+
+struct CrossingChoice {
+  int32_t crossing = -1;
+  Point at;
+  int z = -1;
+};
+
+struct RegionResult {
+  int32_t regionId = -1;
+  std::vector<RegionNetResult> nets;
+  std::vector<CrossingChoice> crossingChoices;
+  int64_t gridNodes = 0;
+  int64_t mazeRounds = 0;
+};
+
+class RegionRouter {
+ public:
+  // `plan` is read for iteration 0 crossings (may be null for later iterations).
+  RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan);
+  ~RegionRouter();
+
+  // Builds the grid and the candidates; call once before routing.
+  void prepare();
+  const RegionGrid& grid() const;
+  const std::vector<NetCandidate>& candidates() const;
+  bool isRouted(int32_t candidate) const;
+  // Routes candidate `index` (an index into candidates()).
+  void routeNet(int32_t index, MazeWorkspace& ws);
+  // Routes every candidate not yet routed in the policy's order.
+  void routeAll(NetOrderPolicy& policy, MazeWorkspace& ws);
+  RegionResult finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Runs a whole region: prepare, order by the policy, route, finish.
+RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
+                         NetOrderPolicy& policy, MazeWorkspace& ws);
+
+}  // namespace xroute

@@ -1,0 +1,93 @@
+#include "flow/regions.hpp"
+
+#include <algorithm>
+
+namespace xroute {
+
+namespace {
+
+std::vector<Dbu> derivedLines(const Design& design, const TrackSet& tracks, bool isX) {
+  const Dbu lo = isX ? design.dieArea.xlo : design.dieArea.ylo;
+  const Dbu hi = isX ? design.dieArea.xhi : design.dieArea.yhi;
+  std::vector<Dbu> lines = gcellLines(design, isX);
+  if (lines.size() < 2) {
+    lines.clear();
+    for (const Rect& g : design.guideRects) {
+      lines.push_back(isX ? g.xlo : g.ylo);
+      lines.push_back(isX ? g.xhi : g.yhi);
+    }
+  }
+  if (lines.size() < 2) {
+    // No grid given: 15 pitches of the lowest layer whose tracks run across this axis.
+    Dbu step = 0;
+    for (const LayerTracks& lt : tracks.layers) {
+      if (lt.horizontal != isX && lt.pitch > 0) {
+        step = lt.pitch * 15;
+        break;
+      }
+    }
+    if (step <= 0) step = std::max<Dbu>(1, (hi - lo) / 16);
+    for (Dbu v = lo; v < hi; v += step) lines.push_back(v);
+  }
+  lines.push_back(lo);
+  lines.push_back(hi);
+  std::erase_if(lines, [&](Dbu v) { return v < lo || v > hi; });
+  std::sort(lines.begin(), lines.end());
+  lines.erase(std::unique(lines.begin(), lines.end()), lines.end());
+  return lines;
+}
+
+// Region boundaries as GCell indices: 0, offset?, offset + size, ..., n.
+std::vector<int> cuts(int n, int size, int offset) {
+  std::vector<int> c{0};
+  for (int g = (offset > 0 ? offset : size); g < n; g += size) c.push_back(g);
+  c.push_back(n);
+  return c;
+}
+
+}  // namespace
+
+GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks) {
+  return GCellGrid{derivedLines(design, tracks, true), derivedLines(design, tracks, false)};
+}
+
+std::vector<Region> partitionRegions(const GCellGrid& grid, int size, int offset) {
+  size = std::max(1, size);
+  offset = ((offset % size) + size) % size;
+  const std::vector<int> cx = cuts(grid.nx(), size, offset), cy = cuts(grid.ny(), size, offset);
+  std::vector<Region> regions;
+  for (size_t j = 0; j + 1 < cy.size(); ++j) {
+    for (size_t i = 0; i + 1 < cx.size(); ++i) {
+      Region r;
+      r.id = static_cast<int32_t>(regions.size());
+      r.gx0 = cx[i];
+      r.gx1 = cx[i + 1];
+      r.gy0 = cy[j];
+      r.gy1 = cy[j + 1];
+      r.rx = static_cast<int>(i);
+      r.ry = static_cast<int>(j);
+      r.box = {grid.xs[r.gx0], grid.ys[r.gy0], grid.xs[r.gx1], grid.ys[r.gy1]};
+      r.color = (r.rx % 2) + 2 * (r.ry % 2);
+      regions.push_back(r);
+    }
+  }
+  return regions;
+}
+
+int32_t regionAt(const std::vector<Region>& regions, const GCellGrid& grid, int size, int offset, Point p) {
+  size = std::max(1, size);
+  offset = ((offset % size) + size) % size;
+  auto colOf = [&](const std::vector<Dbu>& lines, Dbu v) {
+    int g = static_cast<int>(std::upper_bound(lines.begin(), lines.end(), v) - lines.begin()) - 1;
+    g = std::clamp(g, 0, static_cast<int>(lines.size()) - 2);
+    // Region column of GCell g.
+    if (offset == 0) return g / size;
+    return g < offset ? 0 : 1 + (g - offset) / size;
+  };
+  const int ncols = static_cast<int>(cuts(grid.nx(), size, offset).size()) - 1;
+  const int rx = colOf(grid.xs, p.x), ry = colOf(grid.ys, p.y);
+  const int32_t id = ry * ncols + rx;
+  return (id >= 0 && id < static_cast<int32_t>(regions.size())) ? id : -1;
+}
+
+}  // namespace xroute

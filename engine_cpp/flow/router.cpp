@@ -1,0 +1,235 @@
+#include "flow/router.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "flow/crossings.hpp"
+#include "flow/region_router.hpp"
+#include "flow/regions.hpp"
+#include "flow/route_context.hpp"
+
+namespace xroute {
+
+void routingTotals(const Design& design, int64_t& wirelength, int64_t& vias) {
+  wirelength = 0;
+  vias = 0;
+  for (const Net& n : design.nets) {
+    for (const RouteWire& w : n.routing.wires) {
+      wirelength += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
+    }
+    vias += static_cast<int64_t>(n.routing.vias.size());
+  }
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int offsetFor(const RouterSettings& s, int iteration) {
+  if (!s.offsets.empty()) return s.offsets[iteration % s.offsets.size()];
+  const int c = std::max(1, s.regionSize);
+  static const int kPattern[] = {0, 1, 2};  // in thirds of a region
+  return (kPattern[iteration % 3] * c) / 3;
+}
+
+class Flow {
+ public:
+  Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress)
+      : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), ctx_(tech, design, s.threads) {}
+
+  RouteOutcome run() {
+    for (Net& n : design_.nets) n.routing = NetRouting{};
+    ctx_.rebuildRoutedIndex();
+    RouteOutcome out;
+    const int iterations = std::clamp(s_.iterations, 1, 64);
+    for (int it = 0; it < iterations; ++it) {
+      const auto t0 = Clock::now();
+      IterationReport rep;
+      rep.iteration = it;
+      rep.offset = offsetFor(s_, it);
+      runIteration(it, rep);
+      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), drcOptions());
+      for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
+      rep.markers = static_cast<int>(markers_.size());
+      routingTotals(design_, rep.wirelength, rep.vias);
+      rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      out.iterations.push_back(rep);
+      if (progress_) progress_(rep, rep.regions, rep.regions);
+      for (const Marker& m : markers_) history_.push_back({m.layer, m.box, s_.historyPenalty});
+      if (markers_.empty() && s_.stopAtZero) break;
+    }
+    out.markers = markers_;
+    return out;
+  }
+
+ private:
+  static DrcOptions drcOptions() {
+    DrcOptions o;
+    o.skipFixedPairs = true;
+    return o;
+  }
+
+  MazeCosts costsFor(int it) const {
+    MazeCosts c = s_.costs;
+    c.usePenalty += s_.usePenaltyStep * it;
+    return c;
+  }
+
+  std::vector<MarkerCost> markersNear(const Rect& box) const {
+    std::vector<MarkerCost> out;
+    const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};
+    for (const Marker& m : markers_) {
+      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, s_.markerPenalty});
+    }
+    for (const MarkerCost& h : history_) {
+      if (h.box.overlaps(win)) out.push_back(h);
+    }
+    return out;
+  }
+
+  // Iteration 0 tasks of one region from the crossing plan.
+  RegionTask initialTask(const Region& r, const CrossingPlan& plan, int it) const {
+    RegionTask t;
+    t.region = r;
+    t.iteration = it;
+    t.costs = costsFor(it);
+    for (int32_t net : plan.regionNets[r.id]) {
+      RegionNetTask nt;
+      nt.net = net;
+      for (int32_t pin : plan.regionPins[r.id]) {
+        if (ctx_.pinNet[pin] == net) nt.pins.push_back(pin);
+      }
+      for (int32_t c : plan.regionCrossings[r.id]) {
+        if (plan.crossings[c].net == net) nt.crossings.push_back(c);
+      }
+      t.nets.push_back(std::move(nt));
+    }
+    return t;
+  }
+
+  // Later iterations: nets in markers touching the region are ripped up.
+  RegionTask repairTask(const Region& r, int it) const {
+    RegionTask t;
+    t.region = r;
+    t.iteration = it;
+    t.costs = costsFor(it);
+    std::vector<int32_t> dirty;
+    const int32_t nNets = static_cast<int32_t>(design_.nets.size());
+    for (const Marker& m : markers_) {
+      if (!m.box.overlaps(r.box)) continue;
+      if (m.net1 >= 0 && m.net1 < nNets) dirty.push_back(m.net1);
+      if (m.net2 >= 0 && m.net2 < nNets) dirty.push_back(m.net2);
+    }
+    std::sort(dirty.begin(), dirty.end());
+    dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+    for (int32_t net : dirty) {
+      RegionNetTask nt;
+      nt.net = net;
+      nt.ripup = true;
+      for (int32_t pin = design_.netPinStart[net]; pin < design_.netPinStart[net + 1]; ++pin) {
+        for (const AccessPoint* ap = ctx_.access.begin(pin); ap != ctx_.access.end(pin); ++ap) {
+          if (r.box.contains(ap->at)) {
+            nt.pins.push_back(pin);
+            break;
+          }
+        }
+      }
+      t.nets.push_back(std::move(nt));
+    }
+    if (!t.nets.empty()) t.markers = markersNear(r.box);
+    return t;
+  }
+
+  void runIteration(int it, IterationReport& rep) {
+    const std::vector<Region> regions = partitionRegions(ctx_.gcells, s_.regionSize, rep.offset);
+    CrossingPlan plan;
+    if (it == 0) plan = planCrossings(ctx_, regions, s_.regionSize, rep.offset);
+    for (int color = 0; color < 4; ++color) {
+      std::vector<RegionTask> tasks;
+      for (const Region& r : regions) {
+        if (r.color != color) continue;
+        RegionTask t = it == 0 ? initialTask(r, plan, it) : repairTask(r, it);
+        if (!t.nets.empty()) tasks.push_back(std::move(t));
+      }
+      std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
+      for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
+      rep.regions += static_cast<int>(tasks.size());
+      ctx_.rebuildRoutedIndex();
+      if (progress_) progress_(rep, rep.regions, static_cast<int>(regions.size()));
+    }
+  }
+
+  std::vector<RegionResult> runBatch(const std::vector<RegionTask>& tasks, const CrossingPlan* plan) {
+    std::vector<RegionResult> results(tasks.size());
+    const int workers = std::max(1, std::min<int>(s_.threads, static_cast<int>(tasks.size())));
+    std::atomic<size_t> next{0};
+    std::exception_ptr error;
+    std::mutex errorMutex;
+    auto work = [&]() {
+      MazeWorkspace ws;
+      while (true) {
+        const size_t i = next.fetch_add(1);
+        if (i >= tasks.size()) return;
+        try {
+          results[i] = routeRegion(ctx_, tasks[i], plan, policy_, ws);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(errorMutex);
+          if (!error) error = std::current_exception();
+          next = tasks.size();
+          return;
+        }
+      }
+    };
+    if (workers == 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (int w = 0; w < workers; ++w) pool.emplace_back(work);
+      for (std::thread& t : pool) t.join();
+    }
+    if (error) std::rethrow_exception(error);
+    return results;
+  }
+
+  void commit(const RegionTask& task, const RegionResult& res, CrossingPlan& plan, IterationReport& rep) {
+    for (const RegionNetResult& nr : res.nets) {
+      if (!nr.routed) continue;
+      NetRouting& routing = design_.nets[nr.net].routing;
+      if (nr.ripup) routing = clipOutside(tech_, design_, routing, task.region.box, nullptr);
+      routing.wires.insert(routing.wires.end(), nr.added.wires.begin(), nr.added.wires.end());
+      routing.vias.insert(routing.vias.end(), nr.added.vias.begin(), nr.added.vias.end());
+      routing.patches.insert(routing.patches.end(), nr.added.patches.begin(), nr.added.patches.end());
+      ++rep.netRoutes;
+      rep.unreached += nr.unreached;
+    }
+    for (const CrossingChoice& c : res.crossingChoices) {
+      Crossing& cr = plan.crossings[c.crossing];
+      if (cr.chosen) continue;
+      cr.chosen = true;
+      cr.at = c.at;
+      cr.z = c.z;
+    }
+  }
+
+  const Tech& tech_;
+  Design& design_;
+  const RouterSettings& s_;
+  NetOrderPolicy& policy_;
+  const RouteProgress& progress_;
+  RouteContext ctx_;
+  std::vector<Marker> markers_;
+  std::vector<MarkerCost> history_;
+};
+
+}  // namespace
+
+RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
+                         const RouteProgress& progress) {
+  return Flow(tech, design, settings, policy, progress).run();
+}
+
+}  // namespace xroute

@@ -1,0 +1,63 @@
+// The detailed-routing flow: iteration 0 routes every net region by region
+// along its guides; each later iteration shifts the region boundaries, rips
+// up the nets involved in design-rule markers inside each region and
+// reroutes them with the markers as costs, until no marker is left or the
+// iterations run out. Regions of one colour (never touching) run in
+// parallel; results are committed in region order, so the outcome does not
+// depend on the thread count.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "db/design.hpp"
+#include "drc/drc.hpp"
+#include "flow/policy.hpp"
+#include "route/maze.hpp"
+
+namespace xroute {
+
+struct RouterSettings {
+  int regionSize = 3;              // GCells per region side (C)
+  int iterations = 10;             // iterations 0..iterations-1 at most (1..64)
+  int threads = 1;                 // worker threads for regions of one colour
+  std::vector<int> offsets;        // region offset in GCells per iteration (cycled); empty = 0, C/2, C-1, ...
+  MazeCosts costs;                 // maze costs of iteration 0
+  int64_t usePenaltyStep = 3000;   // added to costs.usePenalty at each later iteration
+  int64_t markerPenalty = 10000;   // cost units per node near a marker of the last iteration
+  int64_t historyPenalty = 3000;   // cost units per node near any earlier marker
+  bool stopAtZero = true;          // stop when an iteration ends without markers
+};
+
+inline constexpr int kMarkerTypes = 8;
+
+struct IterationReport {
+  int iteration = 0;
+  int offset = 0;                  // GCells
+  int regions = 0;                 // regions with work
+  int netRoutes = 0;               // (net, region) pairs routed
+  int unreached = 0;               // terminals the maze could not reach
+  int64_t wirelength = 0;          // DBU, wires only
+  int64_t vias = 0;
+  std::array<int, kMarkerTypes> markersByType{};  // indexed by MarkerType
+  int markers = 0;
+  double seconds = 0;              // wall time of the iteration (routing + check)
+};
+
+struct RouteOutcome {
+  std::vector<IterationReport> iterations;
+  std::vector<Marker> markers;     // of the final state
+};
+
+// Called after every region batch: (iteration so far, regions done, regions with work).
+using RouteProgress = std::function<void(const IterationReport&, int, int)>;
+
+// Routes every net of `design` (its Net::routing is replaced).
+RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
+                         const RouteProgress& progress = {});
+
+// Wirelength (DBU, sum of wire lengths) and via count of the regular nets.
+void routingTotals(const Design& design, int64_t& wirelength, int64_t& vias);
+
+}  // namespace xroute

@@ -1,0 +1,109 @@
+#include "grid/region_grid.hpp"
+
+#include <algorithm>
+
+namespace xroute {
+
+namespace {
+
+void sortUnique(std::vector<Dbu>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+void rangeOpen(const std::vector<Dbu>& v, Dbu lo, Dbu hi, int& first, int& last) {
+  first = static_cast<int>(std::upper_bound(v.begin(), v.end(), lo) - v.begin());
+  last = static_cast<int>(std::lower_bound(v.begin(), v.end(), hi) - v.begin()) - 1;
+}
+
+int exactIndex(const std::vector<Dbu>& v, Dbu c) {
+  auto it = std::lower_bound(v.begin(), v.end(), c);
+  return (it != v.end() && *it == c) ? static_cast<int>(it - v.begin()) : -1;
+}
+
+}  // namespace
+
+RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu> extraXs, std::vector<Dbu> extraYs)
+    : box_(box), nz_(static_cast<int>(tracks.layers.size())) {
+  xs_ = std::move(extraXs);
+  ys_ = std::move(extraYs);
+  xs_.push_back(box.xlo);
+  xs_.push_back(box.xhi);
+  ys_.push_back(box.ylo);
+  ys_.push_back(box.yhi);
+  for (const LayerTracks& lt : tracks.layers) {
+    for (Dbu c : tracksIn(lt.pref, lt.horizontal ? box.ylo : box.xlo, lt.horizontal ? box.yhi : box.xhi)) {
+      (lt.horizontal ? ys_ : xs_).push_back(c);
+    }
+    for (Dbu c : tracksIn(lt.cross, lt.horizontal ? box.xlo : box.ylo, lt.horizontal ? box.xhi : box.yhi)) {
+      (lt.horizontal ? xs_ : ys_).push_back(c);
+    }
+  }
+  std::erase_if(xs_, [&](Dbu x) { return x < box.xlo || x > box.xhi; });
+  std::erase_if(ys_, [&](Dbu y) { return y < box.ylo || y > box.yhi; });
+  sortUnique(xs_);
+  sortUnique(ys_);
+
+  const size_t n = xs_.size() * ys_.size() * static_cast<size_t>(nz_);
+  flags.assign(n, 0);
+  fixedOwner.assign(n, kOwnerNone);
+  viaFixedOwner.assign(n, kOwnerNone);
+  wireUse.assign(n, 0);
+  wireUseOwner.assign(n, kOwnerNone);
+  viaUse.assign(n, 0);
+  viaUseOwner.assign(n, kOwnerNone);
+  cutUse.assign(n, 0);
+  cutUseOwner.assign(n, kOwnerNone);
+  markerCost.assign(n, 0);
+  accessNet.assign(n, -1);
+  accessPin.assign(n, -1);
+  routedNet.assign(n, -1);
+
+  horizontal_.resize(nz_);
+  for (int z = 0; z < nz_; ++z) {
+    const LayerTracks& lt = tracks.layers[z];
+    horizontal_[z] = lt.horizontal ? 1 : 0;
+    if (lt.horizontal) {
+      for (int j = 0; j < ny(); ++j) {
+        if (!onTrack(lt.pref, ys_[j])) continue;
+        for (int i = 0; i < nx(); ++i) flags[index(i, j, z)] |= kOnTrack;
+      }
+    } else {
+      for (int i = 0; i < nx(); ++i) {
+        if (!onTrack(lt.pref, xs_[i])) continue;
+        for (int j = 0; j < ny(); ++j) flags[index(i, j, z)] |= kOnTrack;
+      }
+    }
+  }
+}
+
+int RegionGrid::xIndex(Dbu x) const { return exactIndex(xs_, x); }
+int RegionGrid::yIndex(Dbu y) const { return exactIndex(ys_, y); }
+void RegionGrid::xRangeOpen(Dbu lo, Dbu hi, int& first, int& last) const { rangeOpen(xs_, lo, hi, first, last); }
+void RegionGrid::yRangeOpen(Dbu lo, Dbu hi, int& first, int& last) const { rangeOpen(ys_, lo, hi, first, last); }
+
+NodeType RegionGrid::nodeType(int32_t n) const {
+  if (!flags[n]) return NodeType::NotExist;
+  if (flags[n] & kAccess) return NodeType::Access;
+  if (fixedOwner[n] == kOwnerMixed) return NodeType::Blockage;
+  return NodeType::Normal;
+}
+
+int32_t RegionGrid::wrongWayNeighbour(int32_t n, int dir) const {
+  const int z = zOf(n);
+  int x = xOf(n), y = yOf(n);
+  if (horizontal(z)) {
+    for (y += dir; y >= 0 && y < ny(); y += dir) {
+      const int32_t m = index(x, y, z);
+      if (flags[m]) return m;
+    }
+  } else {
+    for (x += dir; x >= 0 && x < nx(); x += dir) {
+      const int32_t m = index(x, y, z);
+      if (flags[m]) return m;
+    }
+  }
+  return -1;
+}
+
+}  // namespace xroute

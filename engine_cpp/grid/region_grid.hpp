@@ -1,0 +1,97 @@
+// The 3D grid graph of one routing region. Nodes sit at (xs[i], ys[j], z):
+// xs / ys are every track coordinate of every routing layer inside the
+// region box, the box edges, and the extra coordinates asked for (access
+// points, boundary terminals). A node exists on layer z when its
+// coordinate across z's preferred direction is one of z's preferred tracks
+// (it lies on a track), or when it is an access point or terminal there.
+//
+// Edges are implicit: along the preferred direction between neighbouring
+// nodes on one track; against it (wrong way) to the next existing node;
+// up/down (vias) between existing nodes at the same (x, y).
+//
+// Cost fields are flat arrays indexed by node (struct of arrays); the RL
+// side observes them as numpy views.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geom/geom.hpp"
+#include "grid/tracks.hpp"
+
+namespace xroute {
+
+enum NodeFlag : uint8_t {
+  kOnTrack = 1,   // on one of the layer's preferred tracks
+  kAccess = 2,    // an access point of a pin being routed in this region
+  kTerminal = 4,  // a boundary terminal (where a net's outside routing ends)
+};
+
+// Observation node types (what the RL side sees).
+enum class NodeType : uint8_t { NotExist = 0, Blockage = 1, Normal = 2, Access = 3 };
+
+inline constexpr int32_t kOwnerNone = -1;   // no shape claims the node
+inline constexpr int32_t kOwnerMixed = -2;  // shapes of several nets / an obstruction
+
+class RegionGrid {
+ public:
+  RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu> extraXs, std::vector<Dbu> extraYs);
+
+  const Rect& box() const { return box_; }
+  int nx() const { return static_cast<int>(xs_.size()); }
+  int ny() const { return static_cast<int>(ys_.size()); }
+  int nz() const { return nz_; }
+  size_t size() const { return flags.size(); }
+  const std::vector<Dbu>& xs() const { return xs_; }
+  const std::vector<Dbu>& ys() const { return ys_; }
+  bool horizontal(int z) const { return horizontal_[z] != 0; }
+
+  int32_t index(int x, int y, int z) const { return (z * ny() + y) * nx() + x; }
+  int xOf(int32_t n) const { return n % nx(); }
+  int yOf(int32_t n) const { return (n / nx()) % ny(); }
+  int zOf(int32_t n) const { return n / (nx() * ny()); }
+  Point point(int32_t n) const { return {xs_[xOf(n)], ys_[yOf(n)]}; }
+
+  // Index of an exact coordinate, -1 when it is not a grid line.
+  int xIndex(Dbu x) const;
+  int yIndex(Dbu y) const;
+  // Grid lines strictly inside (lo, hi): [first, last] index range (first > last when none).
+  void xRangeOpen(Dbu lo, Dbu hi, int& first, int& last) const;
+  void yRangeOpen(Dbu lo, Dbu hi, int& first, int& last) const;
+
+  bool exists(int32_t n) const { return flags[n] != 0; }
+  NodeType nodeType(int32_t n) const;
+
+  // The next existing node from n against layer's preferred direction
+  // (dir = +1 / -1), or -1. Wrong-way edges go there.
+  int32_t wrongWayNeighbour(int32_t n, int dir) const;
+
+  // Per node (size nx*ny*nz):
+  std::vector<uint8_t> flags;          // NodeFlag bits; 0 = the node does not exist
+  std::vector<int32_t> fixedOwner;     // wire here would violate a fixed shape: kOwnerNone, the one net allowed, or kOwnerMixed
+  std::vector<int32_t> viaFixedOwner;  // same for a via's metal landing here
+  std::vector<uint16_t> wireUse;       // routed shapes a wire here would violate
+  std::vector<int32_t> wireUseOwner;   // kOwnerNone, the only net those shapes belong to, or kOwnerMixed
+  std::vector<uint16_t> viaUse;        // routed shapes a via's metal here would violate
+  std::vector<int32_t> viaUseOwner;
+  std::vector<uint16_t> cutUse;        // routed cuts a via from z to z+1 here would violate
+  std::vector<int32_t> cutUseOwner;
+  std::vector<int32_t> markerCost;     // cost units from DRC markers and history
+  std::vector<int32_t> accessNet;      // net of the access point / terminal here, else -1
+  std::vector<int32_t> accessPin;      // pinRef of the access point here, else -1
+  std::vector<int32_t> routedNet;      // net whose new route uses the node, else -1
+
+ private:
+  Rect box_;                   // DBU
+  int nz_ = 0;
+  std::vector<Dbu> xs_, ys_;   // DBU, sorted unique
+  std::vector<uint8_t> horizontal_;
+};
+
+// Adds `net` to an owner field: none -> net, same net -> net, other -> mixed.
+inline void claimOwner(int32_t& owner, int32_t net) {
+  if (owner == kOwnerNone) owner = net;
+  else if (owner != net) owner = kOwnerMixed;
+}
+
+}  // namespace xroute

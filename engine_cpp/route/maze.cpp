@@ -1,0 +1,231 @@
+#include "route/maze.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
+
+namespace xroute {
+
+namespace {
+
+constexpr int64_t kInf = std::numeric_limits<int64_t>::max() / 4;
+
+class Search {
+ public:
+  Search(const RegionGrid& g, const MazeCosts& c, const MazeNet& net, MazeWorkspace& ws)
+      : g_(g), c_(c), net_(net), ws_(ws) {}
+
+  int run(std::vector<std::vector<int32_t>>& paths);
+
+ private:
+  int64_t wireNodeCost(int32_t v) const;
+  int64_t viaNodeCost(int32_t v) const;
+  int64_t guideFactor(int32_t v) const {
+    return (net_.inGuide && !(*net_.inGuide)[v]) ? c_.outOfGuideFactor : 1;
+  }
+  bool own(int32_t v) const { return g_.accessNet[v] == net_.net; }
+  int64_t heuristic(int32_t v) const;
+  // One round: from the tree to the nearest unreached terminal node, or -1.
+  int32_t searchRound(const std::vector<int32_t>& sources);
+  void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
+             std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
+
+  const RegionGrid& g_;
+  const MazeCosts& c_;
+  const MazeNet& net_;
+  MazeWorkspace& ws_;
+  std::vector<uint8_t> reached_;     // per terminal
+  std::vector<Rect> termBox_;        // per terminal, DBU
+};
+
+int64_t Search::wireNodeCost(int32_t v) const {
+  int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
+  if (own(v)) return cost;
+  const int32_t fo = g_.fixedOwner[v];
+  if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
+  if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
+  return cost;
+}
+
+int64_t Search::viaNodeCost(int32_t v) const {
+  int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
+  if (own(v)) return cost;
+  const int32_t fo = g_.viaFixedOwner[v];
+  if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
+  if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
+  return cost;
+}
+
+int64_t Search::heuristic(int32_t v) const {
+  const Point p = g_.point(v);
+  int64_t best = kInf;
+  for (size_t t = 0; t < termBox_.size(); ++t) {
+    if (reached_[t]) continue;
+    const Rect& b = termBox_[t];
+    const int64_t dx = p.x < b.xlo ? b.xlo - p.x : (p.x > b.xhi ? p.x - b.xhi : 0);
+    const int64_t dy = p.y < b.ylo ? b.ylo - p.y : (p.y > b.yhi ? p.y - b.yhi : 0);
+    best = std::min(best, dx + dy);
+  }
+  return best == kInf ? 0 : best;
+}
+
+void Search::relax(int32_t u, int32_t v, int64_t step,
+                   std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>,
+                                       std::greater<>>& open) {
+  if (ws_.closed[v] == ws_.stamp) return;
+  const int64_t nc = ws_.cost[u] + step;
+  if (ws_.seen[v] == ws_.stamp && ws_.cost[v] <= nc) return;
+  ws_.seen[v] = ws_.stamp;
+  ws_.cost[v] = nc;
+  ws_.parent[v] = u;
+  open.push({nc + heuristic(v), v});
+}
+
+int32_t Search::searchRound(const std::vector<int32_t>& sources) {
+  ++ws_.stamp;
+  std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>, std::greater<>> open;
+  for (int32_t s : sources) {
+    ws_.seen[s] = ws_.stamp;
+    ws_.cost[s] = 0;
+    ws_.parent[s] = -1;
+    open.push({heuristic(s), s});
+  }
+  const int nx = g_.nx(), ny = g_.ny(), nz = g_.nz();
+  while (!open.empty()) {
+    const auto [f, u] = open.top();
+    open.pop();
+    if (ws_.closed[u] == ws_.stamp) continue;
+    ws_.closed[u] = ws_.stamp;
+    const int32_t t = ws_.terminalOf[u];
+    if (t >= 0 && !reached_[t]) return u;
+
+    const int x = g_.xOf(u), y = g_.yOf(u), z = g_.zOf(u);
+    const Point p = g_.point(u);
+    // Along the preferred direction (both ends on the track).
+    if (g_.flags[u] & kOnTrack) {
+      const bool h = g_.horizontal(z);
+      for (int d = -1; d <= 1; d += 2) {
+        const int xx = h ? x + d : x, yy = h ? y : y + d;
+        if (xx < 0 || xx >= nx || yy < 0 || yy >= ny) continue;
+        const int32_t v = g_.index(xx, yy, z);
+        if (!(g_.flags[v] & kOnTrack)) continue;
+        const Point q = g_.point(v);
+        const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+        relax(u, v, len * guideFactor(v) + wireNodeCost(v), open);
+      }
+    }
+    // Against it, to the next existing node.
+    for (int d = -1; d <= 1; d += 2) {
+      const int32_t v = g_.wrongWayNeighbour(u, d);
+      if (v < 0) continue;
+      const Point q = g_.point(v);
+      const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+      relax(u, v, len * c_.wrongWayFactor * guideFactor(v) + wireNodeCost(v), open);
+    }
+    // Vias.
+    for (int d = -1; d <= 1; d += 2) {
+      const int zz = z + d;
+      if (zz < 0 || zz >= nz) continue;
+      const int32_t v = g_.index(x, y, zz);
+      if (!g_.flags[v]) continue;
+      const int32_t lower = d > 0 ? u : v;
+      int64_t cut = 0;
+      if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
+        cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
+      }
+      relax(u, v, c_.viaCost * guideFactor(v) + viaNodeCost(u) + viaNodeCost(v) + cut, open);
+    }
+    (void)f;
+  }
+  return -1;
+}
+
+int Search::run(std::vector<std::vector<int32_t>>& paths) {
+  const size_t n = g_.size();
+  if (ws_.cost.size() != n) {
+    ws_.cost.assign(n, 0);
+    ws_.parent.assign(n, -1);
+    ws_.seen.assign(n, 0);
+    ws_.closed.assign(n, 0);
+    ws_.inTree.assign(n, 0);
+    ws_.terminalOf.assign(n, -1);
+    ws_.stamp = 0;
+    ws_.treeStamp = 0;
+  }
+  const size_t nt = net_.terminals.size();
+  if (nt < 2) return 0;
+  reached_.assign(nt, 0);
+  termBox_.assign(nt, Rect{});
+  for (size_t t = 0; t < nt; ++t) {
+    bool first = true;
+    for (int32_t v : net_.terminals[t].nodes) {
+      if (ws_.terminalOf[v] < 0) ws_.terminalOf[v] = static_cast<int32_t>(t);
+      const Point p = g_.point(v);
+      const Rect r{p.x, p.y, p.x, p.y};
+      if (first) termBox_[t] = r;
+      else termBox_[t].expandToInclude(r);
+      first = false;
+    }
+    if (net_.terminals[t].nodes.empty()) reached_[t] = 1;  // nothing to reach
+  }
+  ++ws_.treeStamp;
+  std::vector<int32_t> tree;
+  // The first terminal with nodes starts the tree.
+  size_t start = 0;
+  while (start < nt && net_.terminals[start].nodes.empty()) ++start;
+  int unreached = 0;
+  if (start < nt) {
+    reached_[start] = 1;
+    tree = net_.terminals[start].nodes;
+    const bool alternatives = !net_.terminals[start].joined;
+    if (!alternatives) {
+      for (int32_t v : tree) ws_.inTree[v] = ws_.treeStamp;
+    }
+    bool firstRound = true;
+    while (std::find(reached_.begin(), reached_.end(), 0) != reached_.end()) {
+      const int32_t hit = searchRound(tree);
+      if (hit < 0) break;
+      std::vector<int32_t> path;
+      for (int32_t v = hit; v >= 0; v = ws_.parent[v]) path.push_back(v);
+      std::reverse(path.begin(), path.end());
+      if (firstRound && alternatives) tree.clear();  // keep only the alternative actually used
+      firstRound = false;
+      for (int32_t v : path) {
+        if (ws_.inTree[v] != ws_.treeStamp) {
+          ws_.inTree[v] = ws_.treeStamp;
+          tree.push_back(v);
+        }
+        const int32_t t = ws_.terminalOf[v];
+        if (t >= 0 && !reached_[t]) {
+          reached_[t] = 1;
+          if (net_.terminals[t].joined) {
+            for (int32_t w : net_.terminals[t].nodes) {
+              if (ws_.inTree[w] != ws_.treeStamp) {
+                ws_.inTree[w] = ws_.treeStamp;
+                tree.push_back(w);
+              }
+            }
+          }
+        }
+      }
+      paths.push_back(std::move(path));
+    }
+  }
+  for (size_t t = 0; t < nt; ++t) {
+    if (!reached_[t]) ++unreached;
+    for (int32_t v : net_.terminals[t].nodes) ws_.terminalOf[v] = -1;
+  }
+  return unreached;
+}
+
+}  // namespace
+
+int routeMaze(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, MazeWorkspace& ws,
+              std::vector<std::vector<int32_t>>& paths) {
+  return Search(grid, costs, net, ws).run(paths);
+}
+
+}  // namespace xroute

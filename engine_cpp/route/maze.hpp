@@ -1,0 +1,52 @@
+// Multi-terminal A* on a region grid: grows one tree from the first
+// terminal, each round searching from the whole tree to the nearest
+// terminal not yet reached, until every terminal is connected.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "grid/region_grid.hpp"
+
+namespace xroute {
+
+struct MazeCosts {
+  int64_t viaCost = 1200;          // cost units (DBU of wire) per via
+  int64_t wrongWayFactor = 4;      // wrong-way wire length multiplier
+  int64_t outOfGuideFactor = 2;    // wire length / via multiplier outside the net's guides
+  int64_t fixedPenalty = 400000;   // entering a node a fixed shape of another net forbids
+  int64_t usePenalty = 3000;       // per routed shape of another net a wire/via here would violate
+  int64_t markerUnit = 1;          // multiplier of RegionGrid::markerCost
+};
+
+struct MazeTerminal {
+  std::vector<int32_t> nodes;  // grid nodes; reaching any one of them connects the terminal
+  bool joined = true;          // true: the nodes are one conductor (a pin's access points, a via's
+                               // two layers), so all of them join the tree; false: alternatives
+};
+
+struct MazeNet {
+  int32_t net = -1;
+  std::vector<MazeTerminal> terminals;
+  const std::vector<uint8_t>* inGuide = nullptr;  // per node, 1 = inside the net's guides; null = all
+};
+
+// Reusable search buffers (one per thread).
+struct MazeWorkspace {
+  std::vector<int64_t> cost;
+  std::vector<int32_t> parent;
+  std::vector<uint32_t> seen;     // stamp: cost/parent valid
+  std::vector<uint32_t> closed;   // stamp: expanded
+  std::vector<uint32_t> inTree;   // stamp of the net being routed
+  std::vector<int32_t> terminalOf;
+  uint32_t stamp = 0;
+  uint32_t treeStamp = 0;
+};
+
+// Appends one node path per round to `paths` (from a tree node to a terminal
+// node, inclusive). Returns the number of terminals that could not be
+// reached (0 = connected).
+int routeMaze(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, MazeWorkspace& ws,
+              std::vector<std::vector<int32_t>>& paths);
+
+}  // namespace xroute
