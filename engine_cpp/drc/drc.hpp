@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -47,7 +48,10 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
 // Every metal and cut shape of a placed design, with net ids: regular nets
 // [0, nets), special nets [nets, nets + specialNets), then one id per pin on
 // no net. Obstructions (cell OBS, DEF layer blockages) have net -1.
-std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design);
+// netNames, when given, receives a name per net id: the net's name, then
+// "comp/pin", "*/pin" (POWER/GROUND pins sharing an id) or "PIN/name" (IO pin).
+std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design,
+                                          std::vector<std::string>* netNames = nullptr);
 
 std::string_view markerTypeName(MarkerType type);
 

@@ -78,7 +78,8 @@ bool placed(PlaceStatus s) { return s != PlaceStatus::Unplaced; }
 
 class Collector {
  public:
-  Collector(const Tech& tech, const Design& design) : tech_(tech), design_(design) {}
+  Collector(const Tech& tech, const Design& design, std::vector<std::string>* names)
+      : tech_(tech), design_(design), names_(names) {}
 
   std::vector<DrcShape> run();
 
@@ -94,6 +95,7 @@ class Collector {
 
   const Tech& tech_;
   const Design& design_;
+  std::vector<std::string>* names_;  // by net id, when asked for
   std::vector<DrcShape> out_;
   std::vector<std::vector<uint8_t>> compPinDone_;  // [component][macro pin]
   std::vector<uint8_t> ioPinDone_;
@@ -197,6 +199,14 @@ std::vector<DrcShape> Collector::run() {
   // Pins on no net: one id each, except that POWER / GROUND pins of the same
   // name share one (the rails of abutting cells are one conductor).
   int32_t nextId = nets + int32_t(design_.specialNets.size());
+  if (names_) {
+    names_->clear();
+    for (const Net& n : design_.nets) names_->push_back(n.name);
+    for (const SpecialNet& sn : design_.specialNets) names_->push_back(sn.name);
+  }
+  auto name = [&](std::string_view owner, const std::string& pin) {
+    if (names_) names_->push_back(std::string(owner) + "/" + pin);
+  };
   StringMap<int32_t> supplyIds;
   for (size_t c = 0; c < design_.components.size(); ++c) {
     if (!placed(design_.components[c].status)) continue;
@@ -207,16 +217,23 @@ std::vector<DrcShape> Collector::run() {
       int32_t id = -1;
       if (pin.use == "POWER" || pin.use == "GROUND") {
         auto [it, added] = supplyIds.emplace(pin.name, nextId);
-        if (added) ++nextId;
+        if (added) {
+          ++nextId;
+          name("*", pin.name);
+        }
         id = it->second;
       } else {
         id = nextId++;
+        name(design_.components[c].name, pin.name);
       }
       addComponentPin(int32_t(c), int32_t(p), id);
     }
   }
   for (size_t io = 0; io < design_.ioPins.size(); ++io)
-    if (!ioPinDone_[io] && placed(design_.ioPins[io].status)) addIoPin(int32_t(io), nextId++);
+    if (!ioPinDone_[io] && placed(design_.ioPins[io].status)) {
+      name("PIN", design_.ioPins[io].name);
+      addIoPin(int32_t(io), nextId++);
+    }
 
   // Obstructions.
   for (const Component& c : design_.components)
@@ -276,8 +293,8 @@ std::vector<DrcShape> Collector::run() {
 
 }  // namespace
 
-std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design) {
-  return Collector(tech, design).run();
+std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design, std::vector<std::string>* netNames) {
+  return Collector(tech, design, netNames).run();
 }
 
 }  // namespace xroute

@@ -2,14 +2,9 @@
 // as ROUTED/NEW paths (one straight piece per path, vias as "NEW layer ( x y )
 // VIA", patches as "NEW layer ( x y ) RECT ( 0 0 w h )"). The output depends
 // only on the database, so the same design gives the same bytes.
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 
-#include "io/input_error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/readers.hpp"
 
 namespace xroute {
@@ -287,21 +282,7 @@ std::string writeDefText(const Tech& tech, const Design& design) { return DefWri
 
 void writeDef(const std::string& path, const Tech& tech, const Design& design) {
   const std::string text = writeDefText(tech, design);
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(getpid()));
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError(path, 0, "cannot write DEF: " + std::string(std::strerror(errno)));
-  const bool wrote = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  const int writeErrno = errno;
-  const bool closed = std::fclose(f) == 0;
-  if (!wrote || !closed) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "cannot write DEF: " + std::string(std::strerror(wrote ? errno : writeErrno)));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "cannot write DEF: " + std::string(std::strerror(err)));
-  }
+  writeFileAtomically(path, text, "DEF");
 }
 
 }  // namespace xroute

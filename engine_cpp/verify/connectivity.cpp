@@ -1,0 +1,185 @@
+// checkConnectivity: per net, union-find over its conductors. Same-layer
+// contacts come from a sweep over the net's shapes sorted by xlo (a box index
+// for layers where a net has many shapes), so the work is local to each net.
+#include "verify/connectivity.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "geom/box_index.hpp"
+
+namespace xroute {
+
+namespace {
+
+// Above this many shapes of one net on one layer, contacts come from a box
+// index instead of the x sweep (whose cost grows with overlapping x spans).
+constexpr size_t kSweepLimit = 256;
+
+// Overlap, or a shared boundary segment of positive length; a single common
+// corner point is not a contact.
+bool touches(const Rect& a, const Rect& b) {
+  const int64_t ox = int64_t(std::min(a.xhi, b.xhi)) - std::max(a.xlo, b.xlo);
+  const int64_t oy = int64_t(std::min(a.yhi, b.yhi)) - std::max(a.ylo, b.ylo);
+  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
+}
+
+struct NetShape {
+  LayerId layer;
+  Rect rect;     // DBU
+  int32_t node;  // union-find node: pins first (local pin index), then routing pieces
+};
+
+class NetChecker {
+ public:
+  NetChecker(const Tech& tech, const Design& design) : tech_(tech), design_(design) {}
+
+  NetConnectivity check(NetId net);
+
+ private:
+  int32_t find(int32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(int32_t a, int32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+  void collect(NetId net, int32_t pins);
+  void connectLayer(size_t begin, size_t end);
+
+  const Tech& tech_;
+  const Design& design_;
+  std::vector<NetShape> shapes_;
+  std::vector<int32_t> parent_;
+  std::vector<int32_t> label_;  // per root node: group id, or -1
+};
+
+// Fills shapes_ and sizes parent_: node p < pins is pin p of the net; every
+// wire, via and patch is one node after those.
+void NetChecker::collect(NetId net, int32_t pins) {
+  shapes_.clear();
+  const int32_t first = design_.netPinStart[*net];
+  for (const PlacedShape& s : netPinShapes(tech_, design_, net)) shapes_.push_back({s.layer, s.rect, s.pinRef - first});
+  int32_t node = pins;
+  const NetRouting& routing = design_.nets[*net].routing;
+  for (const RouteWire& w : routing.wires) {
+    Rect r;
+    if (routeWireRect(tech_, w, r)) shapes_.push_back({w.layer, r, node++});
+  }
+  for (const RouteVia& v : routing.vias) {
+    if (!v.via.valid()) continue;
+    for (const ViaShape& s : design_.via(tech_, v.via).shapes) shapes_.push_back({s.layer, s.rect.translated(v.at), node});
+    ++node;
+  }
+  for (const RoutePatch& p : routing.patches) shapes_.push_back({p.layer, p.rect, node++});
+  shapes_.erase(std::remove_if(shapes_.begin(), shapes_.end(), [](const NetShape& s) { return !s.layer.valid(); }),
+                shapes_.end());
+  parent_.resize(node);
+  std::iota(parent_.begin(), parent_.end(), 0);
+}
+
+// Unites the nodes of touching shapes in shapes_[begin, end) (one layer,
+// sorted by xlo).
+void NetChecker::connectLayer(size_t begin, size_t end) {
+  if (end - begin <= kSweepLimit) {
+    for (size_t i = begin; i < end; ++i) {
+      const Rect& a = shapes_[i].rect;
+      for (size_t j = i + 1; j < end && shapes_[j].rect.xlo <= a.xhi; ++j) {
+        if (shapes_[i].node != shapes_[j].node && touches(a, shapes_[j].rect)) unite(shapes_[i].node, shapes_[j].node);
+      }
+    }
+    return;
+  }
+  std::vector<Rect> rects;
+  rects.reserve(end - begin);
+  for (size_t i = begin; i < end; ++i) rects.push_back(shapes_[i].rect);
+  const BoxIndex index(std::move(rects));
+  for (size_t i = begin; i < end; ++i) {
+    const NetShape& a = shapes_[i];
+    index.query(a.rect, [&](int32_t k) {
+      const NetShape& b = shapes_[begin + k];
+      if (begin + k > i && a.node != b.node && touches(a.rect, b.rect)) unite(a.node, b.node);
+    });
+  }
+}
+
+NetConnectivity NetChecker::check(NetId net) {
+  NetConnectivity out;
+  out.net = net;
+  out.pinCount = design_.pinCount(net);
+  collect(net, out.pinCount);
+  std::sort(shapes_.begin(), shapes_.end(), [](const NetShape& a, const NetShape& b) {
+    return a.layer != b.layer ? a.layer < b.layer : a.rect.xlo < b.rect.xlo;
+  });
+  for (size_t b = 0, e = 0; b < shapes_.size(); b = e) {
+    for (e = b + 1; e < shapes_.size() && shapes_[e].layer == shapes_[b].layer;) ++e;
+    connectLayer(b, e);
+  }
+  // Groups in the order of their first pin; then routing-only components.
+  label_.assign(parent_.size(), -1);
+  std::vector<std::vector<int32_t>> groups;
+  const int32_t first = design_.netPinStart[*net];
+  for (int32_t p = 0; p < out.pinCount; ++p) {
+    const int32_t root = find(p);
+    if (label_[root] < 0) {
+      label_[root] = int32_t(groups.size());
+      groups.emplace_back();
+    }
+    groups[label_[root]].push_back(first + p);
+  }
+  out.pinGroups = int32_t(groups.size());
+  for (int32_t n = out.pinCount; n < int32_t(parent_.size()); ++n) {
+    const int32_t root = find(n);
+    if (label_[root] < 0) {
+      label_[root] = out.pinGroups + out.floatingPieces;
+      ++out.floatingPieces;
+    }
+  }
+  out.open = out.pinGroups > 1;
+  if (out.open) out.groups = std::move(groups);
+  return out;
+}
+
+}  // namespace
+
+bool routeWireRect(const Tech& tech, const RouteWire& w, Rect& out) {
+  if (w.from == w.to || !w.layer.valid()) return false;
+  const Dbu width = w.width > 0 ? w.width : tech.layer(w.layer).width;
+  const Dbu lo = width / 2, hi = width - width / 2;
+  const Dbu extFrom = w.extFrom >= 0 ? w.extFrom : lo, extTo = w.extTo >= 0 ? w.extTo : lo;
+  if (w.from.y == w.to.y) {
+    const bool fwd = w.from.x <= w.to.x;
+    const Dbu x0 = fwd ? w.from.x - extFrom : w.to.x - extTo, x1 = fwd ? w.to.x + extTo : w.from.x + extFrom;
+    out = {x0, w.from.y - lo, x1, w.from.y + hi};
+    return true;
+  }
+  if (w.from.x == w.to.x) {
+    const bool fwd = w.from.y <= w.to.y;
+    const Dbu y0 = fwd ? w.from.y - extFrom : w.to.y - extTo, y1 = fwd ? w.to.y + extTo : w.from.y + extFrom;
+    out = {w.from.x - lo, y0, w.from.x + hi, y1};
+    return true;
+  }
+  return false;
+}
+
+ConnectivityReport checkConnectivity(const Tech& tech, const Design& design) {
+  ConnectivityReport report;
+  NetChecker checker(tech, design);
+  for (int32_t n = 0; n < int32_t(design.nets.size()); ++n) {
+    const NetId net(n);
+    if (size_t(n + 1) >= design.netPinStart.size() || design.pinCount(net) < 2) {
+      ++report.singlePinNets;
+      continue;
+    }
+    NetConnectivity c = checker.check(net);
+    ++report.netsChecked;
+    report.openNets += c.open ? 1 : 0;
+    report.unroutedNets += design.nets[n].routing.empty() ? 1 : 0;
+    report.floatingPieces += c.floatingPieces;
+    report.nets.push_back(std::move(c));
+  }
+  return report;
+}
+
+}  // namespace xroute
