@@ -229,6 +229,11 @@ Transform componentTransform(const Tech& tech, const Component& comp);
 // All pin shapes of net `n` in design coordinates, in pin order.
 std::vector<PlacedShape> netPinShapes(const Tech& tech, const Design& design, NetId n);
 
+// The rectangle of a regular wire: its width (0 = the layer's default) and
+// its end extensions (-1 = half the width). False for a point wire or a wire
+// without a layer.
+bool routeWireRect(const Tech& tech, const RouteWire& wire, Rect& out);
+
 // All GCell grid line coordinates along x (isX) or y, sorted, deduplicated.
 std::vector<Dbu> gcellLines(const Design& design, bool isX);
 

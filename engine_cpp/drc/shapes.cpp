@@ -271,19 +271,8 @@ std::vector<DrcShape> Collector::run() {
   for (int32_t n = 0; n < nets; ++n) {
     const NetRouting& r = design_.nets[n].routing;
     for (const RouteWire& w : r.wires) {
-      if (w.from == w.to || !w.layer.valid()) continue;
-      const Dbu width = w.width > 0 ? w.width : tech_.layer(w.layer).width;
-      const Dbu lo = width / 2, hi = width - width / 2;
-      const Dbu extFrom = w.extFrom >= 0 ? w.extFrom : lo, extTo = w.extTo >= 0 ? w.extTo : lo;
-      if (w.from.y == w.to.y) {
-        const bool fwd = w.from.x <= w.to.x;
-        const Dbu x0 = fwd ? w.from.x - extFrom : w.to.x - extTo, x1 = fwd ? w.to.x + extTo : w.from.x + extFrom;
-        add(w.layer, {x0, w.from.y - lo, x1, w.from.y + hi}, n, ShapeOrigin::Wire);
-      } else if (w.from.x == w.to.x) {
-        const bool fwd = w.from.y <= w.to.y;
-        const Dbu y0 = fwd ? w.from.y - extFrom : w.to.y - extTo, y1 = fwd ? w.to.y + extTo : w.from.y + extFrom;
-        add(w.layer, {w.from.x - lo, y0, w.from.x + hi, y1}, n, ShapeOrigin::Wire);
-      }
+      Rect rect;
+      if (routeWireRect(tech_, w, rect)) add(w.layer, rect, n, ShapeOrigin::Wire);
     }
     for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via);
     for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire);

@@ -4,30 +4,11 @@
 
 namespace xroute {
 
-Rect wireRect(const Tech& tech, const RouteWire& w) {
-  const Dbu width = w.width > 0 ? w.width : tech.layer(w.layer).width;
-  const Dbu half = width / 2;
-  const Dbu e0 = w.extFrom >= 0 ? w.extFrom : half;
-  const Dbu e1 = w.extTo >= 0 ? w.extTo : half;
-  const Point a = w.from, b = w.to;
-  if (a.y == b.y && a.x != b.x) {  // horizontal
-    const bool fwd = a.x <= b.x;
-    const Dbu lo = fwd ? a.x - e0 : b.x - e1;
-    const Dbu hi = fwd ? b.x + e1 : a.x + e0;
-    return {lo, a.y - half, hi, a.y + half};
-  }
-  if (a.x == b.x && a.y != b.y) {  // vertical
-    const bool fwd = a.y <= b.y;
-    const Dbu lo = fwd ? a.y - e0 : b.y - e1;
-    const Dbu hi = fwd ? b.y + e1 : a.y + e0;
-    return {a.x - half, lo, a.x + half, hi};
-  }
-  const Dbu e = std::max(e0, e1);
-  return {a.x - e, a.y - e, a.x + e, a.y + e};
-}
-
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out) {
-  for (const RouteWire& w : routing.wires) out.push_back({w.layer, wireRect(tech, w)});
+  for (const RouteWire& w : routing.wires) {
+    Rect r;
+    if (routeWireRect(tech, w, r)) out.push_back({w.layer, r});
+  }
   for (const RouteVia& v : routing.vias) {
     for (const ViaShape& s : design.via(tech, v.via).shapes) out.push_back({s.layer, s.rect.translated(v.at)});
   }

@@ -29,9 +29,6 @@ struct NetShape {
 // extension is given), via shapes at their positions, patches.
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out);
 
-// A wire's rectangle (default width and extensions resolved).
-Rect wireRect(const Tech& tech, const RouteWire& w);
-
 struct RouteContext {
   RouteContext(const Tech& tech, Design& design, int threads);
 

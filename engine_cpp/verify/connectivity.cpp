@@ -143,26 +143,6 @@ NetConnectivity NetChecker::check(NetId net) {
 
 }  // namespace
 
-bool routeWireRect(const Tech& tech, const RouteWire& w, Rect& out) {
-  if (w.from == w.to || !w.layer.valid()) return false;
-  const Dbu width = w.width > 0 ? w.width : tech.layer(w.layer).width;
-  const Dbu lo = width / 2, hi = width - width / 2;
-  const Dbu extFrom = w.extFrom >= 0 ? w.extFrom : lo, extTo = w.extTo >= 0 ? w.extTo : lo;
-  if (w.from.y == w.to.y) {
-    const bool fwd = w.from.x <= w.to.x;
-    const Dbu x0 = fwd ? w.from.x - extFrom : w.to.x - extTo, x1 = fwd ? w.to.x + extTo : w.from.x + extFrom;
-    out = {x0, w.from.y - lo, x1, w.from.y + hi};
-    return true;
-  }
-  if (w.from.x == w.to.x) {
-    const bool fwd = w.from.y <= w.to.y;
-    const Dbu y0 = fwd ? w.from.y - extFrom : w.to.y - extTo, y1 = fwd ? w.to.y + extTo : w.from.y + extFrom;
-    out = {w.from.x - lo, y0, w.from.x + hi, y1};
-    return true;
-  }
-  return false;
-}
-
 ConnectivityReport checkConnectivity(const Tech& tech, const Design& design) {
   ConnectivityReport report;
   NetChecker checker(tech, design);

@@ -43,8 +43,4 @@ struct ConnectivityReport {
 // looked at); a POLYGON pin shape counts as its bounding box.
 ConnectivityReport checkConnectivity(const Tech& tech, const Design& design);
 
-// The rect a routed wire covers on its layer (DBU), or false for a point-only
-// piece (from == to), a diagonal piece or a wire on no layer.
-bool routeWireRect(const Tech& tech, const RouteWire& wire, Rect& out);
-
 }  // namespace xroute
