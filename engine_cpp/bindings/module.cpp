@@ -10,6 +10,7 @@ namespace nb = nanobind;
 void bindDatabase(nb::module_& m);
 void bindDrc(nb::module_& m);
 void bindVerify(nb::module_& m);
+void bindRouter(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -27,4 +28,5 @@ NB_MODULE(_engine, m) {
   bindDatabase(m);
   bindDrc(m);
   bindVerify(m);
+  bindRouter(m);
 }

@@ -1,0 +1,137 @@
+// Python view of the routing flow: route a loaded Database with a built-in
+// or Python net-order policy. The GIL is released while routing and taken
+// back only to call a Python policy (once per region) or progress callback
+// (once per region batch).
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+#include "db/database.hpp"
+#include "flow/policy.hpp"
+#include "flow/router.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+using namespace xroute;
+
+namespace {
+
+// Columns of the candidate feature array handed to Python policies.
+constexpr const char* kFeatureColumns[] = {"net",       "pins", "terminals", "access_points", "bbox_xlo",
+                                           "bbox_ylo",  "bbox_xhi", "bbox_yhi", "net_pins"};
+constexpr size_t kFeatureCount = sizeof(kFeatureColumns) / sizeof(kFeatureColumns[0]);
+
+// A policy implemented by a Python callable:
+//   fn(region: dict, features: int32[n, 9]) -> sequence of n distinct ints.
+class PythonPolicy final : public NetOrderPolicy {
+ public:
+  explicit PythonPolicy(nb::object fn) : fn_(std::move(fn)) {}
+  ~PythonPolicy() override {
+    nb::gil_scoped_acquire gil;
+    fn_.reset();
+  }
+
+  std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& c) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    nb::gil_scoped_acquire gil;
+    auto* data = new std::vector<int32_t>();
+    data->reserve(c.size() * kFeatureCount);
+    for (const NetCandidate& k : c) {
+      const int32_t row[kFeatureCount] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
+                                          k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
+      data->insert(data->end(), row, row + kFeatureCount);
+    }
+    nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
+    static int32_t empty[1] = {0};
+    const size_t shape[2] = {c.size(), kFeatureCount};
+    nb::ndarray<nb::numpy, int32_t> features(data->empty() ? empty : data->data(), 2, shape, owner);
+    nb::dict info;
+    info["iteration"] = region.iteration;
+    info["region"] = region.regionId;
+    info["box"] = nb::make_tuple(region.box.xlo, region.box.ylo, region.box.xhi, region.box.yhi);
+    nb::object result = fn_(info, features);
+    std::vector<int32_t> out;
+    for (nb::handle h : result) out.push_back(nb::cast<int32_t>(h));
+    return out;
+  }
+  std::string name() const override { return "python"; }
+
+ private:
+  nb::object fn_;
+  std::mutex mutex_;
+};
+
+nb::dict reportDict(const IterationReport& r, int dbuPerMicron) {
+  nb::dict d;
+  d["iteration"] = r.iteration;
+  d["offset"] = r.offset;
+  d["regions"] = r.regions;
+  d["net_routes"] = r.netRoutes;
+  d["unreached"] = r.unreached;
+  d["wirelength_dbu"] = r.wirelength;
+  d["wirelength_um"] = dbuPerMicron > 0 ? double(r.wirelength) / dbuPerMicron : 0.0;
+  d["vias"] = r.vias;
+  nb::dict byType;
+  for (int t = 0; t < kMarkerTypes; ++t) {
+    byType[std::string(markerTypeName(static_cast<MarkerType>(t))).c_str()] = r.markersByType[t];
+  }
+  d["violations_by_type"] = byType;
+  d["violations"] = r.markers;
+  d["seconds"] = r.seconds;
+  return d;
+}
+
+}  // namespace
+
+void bindRouter(nb::module_& m) {
+  m.attr("POLICY_FEATURES") = nb::make_tuple(kFeatureColumns[0], kFeatureColumns[1], kFeatureColumns[2],
+                                             kFeatureColumns[3], kFeatureColumns[4], kFeatureColumns[5],
+                                             kFeatureColumns[6], kFeatureColumns[7], kFeatureColumns[8]);
+  m.def(
+      "route",
+      [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
+         nb::object policy_fn, nb::object progress) {
+        if (region_size < 1) throw nb::value_error("region_size must be >= 1");
+        if (iterations < 1 || iterations > 64) throw nb::value_error("iterations must be in 1..64");
+        if (threads < 1) throw nb::value_error("threads must be >= 1");
+        std::unique_ptr<NetOrderPolicy> p;
+        if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn);
+        else if (policy == "heuristic") p = makeHeuristicPolicy();
+        else if (policy == "random") p = makeRandomPolicy(seed);
+        else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
+        RouterSettings s;
+        s.regionSize = region_size;
+        s.iterations = iterations;
+        s.threads = threads;
+        const int dbu = db.design.dbuPerMicron;
+        RouteProgress cb;
+        if (!progress.is_none()) {
+          cb = [&progress, dbu](const IterationReport& r, int done, int total) {
+            nb::gil_scoped_acquire gil;
+            progress(reportDict(r, dbu), done, total);
+          };
+        }
+        RouteOutcome out;
+        {
+          nb::gil_scoped_release release;
+          out = routeDesign(db.tech, db.design, s, *p, cb);
+        }
+        p.reset();
+        nb::list its;
+        for (const IterationReport& r : out.iterations) its.append(reportDict(r, dbu));
+        nb::dict result;
+        result["iterations"] = its;
+        result["policy"] = policy_fn.is_none() ? policy : std::string("python");
+        return result;
+      },
+      "db"_a, "region_size"_a = 3, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
+      "policy_fn"_a = nb::none(), "progress"_a = nb::none(),
+      "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
+      "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, "
+      "regions_done, regions_total) is called after each batch of regions. Returns {'iterations': [report, ...]}.");
+}
