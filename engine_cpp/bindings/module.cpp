@@ -8,6 +8,7 @@
 namespace nb = nanobind;
 
 void bindDatabase(nb::module_& m);
+void bindDrc(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -23,4 +24,5 @@ NB_MODULE(_engine, m) {
   });
 
   bindDatabase(m);
+  bindDrc(m);
 }

@@ -1,0 +1,220 @@
+// checkShapes: groups the shapes by layer, builds each layer's index and
+// connectivity, runs the rule families, then filters, merges and sorts.
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+#include "drc/layer_shapes.hpp"
+
+namespace xroute {
+
+std::string_view markerTypeName(MarkerType type) {
+  switch (type) {
+    case MarkerType::Short: return "Short";
+    case MarkerType::MetalSpacing: return "MetalSpacing";
+    case MarkerType::EndOfLine: return "EndOfLine";
+    case MarkerType::CutShort: return "CutShort";
+    case MarkerType::CutSpacing: return "CutSpacing";
+    case MarkerType::AdjacentCuts: return "AdjacentCuts";
+    case MarkerType::MinArea: return "MinArea";
+    case MarkerType::CornerSpacing: return "CornerSpacing";
+  }
+  return "Unknown";
+}
+
+namespace drc {
+
+void addPairMarker(MarkerSink& out, const LayerShapes& ls, MarkerType type, const Rect& box, int32_t a, int32_t b) {
+  int32_t n1 = ls.nets[a] < 0 ? -1 : ls.nets[a];
+  int32_t n2 = ls.nets[b] < 0 ? -1 : ls.nets[b];
+  if (n1 < 0 || (n2 >= 0 && n2 < n1)) std::swap(n1, n2);
+  out.push_back({Marker{type, ls.layer, box, n1, n2}, ls.fixed[a] && ls.fixed[b]});
+}
+
+Dbu interactionRange(const Layer& l) {
+  Dbu r = 0;
+  for (Dbu s : l.prlTable.spacing) r = std::max(r, s);
+  for (const SpacingRule& s : l.spacings) r = std::max(r, s.space);
+  for (const EolRule& e : l.eolRules) r = std::max({r, e.space + e.within, e.parSpace + e.within, e.parWithin});
+  for (const CutSpacingRule& c : l.cutSpacings) r = std::max({r, c.space, c.cutWithin});
+  for (const CornerSpacingRule& c : l.cornerSpacings)
+    for (Dbu s : c.spacings) r = std::max(r, s);
+  return r;
+}
+
+namespace {
+
+struct UnionFind {
+  std::vector<int32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int32_t find(int32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int32_t a, int32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Same-net rects are connected when they share a segment, not just a point.
+bool connected(const Rect& a, const Rect& b) {
+  const Dbu ox = std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
+  const Dbu oy = std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo);
+  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
+}
+
+struct Entry {
+  Rect rect;
+  int32_t net;
+  bool fixed;
+};
+
+void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& options) {
+  auto key = [](const Entry& e) { return std::make_tuple(e.rect.xlo, e.rect.ylo, e.rect.xhi, e.rect.yhi, e.net); };
+  std::sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
+    return std::make_tuple(key(a), a.fixed) < std::make_tuple(key(b), b.fixed);
+  });
+  // Identical duplicates are one shape, fixed only if every copy is.
+  for (size_t i = 0; i < entries.size(); ++i) {
+    if (!ls.rects.empty() && ls.rects.back() == entries[i].rect && ls.nets.back() == entries[i].net) {
+      ls.fixed.back() = ls.fixed.back() && entries[i].fixed;
+      continue;
+    }
+    ls.rects.push_back(entries[i].rect);
+    ls.nets.push_back(entries[i].net);
+    ls.fixed.push_back(entries[i].fixed);
+  }
+  const size_t n = ls.rects.size();
+  ls.index = BoxIndex(ls.rects);
+
+  ls.seed.assign(n, 1);
+  if (options.window) {
+    const Rect roi = expanded(*options.window, 2 * interactionRange(*ls.rules) + 1);
+    for (size_t i = 0; i < n; ++i) ls.seed[i] = ls.rects[i].overlaps(roi);
+  }
+
+  UnionFind uf(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (ls.nets[i] < 0) continue;
+    ls.index.query(ls.rects[i], [&](int32_t j) {
+      if (j > int32_t(i) && ls.nets[j] == ls.nets[i] && connected(ls.rects[i], ls.rects[j])) uf.unite(int32_t(i), j);
+    });
+  }
+  // Components numbered by their smallest member.
+  ls.comp.assign(n, -1);
+  int32_t count = 0;
+  std::vector<int32_t> rootComp(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t r = uf.find(int32_t(i));
+    if (rootComp[r] < 0) rootComp[r] = count++;
+    ls.comp[i] = rootComp[r];
+  }
+  ls.compStart.assign(count + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++ls.compStart[ls.comp[i] + 1];
+  for (int32_t c = 0; c < count; ++c) ls.compStart[c + 1] += ls.compStart[c];
+  ls.compMembers.resize(n);
+  std::vector<int32_t> fill(ls.compStart.begin(), ls.compStart.end() - 1);
+  for (size_t i = 0; i < n; ++i) ls.compMembers[fill[ls.comp[i]]++] = int32_t(i);
+  ls.compFixed.assign(count, 1);
+  ls.compSeed.assign(count, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!ls.fixed[i]) ls.compFixed[ls.comp[i]] = 0;
+    if (ls.seed[i]) ls.compSeed[ls.comp[i]] = 1;
+  }
+}
+
+// Types whose markers come from pairs of rects, so that one contiguous
+// violation between two conductors can be cut into several pieces. Cut
+// spacing markers (one per pair of cuts) and min-area markers (one per
+// conductor) are never merged.
+bool mergeable(MarkerType t) {
+  return t == MarkerType::Short || t == MarkerType::MetalSpacing || t == MarkerType::EndOfLine ||
+         t == MarkerType::CutShort || t == MarkerType::CornerSpacing;
+}
+
+// Merges markers of a mergeable type with the same (type, layer, nets) whose
+// boxes intersect (touching counts) into one marker with their bounding box.
+std::vector<Marker> mergeTouching(std::vector<Marker> ms) {
+  auto group = [](const Marker& m) { return std::make_tuple(m.type, *m.layer, m.net1, m.net2); };
+  std::sort(ms.begin(), ms.end(), [&](const Marker& a, const Marker& b) {
+    return std::make_tuple(group(a), a.box.xlo, a.box.ylo, a.box.xhi, a.box.yhi) <
+           std::make_tuple(group(b), b.box.xlo, b.box.ylo, b.box.xhi, b.box.yhi);
+  });
+  UnionFind uf(ms.size());
+  for (size_t i = 0; i < ms.size(); ++i) {
+    for (size_t j = i + 1; j < ms.size() && group(ms[j]) == group(ms[i]) && ms[j].box.xlo <= ms[i].box.xhi; ++j) {
+      if (mergeable(ms[i].type) && ms[i].box.overlaps(ms[j].box)) uf.unite(int32_t(i), int32_t(j));
+    }
+  }
+  std::vector<Marker> out;
+  std::vector<int32_t> slot(ms.size(), -1);
+  for (size_t i = 0; i < ms.size(); ++i) {
+    const int32_t r = uf.find(int32_t(i));
+    if (slot[r] < 0) {
+      slot[r] = int32_t(out.size());
+      out.push_back(ms[i]);
+    } else {
+      out[slot[r]].box.expandToInclude(ms[i].box);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace drc
+
+std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, const DrcOptions& options) {
+  using namespace drc;
+  std::vector<std::vector<Entry>> byLayer(tech.layers.size());
+  for (const DrcShape& s : shapes) {
+    if (!s.layer.valid() || size_t(*s.layer) >= tech.layers.size()) continue;
+    const LayerType t = tech.layers[*s.layer].type;
+    if (t != LayerType::Routing && t != LayerType::Cut) continue;
+    if (s.rect.xhi <= s.rect.xlo || s.rect.yhi <= s.rect.ylo) continue;  // no area
+    byLayer[*s.layer].push_back({s.rect, s.net < 0 ? -1 : s.net, isFixedOrigin(s.origin)});
+  }
+  shapes.clear();
+  shapes.shrink_to_fit();
+
+  MarkerSink raw;
+  for (size_t l = 0; l < byLayer.size(); ++l) {
+    if (byLayer[l].empty()) continue;
+    LayerShapes ls;
+    ls.layer = LayerId(int32_t(l));
+    ls.rules = &tech.layers[l];
+    ls.euclidean = tech.clearanceMeasure != "MAXXY";
+    buildLayer(ls, byLayer[l], options);
+    byLayer[l].clear();
+    byLayer[l].shrink_to_fit();
+    if (ls.rules->type == LayerType::Routing) {
+      checkShorts(ls, MarkerType::Short, raw);
+      checkPrlSpacing(ls, options, raw);
+      checkEndOfLine(ls, raw);
+      checkMinArea(ls, raw);
+      checkCornerSpacing(ls, raw);
+    } else {
+      checkShorts(ls, MarkerType::CutShort, raw);
+      checkCutSpacing(ls, raw);
+    }
+  }
+
+  std::vector<Marker> markers;
+  markers.reserve(raw.size());
+  for (const RawMarker& r : raw) {
+    if (options.skipFixedPairs && r.fixed) continue;
+    markers.push_back(r.marker);
+  }
+  if (options.mergeMarkers) markers = mergeTouching(std::move(markers));
+  if (options.window) {
+    std::erase_if(markers, [&](const Marker& m) { return !m.box.overlaps(*options.window); });
+  }
+  auto order = [](const Marker& m) {
+    return std::make_tuple(m.type, *m.layer, m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi, m.net1, m.net2);
+  };
+  std::sort(markers.begin(), markers.end(), [&](const Marker& a, const Marker& b) { return order(a) < order(b); });
+  markers.erase(std::unique(markers.begin(), markers.end()), markers.end());
+  return markers;
+}
+
+}  // namespace xroute

@@ -1,0 +1,55 @@
+// Design-rule checker: shapes in, markers out. Rules, their LEF meaning and
+// every semantic choice are documented in drc/README.md.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "db/design.hpp"
+#include "db/tech.hpp"
+#include "geom/geom.hpp"
+
+namespace xroute {
+
+// Pins, obstructions and special-net shapes are "fixed": present in the input.
+enum class ShapeOrigin : uint8_t { Wire, Via, Pin, Obstruction, SpecialNet };
+
+enum class MarkerType : uint8_t { Short, MetalSpacing, EndOfLine, CutShort, CutSpacing, AdjacentCuts, MinArea, CornerSpacing };
+
+struct DrcShape {
+  LayerId layer;        // routing or cut layer (other layers are ignored)
+  Rect rect;            // DBU
+  int32_t net = -1;     // conductor id; < 0 = obstruction (conflicts with every net)
+  ShapeOrigin origin = ShapeOrigin::Wire;
+};
+
+struct Marker {
+  MarkerType type = MarkerType::Short;
+  LayerId layer;
+  Rect box;             // DBU: the overlap, the gap, or the offending area (see README)
+  int32_t net1 = -1;    // the smaller net id (EOL: the line-end's net)
+  int32_t net2 = -1;    // the other net; -1 for an obstruction or a one-shape rule
+  friend bool operator==(const Marker&, const Marker&) = default;
+};
+
+struct DrcOptions {
+  bool skipFixedPairs = false;    // drop violations whose shapes are all fixed
+  std::optional<Rect> window;     // DBU: report only markers whose box intersects it
+  bool obsAsMinWidth = true;      // LEF USEMINSPACING OBS ON (the LEF default)
+  bool mergeMarkers = true;       // merge same-kind markers whose boxes touch
+};
+
+// Markers sorted by (type, layer, box, net1, net2); independent of input order.
+std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, const DrcOptions& options = {});
+
+// Every metal and cut shape of a placed design, with net ids: regular nets
+// [0, nets), special nets [nets, nets + specialNets), then one id per pin on
+// no net. Obstructions (cell OBS, DEF layer blockages) have net -1.
+std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design);
+
+std::string_view markerTypeName(MarkerType type);
+inline bool isFixedOrigin(ShapeOrigin o) { return o == ShapeOrigin::Pin || o == ShapeOrigin::Obstruction || o == ShapeOrigin::SpecialNet; }
+
+}  // namespace xroute

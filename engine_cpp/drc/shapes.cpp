@@ -1,0 +1,283 @@
+// collectDesignShapes: every metal and cut shape of a design as DrcShapes.
+//
+// Net ids: regular net i -> i; special net j -> nets + j; a component pin or
+// IO pin on no net -> one fresh id each after those (so it conflicts with
+// everything else). Pins of special nets (SPECIALNETS "( * VDD )", "( comp
+// pin )", "( PIN name )", or an IO pin whose + NET names the special net)
+// take the special net's id; POWER / GROUND pins on no net share one id per
+// pin name. Obstructions (cell OBS, DEF layer blockages)
+// get -1; a cell's OBS is cut back where its own pins are. Unplaced components and IO pins are skipped. Regular wires extend
+// by half their width at each end unless an extension is given; special
+// wires end flush. Rectilinear polygons are cut into rects.
+#include <algorithm>
+
+#include "drc/drc.hpp"
+
+namespace xroute {
+
+namespace {
+
+// Rects covering a rectilinear polygon (horizontal slabs); the bounding box
+// for a polygon with a slanted edge.
+void polygonRects(const std::vector<Point>& pts, std::vector<Rect>& out) {
+  const size_t n = pts.size();
+  if (n < 3) return;
+  Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+  bool manhattan = true;
+  for (size_t i = 0; i < n; ++i) {
+    const Point a = pts[i], b = pts[(i + 1) % n];
+    box.expandToInclude({b.x, b.y, b.x, b.y});
+    manhattan = manhattan && (a.x == b.x || a.y == b.y);
+  }
+  if (!manhattan) {
+    out.push_back(box);
+    return;
+  }
+  std::vector<Dbu> ys;
+  for (const Point& p : pts) ys.push_back(p.y);
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  std::vector<Dbu> xs;
+  for (size_t k = 0; k + 1 < ys.size(); ++k) {
+    xs.clear();
+    for (size_t i = 0; i < n; ++i) {
+      const Point a = pts[i], b = pts[(i + 1) % n];
+      if (a.x == b.x && std::min(a.y, b.y) <= ys[k] && std::max(a.y, b.y) >= ys[k + 1]) xs.push_back(a.x);
+    }
+    std::sort(xs.begin(), xs.end());
+    for (size_t i = 0; i + 1 < xs.size(); i += 2) {
+      if (xs[i] < xs[i + 1]) out.push_back({xs[i], ys[k], xs[i + 1], ys[k + 1]});
+    }
+  }
+}
+
+void macroShapeRects(const MacroShape& s, const Transform& t, std::vector<Rect>& out) {
+  if (s.polygon.empty()) {
+    out.push_back(t.apply(s.rect));
+    return;
+  }
+  std::vector<Point> pts;
+  for (const Point& p : s.polygon) pts.push_back(t.apply(p));
+  polygonRects(pts, out);
+}
+
+// Appends the parts of `r` outside `cut` (up to four rects).
+void subtractRect(const Rect& r, const Rect& cut, std::vector<Rect>& out) {
+  if (cut.xlo >= r.xhi || cut.xhi <= r.xlo || cut.ylo >= r.yhi || cut.yhi <= r.ylo) {
+    out.push_back(r);
+    return;
+  }
+  if (cut.ylo > r.ylo) out.push_back({r.xlo, r.ylo, r.xhi, cut.ylo});
+  if (cut.yhi < r.yhi) out.push_back({r.xlo, cut.yhi, r.xhi, r.yhi});
+  const Dbu y0 = std::max(r.ylo, cut.ylo), y1 = std::min(r.yhi, cut.yhi);
+  if (cut.xlo > r.xlo) out.push_back({r.xlo, y0, cut.xlo, y1});
+  if (cut.xhi < r.xhi) out.push_back({cut.xhi, y0, r.xhi, y1});
+}
+
+bool placed(PlaceStatus s) { return s != PlaceStatus::Unplaced; }
+
+class Collector {
+ public:
+  Collector(const Tech& tech, const Design& design) : tech_(tech), design_(design) {}
+
+  std::vector<DrcShape> run();
+
+ private:
+  void add(LayerId layer, const Rect& r, int32_t net, ShapeOrigin origin) {
+    if (layer.valid()) out_.push_back({layer, r, net, origin});
+  }
+  void addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin);
+  void addObstructions(const Component& c);
+  void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin);
+  void addComponentPin(int32_t comp, int32_t pin, int32_t net);
+  void addIoPin(int32_t io, int32_t net);
+
+  const Tech& tech_;
+  const Design& design_;
+  std::vector<DrcShape> out_;
+  std::vector<std::vector<uint8_t>> compPinDone_;  // [component][macro pin]
+  std::vector<uint8_t> ioPinDone_;
+  std::vector<Rect> scratch_;
+};
+
+void Collector::addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin) {
+  scratch_.clear();
+  macroShapeRects(s, t, scratch_);
+  for (const Rect& r : scratch_) add(s.layer, r, net, origin);
+}
+
+// A component's OBS minus its own pins: LEF abstracts often cover a block's
+// pins with OBS, and the pin stays accessible.
+void Collector::addObstructions(const Component& c) {
+  const Macro& m = tech_.macros[*c.macro];
+  if (m.obstructions.empty()) return;
+  const Transform t = componentTransform(tech_, c);
+  std::vector<std::pair<LayerId, Rect>> pins;
+  for (const MacroPin& pin : m.pins) {
+    for (const MacroShape& s : pin.shapes) {
+      scratch_.clear();
+      macroShapeRects(s, t, scratch_);
+      for (const Rect& r : scratch_) pins.push_back({s.layer, r});
+    }
+  }
+  std::vector<Rect> pieces, next;
+  for (const MacroShape& s : m.obstructions) {
+    pieces.clear();
+    macroShapeRects(s, t, pieces);
+    for (const auto& [layer, pin] : pins) {
+      if (layer != s.layer) continue;
+      next.clear();
+      for (const Rect& r : pieces) subtractRect(r, pin, next);
+      pieces.swap(next);
+    }
+    for (const Rect& r : pieces) add(s.layer, r, -1, ShapeOrigin::Obstruction);
+  }
+}
+
+void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin) {
+  if (!ref.valid()) return;
+  for (const ViaShape& s : design_.via(tech_, ref).shapes) add(s.layer, s.rect.translated(at), net, origin);
+}
+
+void Collector::addComponentPin(int32_t comp, int32_t pin, int32_t net) {
+  const Component& c = design_.components[comp];
+  if (!placed(c.status) || compPinDone_[comp][pin]) return;
+  compPinDone_[comp][pin] = 1;
+  const Transform t = componentTransform(tech_, c);
+  for (const MacroShape& s : tech_.macros[*c.macro].pins[pin].shapes) addMacroShape(s, t, net, ShapeOrigin::Pin);
+}
+
+void Collector::addIoPin(int32_t io, int32_t net) {
+  const IoPin& p = design_.ioPins[io];
+  if (!placed(p.status) || ioPinDone_[io]) return;
+  ioPinDone_[io] = 1;
+  const Transform t{p.location, p.orient, 0, 0};
+  for (const IoPinShape& s : p.shapes) add(s.layer, t.apply(s.rect), net, ShapeOrigin::Pin);
+}
+
+std::vector<DrcShape> Collector::run() {
+  const int32_t nets = int32_t(design_.nets.size());
+  compPinDone_.resize(design_.components.size());
+  for (size_t c = 0; c < design_.components.size(); ++c)
+    compPinDone_[c].assign(tech_.macros[*design_.components[c].macro].pins.size(), 0);
+  ioPinDone_.assign(design_.ioPins.size(), 0);
+
+  // Pins of regular nets.
+  for (int32_t n = 0; n < nets && size_t(n + 1) < design_.netPinStart.size(); ++n) {
+    for (int32_t r = design_.netPinStart[n]; r < design_.netPinStart[n + 1]; ++r) {
+      const PinRef& ref = design_.pinRefs[r];
+      if (ref.isIo()) addIoPin(ref.pin, n);
+      else addComponentPin(*ref.comp, ref.pin, n);
+    }
+  }
+  // Pins of special nets.
+  for (size_t s = 0; s < design_.specialNets.size(); ++s) {
+    const SpecialNet& sn = design_.specialNets[s];
+    const int32_t id = nets + int32_t(s);
+    for (const auto& [compName, pinName] : sn.pins) {
+      if (compName == "PIN") {
+        auto it = design_.ioPinIndex.find(pinName);
+        if (it != design_.ioPinIndex.end()) addIoPin(*it->second, id);
+        continue;
+      }
+      auto addByName = [&](int32_t c) {
+        const Macro& m = tech_.macros[*design_.components[c].macro];
+        auto it = m.pinIndex.find(pinName);
+        if (it != m.pinIndex.end()) addComponentPin(c, it->second, id);
+      };
+      if (compName == "*") {
+        for (size_t c = 0; c < design_.components.size(); ++c) addByName(int32_t(c));
+      } else if (const CompId c = design_.findComponent(compName); c.valid()) {
+        addByName(*c);
+      }
+    }
+    for (size_t io = 0; io < design_.ioPins.size(); ++io)
+      if (!design_.ioPins[io].net.valid() && design_.ioPins[io].netName == sn.name) addIoPin(int32_t(io), id);
+  }
+  // Pins on no net: one id each, except that POWER / GROUND pins of the same
+  // name share one (the rails of abutting cells are one conductor).
+  int32_t nextId = nets + int32_t(design_.specialNets.size());
+  StringMap<int32_t> supplyIds;
+  for (size_t c = 0; c < design_.components.size(); ++c) {
+    if (!placed(design_.components[c].status)) continue;
+    const Macro& m = tech_.macros[*design_.components[c].macro];
+    for (size_t p = 0; p < compPinDone_[c].size(); ++p) {
+      if (compPinDone_[c][p]) continue;
+      const MacroPin& pin = m.pins[p];
+      int32_t id = -1;
+      if (pin.use == "POWER" || pin.use == "GROUND") {
+        auto [it, added] = supplyIds.emplace(pin.name, nextId);
+        if (added) ++nextId;
+        id = it->second;
+      } else {
+        id = nextId++;
+      }
+      addComponentPin(int32_t(c), int32_t(p), id);
+    }
+  }
+  for (size_t io = 0; io < design_.ioPins.size(); ++io)
+    if (!ioPinDone_[io] && placed(design_.ioPins[io].status)) addIoPin(int32_t(io), nextId++);
+
+  // Obstructions.
+  for (const Component& c : design_.components)
+    if (placed(c.status)) addObstructions(c);
+  for (const Blockage& b : design_.blockages) {
+    if (b.placement) continue;
+    for (const Rect& r : b.rects) add(b.layer, r, -1, ShapeOrigin::Obstruction);
+    for (const auto& poly : b.polygons) {
+      scratch_.clear();
+      polygonRects(poly, scratch_);
+      for (const Rect& r : scratch_) add(b.layer, r, -1, ShapeOrigin::Obstruction);
+    }
+  }
+
+  // Special-net routing: flush ends.
+  for (size_t s = 0; s < design_.specialNets.size(); ++s) {
+    const SpecialNet& sn = design_.specialNets[s];
+    const int32_t id = nets + int32_t(s);
+    for (const SpecialWire& w : sn.wires) {
+      if (w.from == w.to) continue;
+      const Dbu lo = w.width / 2, hi = w.width - w.width / 2;
+      if (w.from.y == w.to.y) {
+        add(w.layer, {std::min(w.from.x, w.to.x), w.from.y - lo, std::max(w.from.x, w.to.x), w.from.y + hi}, id,
+            ShapeOrigin::SpecialNet);
+      } else if (w.from.x == w.to.x) {
+        add(w.layer, {w.from.x - lo, std::min(w.from.y, w.to.y), w.from.x + hi, std::max(w.from.y, w.to.y)}, id,
+            ShapeOrigin::SpecialNet);
+      }
+    }
+    for (const SpecialVia& v : sn.vias) addVia(v.via, v.at, id, ShapeOrigin::SpecialNet);
+    for (const RoutePatch& p : sn.rects) add(p.layer, p.rect, id, ShapeOrigin::SpecialNet);
+  }
+
+  // Regular routing: wires extend by half width unless told otherwise.
+  for (int32_t n = 0; n < nets; ++n) {
+    const NetRouting& r = design_.nets[n].routing;
+    for (const RouteWire& w : r.wires) {
+      if (w.from == w.to || !w.layer.valid()) continue;
+      const Dbu width = w.width > 0 ? w.width : tech_.layer(w.layer).width;
+      const Dbu lo = width / 2, hi = width - width / 2;
+      const Dbu extFrom = w.extFrom >= 0 ? w.extFrom : lo, extTo = w.extTo >= 0 ? w.extTo : lo;
+      if (w.from.y == w.to.y) {
+        const bool fwd = w.from.x <= w.to.x;
+        const Dbu x0 = fwd ? w.from.x - extFrom : w.to.x - extTo, x1 = fwd ? w.to.x + extTo : w.from.x + extFrom;
+        add(w.layer, {x0, w.from.y - lo, x1, w.from.y + hi}, n, ShapeOrigin::Wire);
+      } else if (w.from.x == w.to.x) {
+        const bool fwd = w.from.y <= w.to.y;
+        const Dbu y0 = fwd ? w.from.y - extFrom : w.to.y - extTo, y1 = fwd ? w.to.y + extTo : w.from.y + extFrom;
+        add(w.layer, {w.from.x - lo, y0, w.from.x + hi, y1}, n, ShapeOrigin::Wire);
+      }
+    }
+    for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via);
+    for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire);
+  }
+  return std::move(out_);
+}
+
+}  // namespace
+
+std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design) {
+  return Collector(tech, design).run();
+}
+
+}  // namespace xroute

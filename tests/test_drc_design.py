@@ -1,0 +1,174 @@
+"""Design-rule checks of whole designs: shape collection from a drawn DEF, and
+the contest designs (pins and obstructions only, unrouted)."""
+
+from __future__ import annotations
+
+import collections
+import time
+from pathlib import Path
+
+import pytest
+
+from test_drc_rules import TECH_LEF
+from xroute_cli import _engine
+
+TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
+
+CELL_LEF = """\
+SITE core
+  CLASS CORE ;
+  SIZE 0.2 BY 1.0 ;
+END core
+
+MACRO INV
+  CLASS CORE ;
+  ORIGIN 0 0 ;
+  SIZE 1.0 BY 1.0 ;
+  SITE core ;
+  PIN A
+    DIRECTION INPUT ;
+    USE SIGNAL ;
+    PORT
+      LAYER M1 ;
+        RECT 0.1 0.4 0.3 0.6 ;
+    END
+  END A
+  PIN Y
+    DIRECTION OUTPUT ;
+    USE SIGNAL ;
+    PORT
+      LAYER M1 ;
+        RECT 0.7 0.4 0.9 0.6 ;
+    END
+  END Y
+  PIN VDD
+    DIRECTION INOUT ;
+    USE POWER ;
+    PORT
+      LAYER M1 ;
+        RECT 0.0 0.9 1.0 1.1 ;
+    END
+  END VDD
+  OBS
+    LAYER M1 ;
+      RECT 0.4 0.3 0.6 0.7 ;
+  END
+END INV
+
+END LIBRARY
+"""
+
+#   u1 at (1000,1000) N, u2 at (2000,1000) FS (mirrored about the x axis).
+#   Net n1 joins u1/Y and u2/A with an M1 wire and a V12 via at its end; in
+#   the dirty variant a second piece runs into u1's OBS.
+DEF_TEMPLATE = """\
+VERSION 5.8 ;
+DIVIDERCHAR "/" ;
+BUSBITCHARS "[]" ;
+DESIGN tiny ;
+UNITS DISTANCE MICRONS 1000 ;
+DIEAREA ( 0 0 ) ( 10000 10000 ) ;
+COMPONENTS 2 ;
+- u1 INV + PLACED ( 1000 1000 ) N ;
+- u2 INV + PLACED ( 2000 1000 ) FS ;
+END COMPONENTS
+BLOCKAGES 1 ;
+- LAYER M2 RECT ( 5000 5000 ) ( 6000 6000 ) ;
+END BLOCKAGES
+SPECIALNETS 1 ;
+- VDD ( u1 VDD )
+  + ROUTED M1 200 ( 1000 3000 ) ( 3000 3000 ) ;
+END SPECIALNETS
+NETS 1 ;
+- n1 ( u1 Y ) ( u2 A )
+  + ROUTED M1 ( 1800 1500 ) ( 2200 1500 ) V12{extra} ;
+END NETS
+END DESIGN
+"""
+
+M1, V1, M2 = 0, 1, 2
+WIRE, VIA, PIN, OBS, SPECIAL = 0, 1, 2, 3, 4
+
+
+def load(tmp_path: Path, extra: str = ""):
+    lef = tmp_path / "tiny.lef"
+    lef.write_text(TECH_LEF.replace("END LIBRARY\n", "") + CELL_LEF)
+    def_ = tmp_path / "tiny.def"
+    def_.write_text(DEF_TEMPLATE.format(extra=extra))
+    return _engine.load([str(lef)], str(def_))
+
+
+def test_collected_shapes(tmp_path):
+    db = load(tmp_path)
+    # Net ids: n1 = 0, special VDD = 1, then pins on no net: u1/A = 2,
+    # u2/Y = 3, u2/VDD = 4 (a POWER pin on no net: one id per pin name).
+    assert sorted(db.drc_shapes()) == sorted([
+        (M1, 1100, 1400, 1300, 1600, 2, PIN),      # u1/A
+        (M1, 1700, 1400, 1900, 1600, 0, PIN),      # u1/Y
+        (M1, 1000, 1900, 2000, 2100, 1, PIN),      # u1/VDD, on the special net
+        (M1, 1400, 1300, 1600, 1700, -1, OBS),     # u1 OBS
+        (M1, 2100, 1400, 2300, 1600, 0, PIN),      # u2/A (FS: y -> 1000 - y)
+        (M1, 2700, 1400, 2900, 1600, 3, PIN),      # u2/Y
+        (M1, 2000, 900, 3000, 1100, 4, PIN),       # u2/VDD
+        (M1, 2400, 1300, 2600, 1700, -1, OBS),     # u2 OBS
+        (M2, 5000, 5000, 6000, 6000, -1, OBS),     # DEF blockage
+        (M1, 1000, 2900, 3000, 3100, 1, SPECIAL),  # special wire, flush ends
+        (M1, 1750, 1450, 2250, 1550, 0, WIRE),     # wire + half width at both ends
+        (M1, 2150, 1450, 2250, 1550, 0, VIA),      # V12 at (2200, 1500)
+        (V1, 2150, 1450, 2250, 1550, 0, VIA),
+        (M2, 2150, 1450, 2250, 1550, 0, VIA),
+    ])
+
+
+def test_design_check(tmp_path):
+    db = load(tmp_path)
+    # Only fixed shapes break rules: the two 200 x 200 pins on no net are
+    # below the 50000 DBU^2 minimum area; the V12 pad alone on M2 has no rule.
+    assert db.check_drc(skip_fixed_pairs=True) == []
+    markers = db.check_drc(skip_fixed_pairs=False)
+    assert [(m["type"], m["layer"], m["box"], m["nets"]) for m in markers] == [
+        ("MinArea", "M1", (1100, 1400, 1300, 1600), (2, -1)),
+        ("MinArea", "M1", (2700, 1400, 2900, 1600), (3, -1)),
+    ]
+
+
+def test_design_check_finds_a_routed_short(tmp_path):
+    # A second piece from (1800,1500) left to (1500,1500) runs into u1's OBS
+    # (1400,1300)-(1600,1700): the wire (1450,1450)-(1850,1550) overlaps it.
+    db = load(tmp_path, extra=" NEW M1 ( 1800 1500 ) ( 1500 1500 )")
+    got = [(m["type"], m["layer"], m["box"], m["nets"]) for m in db.check_drc()]
+    assert got == [("Short", "M1", (1450, 1450, 1600, 1550), (0, -1))]
+    # A window away from it sees nothing.
+    assert db.check_drc(window=(4000, 4000, 4100, 4100)) == []
+
+
+def contest(name: str):
+    base = TESTCASES / name / f"{name}.input"
+    if not Path(str(base) + ".def").exists():
+        pytest.skip(f"{name} not available")
+    return _engine.load([str(base) + ".lef"], str(base) + ".def")
+
+
+@pytest.mark.parametrize("name", ["ispd18_sample", "ispd18_sample2", "ispd18_test1"])
+def test_unrouted_contest_design_has_no_new_violation(name):
+    db = contest(name)
+    # Unrouted: every shape is a pin, an OBS or special wiring.
+    assert db.check_drc(skip_fixed_pairs=True) == []
+
+
+def test_ispd18_sample_pins_of_different_nets_do_not_short():
+    db = contest("ispd18_sample")
+    markers = db.check_drc(skip_fixed_pairs=False)
+    assert not [m for m in markers if m["type"] == "Short" and m["nets"][1] >= 0]
+
+
+def test_ispd18_test1_counts(capsys):
+    db = contest("ispd18_test1")
+    t0 = time.perf_counter()
+    markers = db.check_drc(skip_fixed_pairs=False)
+    seconds = time.perf_counter() - t0
+    counts = collections.Counter((m["type"], m["layer"]) for m in markers)
+    with capsys.disabled():
+        print(f"\nispd18_test1 (pins + OBS): {len(db.drc_shapes())} shapes, {dict(counts)}, {seconds:.2f} s")
+    # No pin of one net overlaps a pin of another.
+    assert not [m for m in markers if m["type"] == "Short" and m["nets"][1] >= 0]
