@@ -9,6 +9,7 @@ namespace nb = nanobind;
 
 void bindDatabase(nb::module_& m);
 void bindDrc(nb::module_& m);
+void bindPinAccess(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -25,4 +26,5 @@ NB_MODULE(_engine, m) {
 
   bindDatabase(m);
   bindDrc(m);
+  bindPinAccess(m);
 }
