@@ -11,6 +11,7 @@ void bindDatabase(nb::module_& m);
 void bindDrc(nb::module_& m);
 void bindVerify(nb::module_& m);
 void bindRouter(nb::module_& m);
+void bindPinAccess(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -29,4 +30,5 @@ NB_MODULE(_engine, m) {
   bindDrc(m);
   bindVerify(m);
   bindRouter(m);
+  bindPinAccess(m);
 }

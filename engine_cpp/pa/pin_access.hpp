@@ -31,12 +31,15 @@ struct AccessPoint {
 struct PinAccessSettings {
   int maxPointsPerPin = 3;   // keep at most this many, best first
   int threads = 1;
+  bool shareClasses = true;  // false: compute every component on its own (to check the classes)
 };
 
 // Flat per-pinRef table: pinRef i owns points[start[i] .. start[i+1]).
 struct PinAccessTable {
   std::vector<int32_t> start;       // size pinRefs.size() + 1
   std::vector<AccessPoint> points;
+  int32_t fallbackPins = 0;         // pinRefs whose only point is a fallback (no legal point found)
+  int32_t classes = 0;              // component classes computed (IO pins not counted)
 
   int32_t count(int32_t pinRef) const { return start[pinRef + 1] - start[pinRef]; }
   const AccessPoint* begin(int32_t pinRef) const { return points.data() + start[pinRef]; }

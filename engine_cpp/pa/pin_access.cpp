@@ -1,0 +1,286 @@
+// computePinAccess: components grouped into classes that see the same
+// geometry and the same tracks relative to their location, one computation
+// per class (and one per IO pin), run on settings.threads workers, then the
+// flat per-pinRef table.
+//
+// Class key: (macro, orientation, location.x mod Px, location.y mod Py,
+// clip), where Px (Py) is the least common multiple of the steps of the DEF
+// X (Y) track patterns of the macro's pin layers z and z+1, and clip records,
+// relative to the location, where each of those patterns and the die cut
+// the window that decides the result (the pins' bounding box grown by the
+// largest step, and by the reach of a planar exit stub for the die). Inside
+// the tracks and the die the clip is the same for every component of a
+// macro and orientation; near the ends it separates components whose
+// surroundings differ. With no usable period (no tracks, or an LCM beyond
+// kMaxPeriod) the key is the exact location. A class is computed on its
+// first component (in DEF order) and stored relative to its location.
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <map>
+#include <numeric>
+#include <thread>
+#include <tuple>
+
+#include "pa/pa_internal.hpp"
+
+namespace xroute {
+
+namespace {
+
+using pa::PinRect;
+
+constexpr int64_t kMaxPeriod = int64_t(1) << 24;  // DBU: a larger period is treated as none
+
+// What the class key of a macro's components depends on.
+struct MacroInfo {
+  bool ready = false;
+  std::vector<int32_t> patterns;  // indices into Design::tracks
+  int64_t periodX = 0;            // DBU, 0 = none (keys of exact locations)
+  int64_t periodY = 0;            // DBU
+  Dbu maxStep = 0;                // DBU, largest step among `patterns`
+  Dbu stubReach = 0;              // DBU, how far a planar exit stub reaches beyond the pins
+  bool hasBox = false;
+  Rect box;                       // DBU, macro coordinates: bounding box of the routing-layer pin shapes
+};
+
+struct ClassKey {
+  int32_t macro = 0;
+  int32_t orient = 0;
+  Dbu x = 0, y = 0;           // DBU: location modulo the periods (the location itself with no period)
+  std::vector<int64_t> clip;  // DBU, relative to the location: where the tracks and the die end in the window
+  auto tie() const { return std::tie(macro, orient, x, y, clip); }
+  bool operator<(const ClassKey& o) const { return tie() < o.tie(); }
+};
+
+struct PinJob {
+  CompId comp;                 // the class's first component; invalid for an IO pin
+  int32_t ioPin = -1;          // IoPinId value for an IO pin job
+  std::vector<int32_t> pins;   // macro pin indices to compute (component jobs)
+};
+
+struct JobResult {
+  std::vector<std::vector<AccessPoint>> points;  // per entry of PinJob::pins (one for an IO pin), relative
+  std::vector<uint8_t> fallback;                 // per entry: 1 = fallback point
+};
+
+int64_t floorMod(int64_t v, int64_t m) { return ((v % m) + m) % m; }
+
+const MacroInfo& macroInfo(const Tech& tech, const Design& design, const std::vector<pa::LayerAccess>& layers,
+                           std::vector<MacroInfo>& cache, MacroId id) {
+  MacroInfo& info = cache[*id];
+  if (info.ready) return info;
+  info.ready = true;
+  const Macro& m = tech.macros[*id];
+  std::vector<int32_t> zs;
+  for (const MacroPin& pin : m.pins) {
+    for (const MacroShape& s : pin.shapes) {
+      const int32_t z = tech.layer(s.layer).routingIndex;
+      if (z < 0) continue;
+      zs.push_back(z);
+      if (info.hasBox) info.box.expandToInclude(s.rect);
+      else info.box = s.rect, info.hasBox = true;
+    }
+  }
+  std::sort(zs.begin(), zs.end());
+  zs.erase(std::unique(zs.begin(), zs.end()), zs.end());
+  for (int32_t z : zs) {
+    for (int32_t p : pa::relevantTrackPatterns(tech, design, z)) info.patterns.push_back(p);
+    info.stubReach = std::max(info.stubReach, layers[z].stubLength + layers[z].stubWidth);
+  }
+  std::sort(info.patterns.begin(), info.patterns.end());
+  info.patterns.erase(std::unique(info.patterns.begin(), info.patterns.end()), info.patterns.end());
+  int64_t px = 1, py = 1;
+  for (int32_t p : info.patterns) {
+    const TrackPattern& t = design.tracks[p];
+    int64_t& period = t.isX ? px : py;
+    if (t.step <= 0 || period == 0) {
+      period = 0;
+      continue;
+    }
+    period = std::lcm(period, int64_t(t.step));
+    if (period > kMaxPeriod) period = 0;
+    info.maxStep = std::max(info.maxStep, t.step);
+  }
+  info.periodX = px;
+  info.periodY = py;
+  return info;
+}
+
+ClassKey classKey(const Tech& tech, const Design& design, const MacroInfo& info, const Component& c) {
+  ClassKey k{*c.macro, int32_t(c.orient), c.location.x, c.location.y, {}};
+  if (!info.hasBox || info.periodX == 0 || info.periodY == 0) return k;
+  const Rect box = componentTransform(tech, c).apply(info.box);
+  const int64_t lx = c.location.x, ly = c.location.y;
+  auto clipTo = [&](int64_t first, int64_t last, int64_t lo, int64_t hi, int64_t origin) {
+    k.clip.push_back(std::max(first, lo) - origin);
+    k.clip.push_back(std::min(last, hi) - origin);
+  };
+  const int64_t g = info.maxStep;
+  for (int32_t p : info.patterns) {
+    const TrackPattern& t = design.tracks[p];
+    const int64_t first = t.start, last = t.start + int64_t(std::max(t.count, 1) - 1) * t.step;
+    if (t.isX) clipTo(first, last, box.xlo - g, box.xhi + g, lx);
+    else clipTo(first, last, box.ylo - g, box.yhi + g, ly);
+  }
+  const int64_t r = info.stubReach;
+  const Rect& die = design.dieArea;
+  clipTo(die.xlo, die.xhi, box.xlo - r, box.xhi + r, lx);
+  clipTo(die.ylo, die.yhi, box.ylo - r, box.yhi + r, ly);
+  k.x = Dbu(floorMod(lx, info.periodX));
+  k.y = Dbu(floorMod(ly, info.periodY));
+  return k;
+}
+
+JobResult runComponentJob(const Tech& tech, const Design& design, const std::vector<pa::LayerAccess>& layers,
+                          const PinJob& job, int maxPoints) {
+  const Component& c = design.components[*job.comp];
+  const Macro& m = tech.macros[*c.macro];
+  const Transform t = componentTransform(tech, c);
+
+  // Context: every pin with its own id (its index), OBS cut back at the pins.
+  std::vector<DrcShape> context;
+  std::vector<std::vector<PinRect>> metal(m.pins.size());
+  std::vector<std::pair<LayerId, Rect>> pinRects;
+  std::vector<Rect> rects;
+  for (int32_t k = 0; k < int32_t(m.pins.size()); ++k) {
+    for (const MacroShape& s : m.pins[k].shapes) {
+      rects.clear();
+      pa::placedRects(s, t, rects);
+      const int32_t z = tech.layer(s.layer).routingIndex;
+      for (const Rect& r : rects) {
+        context.push_back({s.layer, r, k, ShapeOrigin::Pin});
+        pinRects.push_back({s.layer, r});
+        if (z >= 0) metal[k].push_back({z, r});
+      }
+    }
+  }
+  std::vector<Rect> pieces, next;
+  for (const MacroShape& s : m.obstructions) {
+    pieces.clear();
+    pa::placedRects(s, t, pieces);
+    for (const auto& [layer, r] : pinRects) {
+      if (layer != s.layer) continue;
+      next.clear();
+      for (const Rect& piece : pieces) pa::subtractRect(piece, r, next);
+      pieces.swap(next);
+    }
+    for (const Rect& r : pieces) context.push_back({s.layer, r, -1, ShapeOrigin::Obstruction});
+  }
+
+  const pa::AccessChecker checker(tech, std::move(context), design.dieArea);
+  JobResult out;
+  const Point origin = c.location;
+  for (int32_t k : job.pins) {
+    pa::PinPointsResult r = pa::choosePinPoints(tech, layers, checker, metal[k], k, maxPoints);
+    for (AccessPoint& p : r.points) p.at = {p.at.x - origin.x, p.at.y - origin.y};
+    out.points.push_back(std::move(r.points));
+    out.fallback.push_back(r.fallback);
+  }
+  return out;
+}
+
+JobResult runIoJob(const Tech& tech, const Design& design, const std::vector<pa::LayerAccess>& layers,
+                   const PinJob& job, int maxPoints) {
+  const IoPin& pin = design.ioPins[job.ioPin];
+  const Transform t{pin.location, pin.orient, 0, 0};
+  std::vector<DrcShape> context;
+  std::vector<PinRect> metal;
+  for (const IoPinShape& s : pin.shapes) {
+    const Rect r = t.apply(s.rect);
+    context.push_back({s.layer, r, 0, ShapeOrigin::Pin});
+    const int32_t z = tech.layer(s.layer).routingIndex;
+    if (z >= 0) metal.push_back({z, r});
+  }
+  const pa::AccessChecker checker(tech, std::move(context), design.dieArea);
+  pa::PinPointsResult r = pa::choosePinPoints(tech, layers, checker, metal, 0, maxPoints);
+  JobResult out;
+  out.points.push_back(std::move(r.points));
+  out.fallback.push_back(r.fallback);
+  return out;
+}
+
+}  // namespace
+
+PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
+                                const PinAccessSettings& settings) {
+  const std::vector<pa::LayerAccess> layers = pa::buildLayerAccess(tech, tracks);
+  const int32_t refs = int32_t(design.pinRefs.size());
+
+  // Jobs: one per class of components, one per IO pin.
+  std::vector<MacroInfo> infos(tech.macros.size());
+  std::map<ClassKey, int32_t> classOf;
+  std::vector<int32_t> compClass(design.components.size(), -1);
+  std::vector<int32_t> ioJob(design.ioPins.size(), -1);
+  std::vector<PinJob> jobs;
+  for (int32_t r = 0; r < refs; ++r) {
+    const PinRef& ref = design.pinRefs[r];
+    if (ref.isIo()) {
+      if (ioJob[ref.pin] < 0) {
+        ioJob[ref.pin] = int32_t(jobs.size());
+        jobs.push_back({CompId(), ref.pin, {}});
+      }
+      continue;
+    }
+    int32_t& cls = compClass[*ref.comp];
+    if (cls < 0) {
+      const Component& c = design.components[*ref.comp];
+      ClassKey key = classKey(tech, design, macroInfo(tech, design, layers, infos, c.macro), c);
+      if (!settings.shareClasses) key = ClassKey{*ref.comp, 0, 0, 0, {}};
+      auto [it, fresh] = classOf.try_emplace(key, int32_t(jobs.size()));
+      if (fresh) jobs.push_back({ref.comp, -1, {}});
+      cls = it->second;
+    }
+    jobs[cls].pins.push_back(ref.pin);
+  }
+  for (PinJob& j : jobs) {
+    std::sort(j.pins.begin(), j.pins.end());
+    j.pins.erase(std::unique(j.pins.begin(), j.pins.end()), j.pins.end());
+  }
+
+  // Compute the jobs, each into its own slot: the result does not depend on
+  // the number of threads.
+  std::vector<JobResult> results(jobs.size());
+  const int maxPoints = std::max(settings.maxPointsPerPin, 1);
+  std::atomic<size_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto work = [&]() {
+    for (size_t j; !failed && (j = next.fetch_add(1)) < jobs.size();) {
+      try {
+        results[j] = jobs[j].comp.valid() ? runComponentJob(tech, design, layers, jobs[j], maxPoints)
+                                          : runIoJob(tech, design, layers, jobs[j], maxPoints);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
+    }
+  };
+  const int threads = std::clamp(settings.threads, 1, std::max(1, int(jobs.size())));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+
+  // The flat table, translated to each component's location.
+  PinAccessTable table;
+  table.classes = int32_t(classOf.size());
+  table.start.reserve(refs + 1);
+  table.start.push_back(0);
+  for (int32_t r = 0; r < refs; ++r) {
+    const PinRef& ref = design.pinRefs[r];
+    const int32_t j = ref.isIo() ? ioJob[ref.pin] : compClass[*ref.comp];
+    const PinJob& job = jobs[j];
+    const size_t slot = ref.isIo() ? 0 : size_t(std::lower_bound(job.pins.begin(), job.pins.end(), ref.pin) - job.pins.begin());
+    const Point origin = ref.isIo() ? Point{} : design.components[*ref.comp].location;
+    for (AccessPoint p : results[j].points[slot]) {
+      p.at = {p.at.x + origin.x, p.at.y + origin.y};
+      table.points.push_back(p);
+    }
+    table.fallbackPins += results[j].fallback[slot];
+    table.start.push_back(int32_t(table.points.size()));
+  }
+  return table;
+}
+
+}  // namespace xroute
