@@ -84,17 +84,21 @@ struct Planner {
         for (int ry = r0->ry; ry <= r1->ry; ++ry) {
           for (int rx = r0->rx; rx <= r1->rx; ++rx) {
             const int32_t a = regionAtCell(rx, ry);
-            if (rx < r1->rx) {  // to the right
+            const Dbu ylo = std::max(g.ylo, regions[a].box.ylo), yhi = std::min(g.yhi, regions[a].box.yhi);
+            const Dbu xlo = std::max(g.xlo, regions[a].box.xlo), xhi = std::min(g.xhi, regions[a].box.xhi);
+            // An edge only where the guide runs along it for a positive length
+            // (a guide touching a region at a corner links nothing).
+            if (rx < r1->rx && yhi > ylo) {  // to the right
               EdgeInfo& e = edges[{a, regionAtCell(rx + 1, ry)}];
-              const Dbu lo = std::max(g.ylo, regions[a].box.ylo), hi = std::min(g.yhi, regions[a].box.yhi);
+              const Dbu lo = ylo, hi = yhi;
               e.lo = e.any ? std::min(e.lo, lo) : lo;
               e.hi = e.any ? std::max(e.hi, hi) : hi;
               e.any = true;
               if (z >= 0) e.mask |= 1u << z;
             }
-            if (ry < r1->ry) {  // above
+            if (ry < r1->ry && xhi > xlo) {  // above
               EdgeInfo& e = edges[{a, regionAtCell(rx, ry + 1)}];
-              const Dbu lo = std::max(g.xlo, regions[a].box.xlo), hi = std::min(g.xhi, regions[a].box.xhi);
+              const Dbu lo = xlo, hi = xhi;
               e.lo = e.any ? std::min(e.lo, lo) : lo;
               e.hi = e.any ? std::max(e.hi, hi) : hi;
               e.any = true;

@@ -110,12 +110,13 @@ struct RegionRouter::Impl {
   void freeCrossingNodes(const Crossing& c, TermSpec& spec) {
     const RegionGrid& g = *grid;
     const bool edgeIsX = c.vertical;  // vertical edge x = coord: horizontal layers cross it
+    Dbu lo = c.lo, hi = c.hi;
     auto collect = [&](uint32_t mask) {
       for (int z = 0; z < g.nz(); ++z) {
         if (!(mask & (1u << z))) continue;
         if (g.horizontal(z) != edgeIsX) continue;
         const LayerTracks& lt = ctx.tracks.layers[z];
-        for (Dbu t : tracksIn(lt.pref, c.lo, c.hi)) {
+        for (Dbu t : tracksIn(lt.pref, lo, hi)) {
           spec.points.push_back(edgeIsX ? Point{c.coord, t} : Point{t, c.coord});
           spec.zs.push_back(z);
         }
@@ -126,6 +127,13 @@ struct RegionRouter::Impl {
       uint32_t mask = 0;
       for (int z = 1; z < g.nz(); ++z) mask |= 1u << z;
       if (g.nz() == 1) mask = 1;
+      collect(mask);
+    }
+    if (spec.points.empty()) {  // no track in the span: anywhere along the region's edge
+      lo = c.vertical ? box().ylo : box().xlo;
+      hi = c.vertical ? box().yhi : box().xhi;
+      uint32_t mask = 0;
+      for (int z = 0; z < g.nz(); ++z) mask |= 1u << z;
       collect(mask);
     }
   }
