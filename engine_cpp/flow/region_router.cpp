@@ -1,5 +1,7 @@
 #include "flow/region_router.hpp"
 
+#include "route/min_area_fix.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -246,6 +248,10 @@ struct RegionRouter::Impl {
         for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
           const int32_t v = nodeAt(ap->at, ap->z);
           if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
+          if (v >= 0 && (ap->dirs & kAccessUp) && ap->z + 1 < g.nz()) {
+            const int32_t above = nodeAt(ap->at, ap->z + 1);
+            if (above >= 0) claimOwner(g.reservedNet[above], ns.task.net);
+          }
         }
       }
       NetCandidate c;
@@ -382,6 +388,15 @@ struct RegionRouter::Impl {
         if (done) break;
       }
     }
+    std::vector<MetalAnchor> anchors;
+    for (const TermSpec& s : ns.terms) {
+      if (s.crossing >= 0) continue;  // a free crossing is no metal
+      for (size_t k = 0; k < s.points.size(); ++k) anchors.push_back({s.points[k], s.zs[k]});
+    }
+    for (const CrossingChoice& c : choices) {
+      if (plan && plan->crossings[c.crossing].net == ns.task.net) anchors.push_back({c.at, c.z});
+    }
+    fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
   }
 };

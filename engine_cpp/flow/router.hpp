@@ -24,7 +24,7 @@ struct RouterSettings {
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<int> offsets;        // region offset in GCells per iteration (cycled); empty = 0, C/2, C-1, ...
   MazeCosts costs;                 // maze costs of iteration 0
-  int64_t usePenaltyStep = 3000;   // added to costs.usePenalty at each later iteration
+  int64_t usePenaltyStep = 4000;   // added to costs.usePenalty at each later iteration
   int64_t markerPenalty = 10000;   // cost units per node near a marker of the last iteration
   int64_t historyPenalty = 3000;   // cost units per node near any earlier marker
   bool stopAtZero = true;          // stop when an iteration ends without markers

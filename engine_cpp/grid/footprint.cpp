@@ -16,9 +16,17 @@ FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, cons
   r.viaLanding.assign(nz, Rect{0, 0, 0, 0});
   r.cutRect.assign(nz, Rect{0, 0, 0, 0});
   r.cutSpacing.assign(nz, 0);
+  r.eolSpace.assign(nz, 0);
+  r.eolWithin.assign(nz, 0);
+  r.horizontal.assign(nz, 0);
   for (size_t z = 0; z < nz; ++z) {
     r.layers[z] = &tech.layer(tracks.layers[z].layer);
     r.wireHalf[z] = tracks.layers[z].wireWidth / 2;
+    r.horizontal[z] = tracks.layers[z].horizontal ? 1 : 0;
+    for (const EolRule& e : r.layers[z]->eolRules) {
+      r.eolSpace[z] = std::max(r.eolSpace[z], e.space);
+      r.eolWithin[z] = std::max(r.eolWithin[z], e.within);
+    }
   }
   for (size_t z = 0; z + 1 < nz; ++z) {
     const CutVia& cv = vias.cuts[z];
@@ -62,21 +70,43 @@ void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r,
   const Dbu width = std::min(r.width(), r.height());
   const Dbu runLength = std::max(r.width(), r.height());
   const Dbu s = requiredSpacing(layer, width, 2 * half, runLength);
+  const Rect& m = rules.viaLanding[z];
   // A wire through the node: its square [x-half, x+half] must stay s away.
   const Rect wireRegion{r.xlo - s - half, r.ylo - s - half, r.xhi + s + half, r.yhi + s + half};
   // A via landing: its metal rect at the node must stay s away.
-  const Rect& m = rules.viaLanding[z];
   const Rect viaRegion{r.xlo - s - m.xhi, r.ylo - s - m.yhi, r.xhi + s - m.xlo, r.yhi + s - m.ylo};
+  // End of line: a wire or via metal ending at the node faces the shape
+  // along the preferred direction and needs the EOL spacing within a
+  // narrow band beside the shape.
+  const Dbu e = std::max(rules.eolSpace[z], s), w = rules.eolWithin[z];
+  Rect wireEol = wireRegion, viaEol = viaRegion;
+  if (rules.eolSpace[z] > 0) {
+    if (rules.horizontal[z]) {
+      wireEol = {r.xlo - e - half, r.ylo - w - half, r.xhi + e + half, r.yhi + w + half};
+      viaEol = {r.xlo - e - m.xhi, r.ylo - w - m.yhi, r.xhi + e - m.xlo, r.yhi + w - m.ylo};
+    } else {
+      wireEol = {r.xlo - w - half, r.ylo - e - half, r.xhi + w + half, r.yhi + e + half};
+      viaEol = {r.xlo - w - m.xhi, r.ylo - e - m.yhi, r.xhi + w - m.xlo, r.yhi + e - m.ylo};
+    }
+  }
   const int32_t owner = net < 0 ? kOwnerMixed : net;
+  auto each = [&](const Rect& a, const Rect& b, auto&& fn) {
+    forNodesInside(g, z, a, fn);
+    // Nodes of b not already in a.
+    forNodesInside(g, z, b, [&](int32_t n) {
+      const Point p = g.point(n);
+      if (!(p.x > a.xlo && p.x < a.xhi && p.y > a.ylo && p.y < a.yhi)) fn(n);
+    });
+  };
   if (fixed) {
-    forNodesInside(g, z, wireRegion, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
-    forNodesInside(g, z, viaRegion, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
+    each(wireRegion, wireEol, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
+    each(viaRegion, viaEol, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
   } else {
-    forNodesInside(g, z, wireRegion, [&](int32_t n) {
+    each(wireRegion, wireEol, [&](int32_t n) {
       bump(g.wireUse[n]);
       claimOwner(g.wireUseOwner[n], owner);
     });
-    forNodesInside(g, z, viaRegion, [&](int32_t n) {
+    each(viaRegion, viaEol, [&](int32_t n) {
       bump(g.viaUse[n]);
       claimOwner(g.viaUseOwner[n], owner);
     });

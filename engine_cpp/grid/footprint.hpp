@@ -22,6 +22,9 @@ struct FootprintRules {
   std::vector<Rect> viaLanding;      // DBU, union of via metal on z (from below and above), per z
   std::vector<Rect> cutRect;         // DBU, cut of the via z -> z+1, per z (last unused)
   std::vector<Dbu> cutSpacing;       // DBU, smallest plain cut spacing of cut z -> z+1 (0 = none)
+  std::vector<Dbu> eolSpace;         // DBU, largest end-of-line spacing of layer z (0 = no EOL rule)
+  std::vector<Dbu> eolWithin;        // DBU, its sideways reach
+  std::vector<uint8_t> horizontal;   // per z: preferred direction
 };
 
 FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, const ViaSet& vias);

@@ -58,6 +58,7 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
   accessNet.assign(n, -1);
   accessPin.assign(n, -1);
   routedNet.assign(n, -1);
+  reservedNet.assign(n, -1);
 
   horizontal_.resize(nz_);
   for (int z = 0; z < nz_; ++z) {

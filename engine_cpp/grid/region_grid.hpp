@@ -80,6 +80,7 @@ class RegionGrid {
   std::vector<int32_t> accessNet;      // net of the access point / terminal here, else -1
   std::vector<int32_t> accessPin;      // pinRef of the access point here, else -1
   std::vector<int32_t> routedNet;      // net whose new route uses the node, else -1
+  std::vector<int32_t> reservedNet;    // node right above an access point: kept for that net's via, else -1
 
  private:
   Rect box_;                   // DBU

@@ -44,6 +44,8 @@ class Search {
 int64_t Search::wireNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (own(v)) return cost;
+  if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
+  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
   const int32_t fo = g_.fixedOwner[v];
   if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
   if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
@@ -53,6 +55,8 @@ int64_t Search::wireNodeCost(int32_t v) const {
 int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (own(v)) return cost;
+  if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
+  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
   const int32_t fo = g_.viaFixedOwner[v];
   if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
   if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
@@ -114,7 +118,7 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources) {
         if (!(g_.flags[v] & kOnTrack)) continue;
         const Point q = g_.point(v);
         const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
-        relax(u, v, len * guideFactor(v) + wireNodeCost(v), open);
+        relax(u, v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), open);
       }
     }
     // Against it, to the next existing node.
@@ -123,7 +127,8 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources) {
       if (v < 0) continue;
       const Point q = g_.point(v);
       const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
-      relax(u, v, len * c_.wrongWayFactor * guideFactor(v) + wireNodeCost(v), open);
+      relax(u, v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v),
+            open);
     }
     // Vias.
     for (int d = -1; d <= 1; d += 2) {

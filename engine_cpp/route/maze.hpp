@@ -15,8 +15,10 @@ struct MazeCosts {
   int64_t wrongWayFactor = 4;      // wrong-way wire length multiplier
   int64_t outOfGuideFactor = 2;    // wire length / via multiplier outside the net's guides
   int64_t fixedPenalty = 400000;   // entering a node a fixed shape of another net forbids
-  int64_t usePenalty = 3000;       // per routed shape of another net a wire/via here would violate
+  int64_t usePenalty = 8000;       // per routed shape of another net a wire/via here would violate
   int64_t markerUnit = 1;          // multiplier of RegionGrid::markerCost
+  int64_t bottomLayerFactor = 4;   // wire length multiplier on routing layer 0 (the pin layer)
+  int64_t reservePenalty = 20000;  // entering another net's access point or boundary terminal
 };
 
 struct MazeTerminal {

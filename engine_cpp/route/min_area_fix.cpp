@@ -1,0 +1,118 @@
+#include "route/min_area_fix.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace xroute {
+
+Area unionArea(const std::vector<Rect>& rects) {
+  std::vector<Dbu> xs, ys;
+  for (const Rect& r : rects) {
+    xs.push_back(r.xlo);
+    xs.push_back(r.xhi);
+    ys.push_back(r.ylo);
+    ys.push_back(r.yhi);
+  }
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  Area total = 0;
+  for (size_t i = 0; i + 1 < xs.size(); ++i) {
+    for (size_t j = 0; j + 1 < ys.size(); ++j) {
+      const Dbu cx = xs[i], cy = ys[j];
+      for (const Rect& r : rects) {
+        if (r.xlo <= cx && xs[i + 1] <= r.xhi && r.ylo <= cy && ys[j + 1] <= r.yhi) {
+          total += Area(xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
+          break;
+        }
+      }
+    }
+  }
+  return total;
+}
+
+namespace {
+
+struct Piece {
+  Rect rect;
+};
+
+int find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+}  // namespace
+
+int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, const Rect& box,
+               const std::vector<MetalAnchor>& anchors, NetRouting& added) {
+  int repairs = 0;
+  std::vector<RouteWire> extra;
+  for (size_t z = 0; z < tracks.layers.size(); ++z) {
+    const LayerTracks& lt = tracks.layers[z];
+    const Layer& layer = tech.layer(lt.layer);
+    if (layer.minArea <= 0) continue;
+    std::vector<Rect> rects;
+    for (const RouteWire& w : added.wires) {
+      Rect r;
+      if (w.layer == lt.layer && routeWireRect(tech, w, r)) rects.push_back(r);
+    }
+    for (const RouteVia& v : added.vias) {
+      for (const ViaShape& s : design.via(tech, v.via).shapes) {
+        if (s.layer == lt.layer) rects.push_back(s.rect.translated(v.at));
+      }
+    }
+    if (rects.empty()) continue;
+    std::vector<int> parent(rects.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (size_t i = 0; i < rects.size(); ++i)
+      for (size_t j = i + 1; j < rects.size(); ++j)
+        if (rects[i].overlaps(rects[j])) parent[find(parent, int(i))] = find(parent, int(j));
+    std::vector<std::vector<Rect>> comps(rects.size());
+    for (size_t i = 0; i < rects.size(); ++i) comps[find(parent, int(i))].push_back(rects[i]);
+    for (const std::vector<Rect>& comp : comps) {
+      if (comp.empty()) continue;
+      bool anchored = false;
+      for (const MetalAnchor& a : anchors) {
+        if (a.z != static_cast<int>(z)) continue;
+        for (const Rect& r : comp) anchored = anchored || r.contains(a.at);
+      }
+      if (anchored) continue;
+      const Area area = unionArea(comp);
+      if (area >= layer.minArea) continue;
+      Rect bb = comp.front();
+      for (const Rect& r : comp) bb.expandToInclude(r);
+      const Dbu width = std::max<Dbu>(1, lt.wireWidth);
+      const Dbu half = width / 2;
+      // Length the wire needs (extensions included) to reach the area alone.
+      const Dbu need = static_cast<Dbu>((layer.minArea + width - 1) / width);
+      const Dbu grid = tech.manufacturingGrid > 0 ? tech.manufacturingGrid : 1;
+      const bool horizontal = lt.horizontal;
+      const Dbu lo = horizontal ? bb.xlo : bb.ylo, hi = horizontal ? bb.xhi : bb.yhi;
+      const Dbu across = horizontal ? (comp.front().ylo + comp.front().yhi) / 2 : (comp.front().xlo + comp.front().xhi) / 2;
+      Dbu grow = std::max<Dbu>(0, need - (hi - lo));
+      grow = (grow + 2 * grid - 1) / (2 * grid) * grid;  // per side, on the manufacturing grid
+      Dbu a = lo - grow, b = hi + grow;
+      const Dbu boxLo = horizontal ? box.xlo : box.ylo, boxHi = horizontal ? box.xhi : box.yhi;
+      if (a < boxLo && b + (boxLo - a) <= boxHi) {  // keep the repair inside the region
+        b += boxLo - a;
+        a = boxLo;
+      } else if (b > boxHi && a - (b - boxHi) >= boxLo) {
+        a -= b - boxHi;
+        b = boxHi;
+      }
+      RouteWire w;
+      w.layer = lt.layer;
+      w.from = horizontal ? Point{a + half, across} : Point{across, a + half};
+      w.to = horizontal ? Point{b - half, across} : Point{across, b - half};
+      if (w.from == w.to) continue;
+      extra.push_back(w);
+      ++repairs;
+    }
+  }
+  added.wires.insert(added.wires.end(), extra.begin(), extra.end());
+  return repairs;
+}
+
+}  // namespace xroute
