@@ -10,7 +10,9 @@
 // side edge p outward, from q behind the line end to d beyond it); TWOEDGES
 // needs such metal on both sides. A shape that touches the line's own metal
 // is a short, not an EOL violation. Marker box: the window clipped to the
-// offending shape; net1 is the line end's net.
+// offending shape; net1 is the line end's net. The marker counts as fixed
+// (input-only) when the line end is carried by fixed rects only and the
+// offender is fixed, even if routing has joined the line's conductor.
 #include <algorithm>
 
 #include "drc/layer_shapes.hpp"
@@ -60,6 +62,24 @@ bool touchesComponent(const LayerShapes& ls, int32_t c, const Rect& r) {
   return found;
 }
 
+// True when every member rect of component c that carries a piece of edge e
+// is fixed: the line end is the input's own (a pin's end), not the router's.
+bool edgeFixed(const LayerShapes& ls, int32_t c, const Edge& e) {
+  for (int32_t k = ls.compStart[c]; k < ls.compStart[c + 1]; ++k) {
+    const int32_t i = ls.compMembers[k];
+    const Rect& r = ls.rects[i];
+    bool carries = false;
+    switch (e.side) {
+      case Side::Top: carries = r.yhi == e.coord && r.xlo < e.hi && r.xhi > e.lo; break;
+      case Side::Bottom: carries = r.ylo == e.coord && r.xlo < e.hi && r.xhi > e.lo; break;
+      case Side::Right: carries = r.xhi == e.coord && r.ylo < e.hi && r.yhi > e.lo; break;
+      case Side::Left: carries = r.xlo == e.coord && r.ylo < e.hi && r.yhi > e.lo; break;
+    }
+    if (carries && !ls.fixed[i]) return false;
+  }
+  return true;
+}
+
 Rect clip(const Rect& a, const Rect& b) {
   return {std::max(a.xlo, b.xlo), std::max(a.ylo, b.ylo), std::min(a.xhi, b.xhi), std::min(a.yhi, b.yhi)};
 }
@@ -93,13 +113,14 @@ void checkEndOfLine(const LayerShapes& ls, MarkerSink& out) {
           if (rule.twoEdges ? !(lowSide && highSide) : !(lowSide || highSide)) continue;
         }
         const Rect window = eolWindow(e, rule.space, rule.within);
+        const bool fixedEdge = edgeFixed(ls, c, e);
         ls.index.query(window, [&](int32_t j) {
           if (ls.comp[j] == c || !overlapsOpen(ls.rects[j], window)) return;
           if (!ls.isObs(j) && ls.nets[j] == ls.nets[first]) return;  // same net: not checked
           if (touchesComponent(ls, c, ls.rects[j])) return;           // a short
           const int32_t net2 = ls.isObs(j) ? -1 : ls.nets[j];
           out.push_back({Marker{MarkerType::EndOfLine, ls.layer, clip(window, ls.rects[j]), ls.nets[first], net2},
-                         ls.compFixed[c] && ls.fixed[j]});
+                         fixedEdge && ls.fixed[j]});
         });
       }
     }

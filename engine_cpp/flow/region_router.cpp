@@ -389,14 +389,41 @@ struct RegionRouter::Impl {
       }
     }
     std::vector<MetalAnchor> anchors;
+    std::vector<PinMetal> pinMetal;
     for (const TermSpec& s : ns.terms) {
       if (s.crossing >= 0) continue;  // a free crossing is no metal
+      if (s.pinRef >= 0) continue;    // pins count by their shapes below
       for (size_t k = 0; k < s.points.size(); ++k) anchors.push_back({s.points[k], s.zs[k]});
+    }
+    for (const PlacedShape& ps : netPinShapes(ctx.tech, ctx.design, NetId(ns.task.net))) {
+      const int z = routingIndex(ps.layer);
+      if (z >= 0 && ps.rect.overlaps(box())) pinMetal.push_back({z, ps.rect});
     }
     for (const CrossingChoice& c : choices) {
       if (plan && plan->crossings[c.crossing].net == ns.task.net) anchors.push_back({c.at, c.z});
     }
-    fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, ns.result.added);
+    const int32_t net = ns.task.net;
+    auto score = [&](int z, const Rect& r) -> int64_t {
+      // Other nets' fixed shapes and routing within the layer's spacing.
+      const Dbu s = std::max(ctx.rules.layers[z]->minSpacing(), ctx.rules.eolSpace[z]);
+      const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
+      int64_t bad = 0;
+      ctx.fixedIndex.query(grown, [&](int32_t id) {
+        const DrcShape& sh = ctx.fixedShapes[id];
+        if (sh.net != net && routingIndex(sh.layer) == z && sh.rect.overlaps(grown)) bad += 10;
+      });
+      int x0, x1, y0, y1;
+      grid->xRangeOpen(grown.xlo, grown.xhi, x0, x1);
+      grid->yRangeOpen(grown.ylo, grown.yhi, y0, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const int32_t v = grid->index(x, y, z);
+          if (grid->routedNet[v] >= 0 && grid->routedNet[v] != net) bad += 10;
+          if (grid->accessNet[v] >= 0 && grid->accessNet[v] != net) bad += 5;
+        }
+      return bad;
+    };
+    fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
   }
 };

@@ -46,7 +46,8 @@ int find(std::vector<int>& parent, int i) {
 }  // namespace
 
 int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, const Rect& box,
-               const std::vector<MetalAnchor>& anchors, NetRouting& added) {
+               const std::vector<MetalAnchor>& anchors, const std::vector<PinMetal>& pins, const RepairScore& score,
+               NetRouting& added) {
   int repairs = 0;
   std::vector<RouteWire> extra;
   for (size_t z = 0; z < tracks.layers.size(); ++z) {
@@ -64,15 +65,26 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
       }
     }
     if (rects.empty()) continue;
+    const size_t routed = rects.size();  // rects[routed..] are pin metal
+    for (const PinMetal& p : pins) {
+      if (p.z == static_cast<int>(z)) rects.push_back(p.rect);
+    }
     std::vector<int> parent(rects.size());
     std::iota(parent.begin(), parent.end(), 0);
     for (size_t i = 0; i < rects.size(); ++i)
       for (size_t j = i + 1; j < rects.size(); ++j)
         if (rects[i].overlaps(rects[j])) parent[find(parent, int(i))] = find(parent, int(j));
     std::vector<std::vector<Rect>> comps(rects.size());
-    for (size_t i = 0; i < rects.size(); ++i) comps[find(parent, int(i))].push_back(rects[i]);
-    for (const std::vector<Rect>& comp : comps) {
-      if (comp.empty()) continue;
+    std::vector<int> routedCount(rects.size(), 0);
+    std::vector<Rect> firstRouted(rects.size());
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const int root = find(parent, int(i));
+      comps[root].push_back(rects[i]);
+      if (i < routed && routedCount[root]++ == 0) firstRouted[root] = rects[i];
+    }
+    for (size_t ci = 0; ci < comps.size(); ++ci) {
+      const std::vector<Rect>& comp = comps[ci];
+      if (comp.empty() || routedCount[ci] == 0) continue;
       bool anchored = false;
       for (const MetalAnchor& a : anchors) {
         if (a.z != static_cast<int>(z)) continue;
@@ -88,25 +100,37 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
       // Length the wire needs (extensions included) to reach the area alone.
       const Dbu need = static_cast<Dbu>((layer.minArea + width - 1) / width);
       const Dbu grid = tech.manufacturingGrid > 0 ? tech.manufacturingGrid : 1;
-      const bool horizontal = lt.horizontal;
-      const Dbu lo = horizontal ? bb.xlo : bb.ylo, hi = horizontal ? bb.xhi : bb.yhi;
-      const Dbu across = horizontal ? (comp.front().ylo + comp.front().yhi) / 2 : (comp.front().xlo + comp.front().xhi) / 2;
-      Dbu grow = std::max<Dbu>(0, need - (hi - lo));
-      grow = (grow + 2 * grid - 1) / (2 * grid) * grid;  // per side, on the manufacturing grid
-      Dbu a = lo - grow, b = hi + grow;
-      const Dbu boxLo = horizontal ? box.xlo : box.ylo, boxHi = horizontal ? box.xhi : box.yhi;
-      if (a < boxLo && b + (boxLo - a) <= boxHi) {  // keep the repair inside the region
-        b += boxLo - a;
-        a = boxLo;
-      } else if (b > boxHi && a - (b - boxHi) >= boxLo) {
-        a -= b - boxHi;
-        b = boxHi;
+      const Rect& f = firstRouted[ci];
+      RouteWire best;
+      int64_t bestScore = -1;
+      // Candidates: along the preferred direction first (ties keep it), then across.
+      for (int axis = 0; axis < 2; ++axis) {
+        const bool horizontal = (axis == 0) == lt.horizontal;
+        const Dbu lo = horizontal ? bb.xlo : bb.ylo, hi = horizontal ? bb.xhi : bb.yhi;
+        const Dbu across = horizontal ? (f.ylo + f.yhi) / 2 : (f.xlo + f.xhi) / 2;
+        Dbu grow = std::max<Dbu>(0, need - (hi - lo));
+        grow = (grow + 2 * grid - 1) / (2 * grid) * grid;  // per side, on the manufacturing grid
+        const Dbu boxLo = horizontal ? box.xlo : box.ylo, boxHi = horizontal ? box.xhi : box.yhi;
+        for (int shift = 0; shift < 3; ++shift) {  // centred, all low, all high
+          Dbu a = lo - (shift == 0 ? grow : shift == 1 ? 2 * grow : 0);
+          Dbu b = hi + (shift == 0 ? grow : shift == 2 ? 2 * grow : 0);
+          if (a < boxLo || b > boxHi) continue;  // keep the repair inside the region
+          RouteWire w;
+          w.layer = lt.layer;
+          w.from = horizontal ? Point{a + half, across} : Point{across, a + half};
+          w.to = horizontal ? Point{b - half, across} : Point{across, b - half};
+          if (w.from == w.to) continue;
+          Rect r;
+          routeWireRect(tech, w, r);
+          const int64_t sc = score ? score(static_cast<int>(z), r) : 0;
+          if (bestScore < 0 || sc < bestScore) {
+            bestScore = sc;
+            best = w;
+          }
+        }
       }
-      RouteWire w;
-      w.layer = lt.layer;
-      w.from = horizontal ? Point{a + half, across} : Point{across, a + half};
-      w.to = horizontal ? Point{b - half, across} : Point{across, b - half};
-      if (w.from == w.to) continue;
+      if (bestScore < 0) continue;
+      const RouteWire w = best;
       extra.push_back(w);
       ++repairs;
     }

@@ -1,10 +1,12 @@
 // Minimum-area repair of freshly routed metal: a piece of a net's new
 // routing on one layer (wires and via metal that touch) whose area is below
 // the layer's AREA gets a wire along the preferred direction, long enough to
-// reach it. Pieces touching one of the net's anchors (pin access points,
-// boundary terminals: pin metal or routing outside adds area) are left alone.
+// reach it. Pin metal of the net joins the pieces it touches and counts in
+// their area; pieces touching an anchor (a boundary terminal: the routing
+// outside adds area) are left alone.
 #pragma once
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -19,8 +21,19 @@ struct MetalAnchor {
 };
 
 // Appends the repair wires to `added.wires`; returns how many it added.
+struct PinMetal {
+  int z = 0;   // routing index
+  Rect rect;   // DBU
+};
+
+// How bad a repair rect on layer z would be (0 = harmless); the repair picks
+// the least bad of a few placements (along and across the preferred
+// direction, centred or shifted).
+using RepairScore = std::function<int64_t(int z, const Rect& rect)>;
+
 int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, const Rect& box,
-               const std::vector<MetalAnchor>& anchors, NetRouting& added);
+               const std::vector<MetalAnchor>& anchors, const std::vector<PinMetal>& pins, const RepairScore& score,
+               NetRouting& added);
 
 // Area of the union of rects (DBU^2).
 Area unionArea(const std::vector<Rect>& rects);
