@@ -8,8 +8,9 @@
 // only, at cost + kCostPlanarOnly (after every via point). On the top layer
 // planar exits are the only kind.
 //
-// Spreading: a point's spread key is (z, the coordinate of the wire leaving
-// it: x when that wire is vertical, else y). The chosen points are first the
+// Spreading: a point's spread key is the coordinate of the wire leaving it
+// (x when that wire is vertical, else y; with the axis, not the layer, so
+// that the layers of a stacked pin do not count as spread). The chosen points are first the
 // best legal point of each distinct key, then the best of the rest, at most
 // maxPoints, returned best first. The scan stops once maxPoints distinct
 // keys are known: every later candidate sorts after the points found, so the
@@ -36,12 +37,12 @@ constexpr uint8_t kAllPlanar = kAccessEast | kAccessWest | kAccessNorth | kAcces
 struct Legal {
   AccessPoint point;
   int64_t dist = 0;            // doubled DBU, to the pin's centre
-  int64_t spread = 0;          // (z, wire coordinate) packed
+  int64_t spread = 0;          // (axis, wire coordinate) packed
   bool planarKnown = false;    // planar exits already checked
 };
 
-int64_t spreadKey(const LayerAccess& la, int32_t z, Point at) {
-  return (int64_t(z) << 32) | uint32_t(la.spreadOnX ? at.x : at.y);
+int64_t spreadKey(const LayerAccess& la, Point at) {
+  return la.spreadOnX ? (int64_t(1) << 32) | uint32_t(at.x) : int64_t(uint32_t(at.y));
 }
 
 uint8_t planarDirs(const AccessChecker& checker, const LayerAccess& la, Point at, int32_t net) {
@@ -136,7 +137,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     l.point.z = c.z;
     l.point.cost = c.cost;
     l.dist = c.dist;
-    l.spread = spreadKey(la, c.z, c.at);
+    l.spread = spreadKey(la, c.at);
     if (la.hasUp()) {
       for (ViaId v : viasByFit(tech, la, pin, c.z, c.at)) {
         if (checker.viaLegal(tech.vias[*v], c.at, net, pin, c.z)) {
@@ -169,7 +170,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     l.point.dirs = planarDirs(checker, la, c.at, net);
     l.point.cost = c.cost + kCostPlanarOnly;
     l.dist = c.dist;
-    l.spread = spreadKey(la, c.z, c.at);
+    l.spread = spreadKey(la, c.at);
     l.planarKnown = true;
     if (l.point.dirs == 0) continue;
     legal.push_back(l);
