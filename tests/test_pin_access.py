@@ -369,11 +369,26 @@ def via_rows(db: Any, r: dict[str, Any], which: str) -> list[tuple[int, list[tup
     return out
 
 
-def new_markers(db: Any, rows: list[tuple[int, ...]]) -> list[dict[str, Any]]:
+def new_markers(db: Any, rows: list[tuple[int, ...]], near: int | None = None) -> list[dict[str, Any]]:
+    """Markers that the rows (vias, stubs) add to the design's shapes. With
+    `near`, only design shapes within `near` DBU of some row take part (the
+    same ones with and without the rows)."""
     base = db.drc_shapes()
-    shapes = np.array([s[:6] for s in base] + rows, dtype=np.int32)
-    origins = np.array([s[6] for s in base] + [1] * len(rows), dtype=np.int32)
-    before = {(m["type"], m["layer"], m["box"], m["nets"]) for m in _engine.check_shapes(db, shapes[: len(base)], origins[: len(base)])}
+    base_rows = np.array([s[:6] for s in base], dtype=np.int32)
+    base_origins = np.array([s[6] for s in base], dtype=np.int32)
+    if near is not None:
+        keep = np.zeros(len(base_rows), dtype=bool)
+        for _, xlo, ylo, xhi, yhi, _ in rows:
+            keep |= (
+                (base_rows[:, 1] <= xhi + near)
+                & (base_rows[:, 3] >= xlo - near)
+                & (base_rows[:, 2] <= yhi + near)
+                & (base_rows[:, 4] >= ylo - near)
+            )
+        base_rows, base_origins = base_rows[keep], base_origins[keep]
+    shapes = np.concatenate([base_rows, np.array(rows, dtype=np.int32).reshape(-1, 6)])
+    origins = np.concatenate([base_origins, np.ones(len(rows), dtype=np.int32)])
+    before = {(m["type"], m["layer"], m["box"], m["nets"]) for m in _engine.check_shapes(db, base_rows, base_origins)}
     after = _engine.check_shapes(db, shapes, origins, skip_fixed_pairs=True)
     # Min area is the router's wire's business; pin-pin markers (already
     # there without the vias) are not the vias' doing.
@@ -406,3 +421,66 @@ def test_every_via_adds_no_marker(loaded_design: Any) -> None:
     assert sum(len(b) for b in batches) == 3 * 66
     for rows in batches:
         assert new_markers(db, rows) == []
+
+
+def exit_rows(db: Any, r: dict[str, Any], k: int, net: int) -> list[tuple[int, ...]]:
+    """Every exit of point k: its via's shapes, and its planar stubs (min width,
+    one preferred pitch long, from the point), as drc shape rows on `net`."""
+    layers = db.layers()
+    lef_of = {l["routing_index"]: i for i, l in enumerate(layers) if l["routing_index"] >= 0}
+    index_of = {l["name"]: i for i, l in enumerate(layers)}
+    rows: list[tuple[int, ...]] = []
+    x, y, z, dirs, _ = map(int, r["points"][k])
+    if dirs & UP:
+        for l, a, b, c, d in db.via(r["via_names"][int(r["via"][k])])["shapes"]:
+            rows.append((index_of[l], a + x, b + y, c + x, d + y, net))
+    info = layers[lef_of[z]]
+    w = info["min_width"] or info["width"]
+    h = w // 2
+    length = stub_length(db, info)
+    for bit, rect in (
+        (EAST, (x - h, y - h, x + length, y - h + w)),
+        (WEST, (x - length, y - h, x - h + w, y - h + w)),
+        (NORTH, (x - h, y - h, x - h + w, y + length)),
+        (SOUTH, (x - h, y - length, x - h + w, y - h + w)),
+    ):
+        if dirs & bit:
+            rows.append((lef_of[z], *rect, net))
+    return rows
+
+
+def stub_length(db: Any, info: dict[str, Any]) -> int:
+    """The smallest step between the layer's preferred tracks (its pitch when none)."""
+    axis = "Y" if info["direction"] == "HORIZONTAL" else "X"
+    steps = [t["step"] for t in db.tracks() if t["layer"] == info["name"] and t["axis"] == axis and t["count"] > 1]
+    return min(steps) if steps else max(info["pitch"])
+
+
+@pytest.mark.parametrize(("name", "io_pins"), [("ispd18_sample3", 5), ("ispd19_test3", 57)])
+def test_io_pin_exits_add_no_marker(loaded_design: Any, name: str, io_pins: int) -> None:
+    # IO pins are checked against the design around them (pad cells, rings):
+    # every exit of every point, vias and planar stubs, adds no marker.
+    db = loaded_design(name, use_guide=False).engine
+    r = db.pin_access()
+    refs = np.asarray(db.pin_refs)
+    net_start = np.asarray(db.net_pin_start)
+    net_of = np.repeat(np.arange(len(net_start) - 1), np.diff(net_start))
+    io = [ref for ref in range(len(refs)) if refs[ref][0] < 0]
+    assert len(io) == io_pins
+    batches: list[list[tuple[int, ...]]] = []
+    placed: list[list[tuple[int, int]]] = []
+    for ref in io:
+        for k in range(r["start"][ref], r["start"][ref + 1]):  # alternatives: never in one batch
+            x, y = (int(v) for v in r["points"][k][:2])
+            rows = exit_rows(db, r, k, int(net_of[ref]))
+            assert rows
+            for b, where in enumerate(placed):
+                if all(abs(x - px) + abs(y - py) >= 5000 for px, py in where):
+                    batches[b] += rows
+                    where.append((x, y))
+                    break
+            else:
+                batches.append(rows)
+                placed.append([(x, y)])
+    for rows in batches:
+        assert new_markers(db, rows, near=3000) == []
