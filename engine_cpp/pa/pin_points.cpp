@@ -3,8 +3,8 @@
 // Candidates are visited best first (cost, distance to the pin's centre,
 // higher z, x, y). A candidate on a layer with vias up is legal with the
 // first via whose cuts lie in the pin's metal and that adds no marker, vias
-// tried in order of their bottom metal's area outside the pin (then DEFAULT
-// first, then LEF order); otherwise it may still be legal with planar exits
+// tried DEFAULT first, then by their bottom metal's area outside the pin,
+// then in LEF order; otherwise it may still be legal with planar exits
 // only, at cost + kCostPlanarOnly (after every via point). On the top layer
 // planar exits are the only kind.
 //
@@ -84,24 +84,31 @@ AccessPoint fallbackPoint(const std::vector<LayerAccess>& layers, const std::vec
   return p;
 }
 
-// The layer's vias up ordered by how much of their bottom metal at `at`
-// lies outside the pin (least first: a via inside the pin makes no new
-// line ends), then DEFAULT first and LEF order.
+// The layer's vias up: DEFAULT ones first, each group ordered by how much of
+// their bottom metal at `at` lies outside the pin (least first: a via inside
+// the pin makes no new line ends), then LEF order.
 std::vector<ViaId> viasByFit(const Tech& tech, const LayerAccess& la, const std::vector<PinRect>& pin, int32_t z,
                              Point at) {
-  std::vector<std::pair<Area, ViaId>> order;
+  struct Ranked {
+    bool nonDefault;
+    Area outside;  // DBU^2
+    ViaId via;
+  };
+  std::vector<Ranked> order;
   order.reserve(la.upVias.size());
   for (ViaId v : la.upVias) {
     const Via& via = tech.vias[*v];
     Area outside = 0;
     for (const ViaShape& s : via.shapes)
       if (s.layer == via.bottom) outside += uncoveredArea(pin, z, s.rect.translated(at));
-    order.push_back({outside, v});
+    order.push_back({!via.isDefault, outside, v});
   }
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(order.begin(), order.end(), [](const Ranked& a, const Ranked& b) {
+    return std::tie(a.nonDefault, a.outside) < std::tie(b.nonDefault, b.outside);
+  });
   std::vector<ViaId> out;
   out.reserve(order.size());
-  for (const auto& [area, v] : order) out.push_back(v);
+  for (const Ranked& r : order) out.push_back(r.via);
   return out;
 }
 
