@@ -14,6 +14,9 @@
 // surroundings differ. With no usable period (no tracks, or an LCM beyond
 // kMaxPeriod) the key is the exact location. A class is computed on its
 // first component (in DEF order) and stored relative to its location.
+//
+// An IO pin is computed on its own, against the design's shapes around it
+// (pad cells, rings, other pins), with its net's id.
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -22,6 +25,7 @@
 #include <thread>
 #include <tuple>
 
+#include "drc/layer_shapes.hpp"
 #include "pa/pa_internal.hpp"
 
 namespace xroute {
@@ -56,6 +60,7 @@ struct ClassKey {
 struct PinJob {
   CompId comp;                 // the class's first component; invalid for an IO pin
   int32_t ioPin = -1;          // IoPinId value for an IO pin job
+  int32_t net = -1;            // NetId value of an IO pin's net (its id among the design's shapes)
   std::vector<int32_t> pins;   // macro pin indices to compute (component jobs)
 };
 
@@ -180,20 +185,55 @@ JobResult runComponentJob(const Tech& tech, const Design& design, const std::vec
   return out;
 }
 
+// What IO pins are checked against: every metal and cut shape of the design
+// (collectDesignShapes: pins with their nets' ids, OBS, special nets), near
+// the pin. IO pins sit at the die edge under pad cells and power rings, so
+// unlike a cell's pins they cannot be judged alone.
+struct IoSurroundings {
+  std::vector<DrcShape> shapes;
+  BoxIndex index;   // over shapes
+  Dbu margin = 0;   // DBU: how far from the pin a shape may matter
+};
+
+IoSurroundings ioSurroundings(const Tech& tech, const Design& design, const std::vector<pa::LayerAccess>& layers) {
+  IoSurroundings s;
+  s.shapes = collectDesignShapes(tech, design);
+  std::vector<Rect> rects;
+  rects.reserve(s.shapes.size());
+  for (const DrcShape& d : s.shapes) rects.push_back(d.rect);
+  s.index = BoxIndex(std::move(rects));
+  Dbu range = 0, reach = 0, via = 0;
+  for (const Layer& l : tech.layers) range = std::max(range, drc::interactionRange(l));
+  for (const pa::LayerAccess& la : layers) reach = std::max(reach, la.stubLength + la.stubWidth);
+  for (const Via& v : tech.vias)
+    for (const ViaShape& vs : v.shapes)
+      via = std::max({via, -vs.rect.xlo, -vs.rect.ylo, vs.rect.xhi, vs.rect.yhi});
+  s.margin = range + std::max(reach, via) + 1;
+  return s;
+}
+
 JobResult runIoJob(const Tech& tech, const Design& design, const std::vector<pa::LayerAccess>& layers,
-                   const PinJob& job, int maxPoints) {
+                   const IoSurroundings& around, const PinJob& job, int maxPoints) {
   const IoPin& pin = design.ioPins[job.ioPin];
   const Transform t{pin.location, pin.orient, 0, 0};
   std::vector<DrcShape> context;
   std::vector<PinRect> metal;
+  Rect box;
   for (const IoPinShape& s : pin.shapes) {
     const Rect r = t.apply(s.rect);
-    context.push_back({s.layer, r, 0, ShapeOrigin::Pin});
+    if (context.empty()) box = r;
+    box.expandToInclude(r);
+    context.push_back({s.layer, r, job.net, ShapeOrigin::Pin});
     const int32_t z = tech.layer(s.layer).routingIndex;
     if (z >= 0) metal.push_back({z, r});
   }
+  if (!context.empty()) {
+    const Dbu m = around.margin;
+    around.index.query(Rect{box.xlo - m, box.ylo - m, box.xhi + m, box.yhi + m},
+                       [&](int32_t i) { context.push_back(around.shapes[i]); });
+  }
   const pa::AccessChecker checker(tech, std::move(context), design.dieArea);
-  pa::PinPointsResult r = pa::choosePinPoints(tech, layers, checker, metal, 0, maxPoints);
+  pa::PinPointsResult r = pa::choosePinPoints(tech, layers, checker, metal, job.net, maxPoints);
   JobResult out;
   out.points.push_back(std::move(r.points));
   out.fallback.push_back(r.fallback);
@@ -213,12 +253,14 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
   std::vector<int32_t> compClass(design.components.size(), -1);
   std::vector<int32_t> ioJob(design.ioPins.size(), -1);
   std::vector<PinJob> jobs;
+  int32_t net = 0;
   for (int32_t r = 0; r < refs; ++r) {
     const PinRef& ref = design.pinRefs[r];
+    while (net + 1 < int32_t(design.netPinStart.size()) && design.netPinStart[net + 1] <= r) ++net;
     if (ref.isIo()) {
       if (ioJob[ref.pin] < 0) {
         ioJob[ref.pin] = int32_t(jobs.size());
-        jobs.push_back({CompId(), ref.pin, {}});
+        jobs.push_back({CompId(), ref.pin, net, {}});
       }
       continue;
     }
@@ -228,7 +270,7 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
       ClassKey key = classKey(tech, design, macroInfo(tech, design, layers, infos, c.macro), c);
       if (!settings.shareClasses) key = ClassKey{*ref.comp, 0, 0, 0, {}};
       auto [it, fresh] = classOf.try_emplace(key, int32_t(jobs.size()));
-      if (fresh) jobs.push_back({ref.comp, -1, {}});
+      if (fresh) jobs.push_back({ref.comp, -1, -1, {}});
       cls = it->second;
     }
     jobs[cls].pins.push_back(ref.pin);
@@ -240,6 +282,8 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
 
   // Compute the jobs, each into its own slot: the result does not depend on
   // the number of threads.
+  const bool anyIo = std::any_of(jobs.begin(), jobs.end(), [](const PinJob& j) { return !j.comp.valid(); });
+  const IoSurroundings around = anyIo ? ioSurroundings(tech, design, layers) : IoSurroundings{};
   std::vector<JobResult> results(jobs.size());
   const int maxPoints = std::max(settings.maxPointsPerPin, 1);
   std::atomic<size_t> next{0};
@@ -249,7 +293,7 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
     for (size_t j; !failed && (j = next.fetch_add(1)) < jobs.size();) {
       try {
         results[j] = jobs[j].comp.valid() ? runComponentJob(tech, design, layers, jobs[j], maxPoints)
-                                          : runIoJob(tech, design, layers, jobs[j], maxPoints);
+                                          : runIoJob(tech, design, layers, around, jobs[j], maxPoints);
       } catch (...) {
         if (!failed.exchange(true)) failure = std::current_exception();
       }

@@ -25,7 +25,8 @@ struct AccessPoint {
   int32_t z = 0;         // routing index of the pin shape's layer
   uint8_t dirs = 0;      // AccessDir bits
   ViaId upVia;           // LEF via used for kAccessUp (legal at this point)
-  int32_t cost = 0;      // 0 = on-track in both axes; larger = worse (half-track, centre, ...)
+  int32_t cost = 0;      // 0 = on-track in both axes; + 1 / 2 / 3 per half-track / centre /
+                         // enclosed-edge coordinate; + 8 planar exits only; 100 = fallback
 };
 
 struct PinAccessSettings {
@@ -50,7 +51,9 @@ struct PinAccessTable {
 // orientation, position modulo the track pitches) are computed once and
 // reused. Every pin with at least one shape on a routing layer gets at least
 // one point (a fallback at the centre of its largest shape when no legal
-// point exists; such points have a high cost).
+// point exists; such points have a high cost). Legality is checked against
+// the pin's own component only (its other pins and OBS); an IO pin against
+// every design shape around it (pad cells, rings); see pa/README.md.
 PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
                                 const PinAccessSettings& settings);
 

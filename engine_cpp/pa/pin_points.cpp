@@ -3,13 +3,14 @@
 // Candidates are visited best first (cost, distance to the pin's centre,
 // higher z, x, y). A candidate on a layer with vias up is legal with the
 // first via whose cuts lie in the pin's metal and that adds no marker, vias
-// tried in order of their bottom metal's area outside the pin (then DEFAULT
-// first, then LEF order); otherwise it may still be legal with planar exits
+// tried DEFAULT first, then by their bottom metal's area outside the pin,
+// then in LEF order; otherwise it may still be legal with planar exits
 // only, at cost + kCostPlanarOnly (after every via point). On the top layer
 // planar exits are the only kind.
 //
-// Spreading: a point's spread key is (z, the coordinate of the wire leaving
-// it: x when that wire is vertical, else y). The chosen points are first the
+// Spreading: a point's spread key is the coordinate of the wire leaving it
+// (x when that wire is vertical, else y; with the axis, not the layer, so
+// that the layers of a stacked pin do not count as spread). The chosen points are first the
 // best legal point of each distinct key, then the best of the rest, at most
 // maxPoints, returned best first. The scan stops once maxPoints distinct
 // keys are known: every later candidate sorts after the points found, so the
@@ -36,12 +37,12 @@ constexpr uint8_t kAllPlanar = kAccessEast | kAccessWest | kAccessNorth | kAcces
 struct Legal {
   AccessPoint point;
   int64_t dist = 0;            // doubled DBU, to the pin's centre
-  int64_t spread = 0;          // (z, wire coordinate) packed
+  int64_t spread = 0;          // (axis, wire coordinate) packed
   bool planarKnown = false;    // planar exits already checked
 };
 
-int64_t spreadKey(const LayerAccess& la, int32_t z, Point at) {
-  return (int64_t(z) << 32) | uint32_t(la.spreadOnX ? at.x : at.y);
+int64_t spreadKey(const LayerAccess& la, Point at) {
+  return la.spreadOnX ? (int64_t(1) << 32) | uint32_t(at.x) : int64_t(uint32_t(at.y));
 }
 
 uint8_t planarDirs(const AccessChecker& checker, const LayerAccess& la, Point at, int32_t net) {
@@ -83,24 +84,31 @@ AccessPoint fallbackPoint(const std::vector<LayerAccess>& layers, const std::vec
   return p;
 }
 
-// The layer's vias up ordered by how much of their bottom metal at `at`
-// lies outside the pin (least first: a via inside the pin makes no new
-// line ends), then DEFAULT first and LEF order.
+// The layer's vias up: DEFAULT ones first, each group ordered by how much of
+// their bottom metal at `at` lies outside the pin (least first: a via inside
+// the pin makes no new line ends), then LEF order.
 std::vector<ViaId> viasByFit(const Tech& tech, const LayerAccess& la, const std::vector<PinRect>& pin, int32_t z,
                              Point at) {
-  std::vector<std::pair<Area, ViaId>> order;
+  struct Ranked {
+    bool nonDefault;
+    Area outside;  // DBU^2
+    ViaId via;
+  };
+  std::vector<Ranked> order;
   order.reserve(la.upVias.size());
   for (ViaId v : la.upVias) {
     const Via& via = tech.vias[*v];
     Area outside = 0;
     for (const ViaShape& s : via.shapes)
       if (s.layer == via.bottom) outside += uncoveredArea(pin, z, s.rect.translated(at));
-    order.push_back({outside, v});
+    order.push_back({!via.isDefault, outside, v});
   }
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(order.begin(), order.end(), [](const Ranked& a, const Ranked& b) {
+    return std::tie(a.nonDefault, a.outside) < std::tie(b.nonDefault, b.outside);
+  });
   std::vector<ViaId> out;
   out.reserve(order.size());
-  for (const auto& [area, v] : order) out.push_back(v);
+  for (const Ranked& r : order) out.push_back(r.via);
   return out;
 }
 
@@ -136,7 +144,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     l.point.z = c.z;
     l.point.cost = c.cost;
     l.dist = c.dist;
-    l.spread = spreadKey(la, c.z, c.at);
+    l.spread = spreadKey(la, c.at);
     if (la.hasUp()) {
       for (ViaId v : viasByFit(tech, la, pin, c.z, c.at)) {
         if (checker.viaLegal(tech.vias[*v], c.at, net, pin, c.z)) {
@@ -169,7 +177,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     l.point.dirs = planarDirs(checker, la, c.at, net);
     l.point.cost = c.cost + kCostPlanarOnly;
     l.dist = c.dist;
-    l.spread = spreadKey(la, c.z, c.at);
+    l.spread = spreadKey(la, c.at);
     l.planarKnown = true;
     if (l.point.dirs == 0) continue;
     legal.push_back(l);
