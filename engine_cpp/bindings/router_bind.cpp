@@ -95,7 +95,7 @@ void bindRouter(nb::module_& m) {
   m.def(
       "route",
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
-         nb::object policy_fn, nb::object progress) {
+         nb::object policy_fn, nb::object progress, nb::dict costs) {
         if (region_size < 1) throw nb::value_error("region_size must be >= 1");
         if (iterations < 1 || iterations > 64) throw nb::value_error("iterations must be in 1..64");
         if (threads < 1) throw nb::value_error("threads must be >= 1");
@@ -108,6 +108,21 @@ void bindRouter(nb::module_& m) {
         s.regionSize = region_size;
         s.iterations = iterations;
         s.threads = threads;
+        for (auto [k, v] : costs) {
+          const std::string key = nb::cast<std::string>(k);
+          const int64_t val = nb::cast<int64_t>(v);
+          if (key == "via_cost") s.costs.viaCost = val;
+          else if (key == "wrong_way_factor") s.costs.wrongWayFactor = val;
+          else if (key == "out_of_guide_factor") s.costs.outOfGuideFactor = val;
+          else if (key == "fixed_penalty") s.costs.fixedPenalty = val;
+          else if (key == "use_penalty") s.costs.usePenalty = val;
+          else if (key == "bottom_layer_factor") s.costs.bottomLayerFactor = val;
+          else if (key == "reserve_penalty") s.costs.reservePenalty = val;
+          else if (key == "use_penalty_step") s.usePenaltyStep = val;
+          else if (key == "marker_penalty") s.markerPenalty = val;
+          else if (key == "history_penalty") s.historyPenalty = val;
+          else throw nb::value_error(("unknown cost setting '" + key + "'").c_str());
+        }
         const int dbu = db.design.dbuPerMicron;
         RouteProgress cb;
         if (!progress.is_none()) {
@@ -130,8 +145,10 @@ void bindRouter(nb::module_& m) {
         return result;
       },
       "db"_a, "region_size"_a = 3, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
-      "policy_fn"_a = nb::none(), "progress"_a = nb::none(),
+      "policy_fn"_a = nb::none(), "progress"_a = nb::none(), "costs"_a = nb::dict(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
       "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, "
-      "regions_done, regions_total) is called after each batch of regions. Returns {'iterations': [report, ...]}.");
+      "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
+      "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
+      "reserve_penalty, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.");
 }

@@ -83,9 +83,15 @@ void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r,
   if (rules.eolSpace[z] > 0) {
     if (rules.horizontal[z]) {
       wireEol = {r.xlo - e - half, r.ylo - w - half, r.xhi + e + half, r.yhi + w + half};
-      viaEol = {r.xlo - e - m.xhi, r.ylo - w - m.yhi, r.xhi + e - m.xlo, r.yhi + w - m.ylo};
     } else {
       wireEol = {r.xlo - w - half, r.ylo - e - half, r.xhi + w + half, r.yhi + e + half};
+    }
+    // Via metal has its line ends across its long axis, which need not be
+    // the layer's preferred direction.
+    const bool viaAlongX = m.width() != m.height() ? m.width() > m.height() : bool(rules.horizontal[z]);
+    if (viaAlongX) {
+      viaEol = {r.xlo - e - m.xhi, r.ylo - w - m.yhi, r.xhi + e - m.xlo, r.yhi + w - m.ylo};
+    } else {
       viaEol = {r.xlo - w - m.xhi, r.ylo - e - m.yhi, r.xhi + w - m.xlo, r.yhi + e - m.ylo};
     }
   }
