@@ -15,6 +15,7 @@ namespace {
 struct TermSpec {
   std::vector<Point> points;  // DBU
   std::vector<int> zs;        // routing index per point
+  std::vector<int64_t> exitCost;  // free crossings: per point, distance from where the far side wants it
   bool joined = true;
   int32_t pinRef = -1;        // pin terminals
   int32_t crossing = -1;      // free crossing terminals (iteration 0)
@@ -113,6 +114,21 @@ struct RegionRouter::Impl {
     const RegionGrid& g = *grid;
     const bool edgeIsX = c.vertical;  // vertical edge x = coord: horizontal layers cross it
     Dbu lo = c.lo, hi = c.hi;
+    // Where along the edge the net's pins beyond it lie: crossing there
+    // keeps the route short on the far side.
+    const bool farIsHigh = c.regionA == task.region.id;
+    bool anyFar = false;
+    Dbu wantLo = 0, wantHi = 0;
+    const Design& d = ctx.design;
+    for (int32_t pin = d.netPinStart[c.net]; pin < d.netPinStart[c.net + 1]; ++pin) {
+      if (ctx.access.count(pin) == 0) continue;
+      const Point p = ctx.access.begin(pin)->at;
+      const Dbu across = c.vertical ? p.x : p.y, along = c.vertical ? p.y : p.x;
+      if (farIsHigh ? across <= c.coord : across >= c.coord) continue;
+      wantLo = anyFar ? std::min(wantLo, along) : along;
+      wantHi = anyFar ? std::max(wantHi, along) : along;
+      anyFar = true;
+    }
     auto collect = [&](uint32_t mask) {
       for (int z = 0; z < g.nz(); ++z) {
         if (!(mask & (1u << z))) continue;
@@ -121,6 +137,7 @@ struct RegionRouter::Impl {
         for (Dbu t : tracksIn(lt.pref, lo, hi)) {
           spec.points.push_back(edgeIsX ? Point{c.coord, t} : Point{t, c.coord});
           spec.zs.push_back(z);
+          spec.exitCost.push_back(anyFar ? (t < wantLo ? wantLo - t : (t > wantHi ? t - wantHi : 0)) : 0);
         }
       }
     };
@@ -351,12 +368,19 @@ struct RegionRouter::Impl {
         if (s.joined != (pass == 0)) continue;
         MazeTerminal mt;
         mt.joined = s.joined;
+        std::vector<std::pair<int32_t, int64_t>> nodes;
         for (size_t k = 0; k < s.points.size(); ++k) {
           const int32_t v = nodeAt(s.points[k], s.zs[k]);
-          if (v >= 0 && g.exists(v)) mt.nodes.push_back(v);
+          if (v >= 0 && g.exists(v)) nodes.push_back({v, k < s.exitCost.size() ? s.exitCost[k] : 0});
         }
-        std::sort(mt.nodes.begin(), mt.nodes.end());
-        mt.nodes.erase(std::unique(mt.nodes.begin(), mt.nodes.end()), mt.nodes.end());
+        std::sort(nodes.begin(), nodes.end());
+        nodes.erase(std::unique(nodes.begin(), nodes.end(),
+                                [](const auto& a, const auto& b) { return a.first == b.first; }),
+                    nodes.end());
+        for (const auto& [v, cost] : nodes) {
+          mt.nodes.push_back(v);
+          mt.exitCost.push_back(cost);
+        }
         mn.terminals.push_back(std::move(mt));
         termOfSpec.push_back(static_cast<int32_t>(t));
       }
@@ -423,7 +447,7 @@ struct RegionRouter::Impl {
         }
       return bad;
     };
-    fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
+    if (!getenv("XR_NOFIX")) fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
   }
 };

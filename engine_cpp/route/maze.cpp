@@ -29,7 +29,7 @@ class Search {
   bool own(int32_t v) const { return g_.accessNet[v] == net_.net; }
   int64_t heuristic(int32_t v) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
-  int32_t searchRound(const std::vector<int32_t>& sources);
+  int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
              std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
 
@@ -80,7 +80,9 @@ void Search::relax(int32_t u, int32_t v, int64_t step,
                    std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>,
                                        std::greater<>>& open) {
   if (ws_.closed[v] == ws_.stamp) return;
-  const int64_t nc = ws_.cost[u] + step;
+  int64_t nc = ws_.cost[u] + step;
+  const int32_t t = ws_.terminalOf[v];
+  if (t >= 0 && !reached_[t]) nc += ws_.exitCost[v];
   if (ws_.seen[v] == ws_.stamp && ws_.cost[v] <= nc) return;
   ws_.seen[v] = ws_.stamp;
   ws_.cost[v] = nc;
@@ -88,14 +90,14 @@ void Search::relax(int32_t u, int32_t v, int64_t step,
   open.push({nc + heuristic(v), v});
 }
 
-int32_t Search::searchRound(const std::vector<int32_t>& sources) {
+int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCost) {
   ++ws_.stamp;
   std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>, std::greater<>> open;
   for (int32_t s : sources) {
     ws_.seen[s] = ws_.stamp;
-    ws_.cost[s] = 0;
+    ws_.cost[s] = withExitCost ? ws_.exitCost[s] : 0;
     ws_.parent[s] = -1;
-    open.push({heuristic(s), s});
+    open.push({ws_.cost[s] + heuristic(s), s});
   }
   const int nx = g_.nx(), ny = g_.ny(), nz = g_.nz();
   while (!open.empty()) {
@@ -157,6 +159,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
     ws_.closed.assign(n, 0);
     ws_.inTree.assign(n, 0);
     ws_.terminalOf.assign(n, -1);
+    ws_.exitCost.assign(n, 0);
     ws_.stamp = 0;
     ws_.treeStamp = 0;
   }
@@ -166,8 +169,13 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
   termBox_.assign(nt, Rect{});
   for (size_t t = 0; t < nt; ++t) {
     bool first = true;
-    for (int32_t v : net_.terminals[t].nodes) {
-      if (ws_.terminalOf[v] < 0) ws_.terminalOf[v] = static_cast<int32_t>(t);
+    const MazeTerminal& term = net_.terminals[t];
+    for (size_t k = 0; k < term.nodes.size(); ++k) {
+      const int32_t v = term.nodes[k];
+      if (ws_.terminalOf[v] < 0) {
+        ws_.terminalOf[v] = static_cast<int32_t>(t);
+        ws_.exitCost[v] = k < term.exitCost.size() ? term.exitCost[k] : 0;
+      }
       const Point p = g_.point(v);
       const Rect r{p.x, p.y, p.x, p.y};
       if (first) termBox_[t] = r;
@@ -191,7 +199,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
     }
     bool firstRound = true;
     while (std::find(reached_.begin(), reached_.end(), 0) != reached_.end()) {
-      const int32_t hit = searchRound(tree);
+      const int32_t hit = searchRound(tree, firstRound && alternatives);
       if (hit < 0) break;
       std::vector<int32_t> path;
       for (int32_t v = hit; v >= 0; v = ws_.parent[v]) path.push_back(v);
@@ -221,7 +229,10 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
   }
   for (size_t t = 0; t < nt; ++t) {
     if (!reached_[t]) ++unreached;
-    for (int32_t v : net_.terminals[t].nodes) ws_.terminalOf[v] = -1;
+    for (int32_t v : net_.terminals[t].nodes) {
+      ws_.terminalOf[v] = -1;
+      ws_.exitCost[v] = 0;
+    }
   }
   return unreached;
 }

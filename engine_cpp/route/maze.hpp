@@ -25,6 +25,7 @@ struct MazeTerminal {
   std::vector<int32_t> nodes;  // grid nodes; reaching any one of them connects the terminal
   bool joined = true;          // true: the nodes are one conductor (a pin's access points, a via's
                                // two layers), so all of them join the tree; false: alternatives
+  std::vector<int64_t> exitCost;  // optional, per node: cost added when the route ends there
 };
 
 struct MazeNet {
@@ -41,6 +42,7 @@ struct MazeWorkspace {
   std::vector<uint32_t> closed;   // stamp: expanded
   std::vector<uint32_t> inTree;   // stamp of the net being routed
   std::vector<int32_t> terminalOf;
+  std::vector<int64_t> exitCost;
   uint32_t stamp = 0;
   uint32_t treeStamp = 0;
 };
