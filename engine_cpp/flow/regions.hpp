@@ -9,8 +9,9 @@
 namespace xroute {
 
 // GCell boundaries along x and y (DBU, sorted, first = die low edge, last =
-// die high edge): from DEF GCELLGRID, else from the guides' edges, else every
-// 15 pitches of the lowest layer with tracks in that direction.
+// die high edge): from DEF GCELLGRID, else a regular grid at the guides' most
+// common size, else every 15 pitches of the lowest layer with tracks in that
+// direction.
 struct GCellGrid {
   std::vector<Dbu> xs;
   std::vector<Dbu> ys;
