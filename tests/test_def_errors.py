@@ -128,6 +128,11 @@ def test_truncated(lef: Path, tmp_path: Path) -> None:
     assert e.line == 11 and "unexpected end of file" in e.message
 
 
+def test_missing_design_statement(lef: Path, tmp_path: Path) -> None:
+    e = _error(lef, tmp_path, _with(4, "# no DESIGN statement"))
+    assert e.line == 24 and e.message == "missing DESIGN statement before END DESIGN"
+
+
 def test_garbage_after_end_design(lef: Path, tmp_path: Path) -> None:
     e = _error(lef, tmp_path, GOOD + ["junk"])
     assert e.line == 25 and "after END DESIGN" in e.message

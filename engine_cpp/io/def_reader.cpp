@@ -155,12 +155,14 @@ void DefParser::skipSection(std::string_view keyword) {
 void DefParser::parse() {
   design_.netPinStart.assign(1, 0);
   bool ended = false;
+  bool named = false;
   while (!lex_.atEnd()) {
     const Token t = lex_.next();
     if (t.quoted) unexpected(t, "a DEF statement");
     const std::string_view k = t.text;
     if (k == "END") {
       lex_.expect("DESIGN");
+      if (!named) lex_.failAt(t, "missing DESIGN statement before END DESIGN");
       ended = true;
       break;
     } else if (k == "VERSION") {
@@ -174,6 +176,7 @@ void DefParser::parse() {
       lex_.expect(";");
     } else if (k == "DESIGN") {
       design_.name = lex_.word("a design name");
+      named = true;
       lex_.expect(";");
     } else if (k == "UNITS") {
       readUnits();
