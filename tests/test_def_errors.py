@@ -91,6 +91,8 @@ def test_good_design_loads(lef: Path, tmp_path: Path) -> None:
         (21, "  + ROUTED Metal3 ( 1000 1000 ) ( 3000 1000 ) VIA12_1C ( 3000 2000 )", "does not connect"),
         (5, "UNITS DISTANCE MICRONS 1000 ;", "differs from the LEF"),
         (7, "FOO bar ;", "expected a DEF statement, found 'FOO'"),
+        (2, "DIVIDERCHAR / ;", "expected a divider character in double quotes, found '/'"),
+        (3, 'BUSBITCHARS "[" ;', "expected bus bit characters in double quotes, found '['"),
     ],
 )
 def test_bad_line(lef: Path, tmp_path: Path, line: int, text: str, message: str) -> None:

@@ -129,6 +129,14 @@ bool DefParser::atSectionEnd(std::string_view section, int declared, int found) 
   return true;
 }
 
+std::string DefParser::quotedChars(size_t count, const std::string& what) {
+  const Token t = lex_.next();
+  bool ok = t.quoted && t.text.size() == count;
+  for (char c : t.text) ok = ok && c > ' ' && c < 127 && c != '"' && c != '\\';
+  if (!ok) lex_.failAt(t, "expected " + what + " in double quotes, found " + quoteToken(t.text));
+  return std::string(t.text);
+}
+
 void DefParser::skipToOptionEnd() {
   while (true) {
     const Token& t = lex_.peek();
@@ -169,10 +177,10 @@ void DefParser::parse() {
       design_.version = lex_.word("a version number");
       lex_.expect(";");
     } else if (k == "DIVIDERCHAR") {
-      design_.dividerChar = lex_.word("a divider character");
+      design_.dividerChar = quotedChars(1, "a divider character");
       lex_.expect(";");
     } else if (k == "BUSBITCHARS") {
-      design_.busBitChars = lex_.word("bus bit characters");
+      design_.busBitChars = quotedChars(2, "bus bit characters");
       lex_.expect(";");
     } else if (k == "DESIGN") {
       design_.name = lex_.word("a design name");
