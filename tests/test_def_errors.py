@@ -93,6 +93,9 @@ def test_good_design_loads(lef: Path, tmp_path: Path) -> None:
         (7, "FOO bar ;", "expected a DEF statement, found 'FOO'"),
         (2, "DIVIDERCHAR / ;", "expected a divider character in double quotes, found '/'"),
         (3, 'BUSBITCHARS "[" ;', "expected bus bit characters in double quotes, found '['"),
+        (4, 'DESIGN "tiny" ;', "expected a design name, found the quoted string 'tiny'"),
+        (10, '- "u 1" OR4X1 + PLACED ( 400 0 ) N ;', "expected a component name, found the quoted string 'u 1'"),
+        (19, '- "n1" ( PIN in1 ) ( u1 D ) ;', "expected a net name, found the quoted string 'n1'"),
     ],
 )
 def test_bad_line(lef: Path, tmp_path: Path, line: int, text: str, message: str) -> None:

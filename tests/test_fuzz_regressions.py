@@ -7,8 +7,12 @@ fuzz file and a line inside it - never crash, hang or raise anything else. A DEF
 that loads must also survive the round trip the DEF fuzz target checks: written
 back, re-read, and equal.
 
-Files named after a bug are inputs that failed before that bug was fixed (see
-test_fixed_bugs); the others are corpus inputs that reach error paths.
+The DEF files named after a bug (see test_fixed_bugs) failed the round trip
+before that bug was fixed: no_design_statement.def is the fuzzer's minimized
+crash; the other three are minimal hand-written inputs of the same bug classes
+(the fuzzer's own were not kept, or, for quoted names, found by reviewing the
+code after those crashes). The other files are libFuzzer corpus inputs that
+reach error paths of the readers.
 """
 
 from __future__ import annotations
@@ -75,6 +79,10 @@ def test_fixed_bugs(testcase, tmp_path: Path) -> None:
     with pytest.raises(InputError) as e:
         _engine.load([lef], str(HERE / "def" / "dividerchar_with_quote.def"))
     assert e.value.line == 2 and "divider character in double quotes" in e.value.message
+    # A quoted (here empty) name was kept and written without quotes: "DESIGN  ;".
+    with pytest.raises(InputError) as e:
+        _engine.load([lef], str(HERE / "def" / "quoted_design_name.def"))
+    assert (e.value.line, e.value.message) == (1, "expected a design name, found the quoted string ''")
     # A DEF without UNITS and DIEAREA was written with "UNITS DISTANCE MICRONS 0", which did not re-read.
     db = _engine.load([lef], str(HERE / "def" / "no_units_no_diearea.def"))
     assert (db.design_name, db.dbu_per_micron, db.die_area) == ("d", 0, (0, 0, 0, 0))
