@@ -72,6 +72,7 @@ def test_info_table_of_ispd18_sample(runner: CliRunner, testcase) -> None:
     assert "(83600, 71820) - (104400, 91200)" in _line(out, "die area (DBU)")
     assert "10.4 x 9.69" in _line(out, "die area (µm)")
     assert "Metal1" in out and "ROUTING" in out
+    assert "49" in _line(out, "warnings")
 
 
 def test_info_json_of_ispd18_sample(runner: CliRunner, testcase) -> None:
@@ -91,6 +92,9 @@ def test_info_json_of_ispd18_sample(runner: CliRunner, testcase) -> None:
     assert data["pins"]["total"] == data["counts"]["net_pins"]
     assert isinstance(data["guides"], int) and data["guides"] > 0
     assert [layer["name"] for layer in data["layers"] if layer["type"] == "ROUTING"][0] == "Metal1"
+    # LEF: USEMINSPACING 1 + FOREIGN 16 + PIN SHAPE 32 skipped, each a warning.
+    assert data["warnings"] == 49
+    assert data["skipped_statements"] == {"LEF.USEMINSPACING": 1, "MACRO.FOREIGN": 16, "PIN.SHAPE": 32}
 
 
 def test_info_without_guide_says_so(runner: CliRunner, testcase) -> None:

@@ -103,7 +103,9 @@ def test_ispd18_test1_basics() -> None:
     assert (c["routing_layers"], c["cut_layers"]) == (9, 8)
     assert d.dbu_per_micron == 2000
     # "- inst8551 BUFX3 + SOURCE TIMING + PLACED ..." : 21 SOURCE options skipped and counted.
-    assert d._db.skipped_statements()["COMPONENTS.SOURCE"] == 21
+    assert d.skipped_statements()["COMPONENTS.SOURCE"] == 21
+    # Warnings: every skipped LEF statement (1 + 487 + 972 + 972 + 1); DEF options skipped are not warnings.
+    assert d.warning_count == 2433
     assert d.component("inst8551") == {
         "name": "inst8551", "macro": "BUFX3", "location": (357200, 266760), "orient": "FS", "status": "PLACED"}
 
@@ -116,6 +118,24 @@ def test_ispd18_sample_component_and_nets() -> None:
         "name": "inst2908", "macro": "OR4X1", "location": (85600, 75240), "orient": "FS", "status": "PLACED"}
     assert d.net_pins("net1237") == [("inst5638", "A"), ("inst4678", "Y")]
     assert d.net_names[0] == "net1237"
+
+
+def test_lef_wrappers() -> None:
+    d = _design("ispd18_sample")
+    via = d.via("VIA12_1C")
+    assert (via["default"], via["bottom"], via["cut"], via["top"]) == (True, "Metal1", "Via1", "Metal2")
+    assert via["shapes"][1] == ("Via1", -70, -70, 70, 70)  # RECT -0.035 ... at 2000 DBU/um
+    assert d.sites() == [{"name": "CoreSite", "class": "CORE", "size": (400, 3420), "symmetry": ""}]
+    # VIARULE M4_M3 GENERATE: ENCLOSURE 0.005 0.03, cut RECT +-0.025, SPACING 0.11 BY 0.11.
+    rule = _design("ispd19_sample4").via_rule("M4_M3")
+    assert [layer["layer"] for layer in rule["layers"]] == ["Metal3", "Via3", "Metal4"]
+    assert rule["layers"][0]["enclosure"] == (10, 60)
+    assert (rule["layers"][1]["rect"], rule["layers"][1]["spacing"]) == ((-50, -50, 50, 50), (220, 220))
+    for lookup in (d.via, d.via_rule, d.def_via, d.io_pin, d.special_net):
+        with pytest.raises(KeyError):
+            lookup("no_such_name")
+    with pytest.raises(KeyError):
+        d.net_routing("no_such_net")
 
 
 def test_placed_pin_fs_and_n() -> None:
@@ -152,33 +172,33 @@ def test_io_pin_orientation() -> None:
     # "- pin9 + NET net5719 ... + LAYER Metal2 ( -180 0 ) ( 180 260 ) + PLACED ( 390600 311200 ) W":
     # oriented about the pin point, W maps (x, y) -> (-y, x): (-180 0)->(0 -180), (180 260)->(-260 180)
     # -> x -260..0, y -180..180 -> (390340 311020 390600 311380).
-    p = d._db.io_pin("pin9")
+    p = d.io_pin("pin9")
     assert p["net"] == "net5719" and p["direction"] == "OUTPUT" and p["orient"] == "W"
     assert p["shapes"] == [("Metal2", 390340, 311020, 390600, 311380)]
     assert p["net_id"] == d.net_id("net5719")
     # E maps (x, y) -> (y, -x): x 0..260, y -180..180 at (0 313200).
-    assert d._db.io_pin("pin8")["shapes"] == [("Metal2", 0, 313020, 260, 313380)]
+    assert d.io_pin("pin8")["shapes"] == [("Metal2", 0, 313020, 260, 313380)]
     # S maps (x, y) -> (-x, -y): x -180..180, y -260..0 at (246100 390000).
-    assert d._db.io_pin("pin7")["shapes"] == [("Metal2", 245920, 389740, 246280, 390000)]
+    assert d.io_pin("pin7")["shapes"] == [("Metal2", 245920, 389740, 246280, 390000)]
     # The net's pin list holds the IO pin as ('PIN', name).
     assert d.net_pins("net5719") == [("PIN", "pin9"), ("inst4169", "PAD")]
 
 
 def test_special_nets() -> None:
     d = _design("ispd19_test3")
-    vss = d._db.special_net("VSS")
+    vss = d.special_net("VSS")
     assert vss["use"] == "GROUND"
     assert vss["pins"] == [("*", "VSS"), ("*", "AVSS")]
     # Wires: the "( .. ) ( .. )" pairs of the VSS entry; vias: the path pieces ending in a via name.
     assert (len(vss["wires"]), len(vss["vias"]), len(vss["rects"])) == (143, 850, 0)
     # "+ ROUTED Metal8 3600 + SHAPE RING ( 49700 47900 ) ( * 342100 )": '*' repeats x.
     assert vss["wires"][0] == ("Metal8", 3600, "RING", 49700, 47900, 49700, 342100)
-    vdd = d._db.special_net("VDD")
+    vdd = d.special_net("VDD")
     assert (len(vdd["wires"]), len(vdd["vias"])) == (67, 722)
     t1 = _design("ispd19_test1")
     # "NEW Metal8 0 ( 500 500 ) VIA78_PG": a via alone, no wire.
-    assert ("VIA78_PG", 500, 500, "") in t1._db.special_net("VSS")["vias"] or \
-        ("VIA78_PG", 500, 500, "") in t1._db.special_net("VDD")["vias"]
+    assert ("VIA78_PG", 500, 500, "") in t1.special_net("VSS")["vias"] or \
+        ("VIA78_PG", 500, 500, "") in t1.special_net("VDD")["vias"]
 
 
 def test_generated_def_vias() -> None:
@@ -186,7 +206,7 @@ def test_generated_def_vias() -> None:
     # via5Array_2: VIARULE M6_M5, CUTSIZE 720 720, CUTSPACING 700 700, ENCLOSURE 410 410 410 410,
     # ROWCOL 14 14: array 14*720 + 13*700 = 19180 wide, centred -> -9590..9590; metal grows by
     # 410 -> -10000..10000.
-    v = d._db.def_via("via5Array_2")
+    v = d.def_via("via5Array_2")
     assert v["generated"] and v["rule"] == "M6_M5" and v["rowcol"] == (14, 14)
     assert (v["bottom"], v["cut"], v["top"]) == ("Metal5", "Via5", "Metal6")
     cuts = [s for s in v["shapes"] if s[0] == "Via5"]
@@ -198,13 +218,13 @@ def test_generated_def_vias() -> None:
     # OFFSET -7800 0 -7800 0: cut array 7800 x 15080 centred then moved +7800 in x -> x 3900..11700,
     # y -7540..7540; metal = array grown by (7950, 460) then moved back by the OFFSET
     # -> (-11850 -8000 11850 8000).
-    v = d._db.def_via("via3Array_1")
+    v = d.def_via("via3Array_1")
     cuts = [s for s in v["shapes"] if s[0] == "Via3"]
     assert len(cuts) == 15 * 8
     assert min(s[1] for s in cuts) == 3900 and max(s[3] for s in cuts) == 11700
     assert ("Metal3", -11850, -8000, 11850, 8000) in v["shapes"]
     # M4_M3_12: ROWCOL 6 2, PATTERN 5_F_1_0: the 5 lower rows have both cuts, the top row none.
-    v = d._db.def_via("M4_M3_12")
+    v = d.def_via("M4_M3_12")
     cuts = [s for s in v["shapes"] if s[0] == "Via3"]
     assert len(cuts) == 10
     # CUTSPACING 400 150: array height 6*100 + 5*150 = 1350 -> rows at y -675, -425, -175, 75, 325,
@@ -212,11 +232,11 @@ def test_generated_def_vias() -> None:
     assert max(s[4] for s in cuts) == 425
     assert min(s[2] for s in cuts) == -675
     # M4_M3_13: PATTERN 1_0_5_F: the bottom row is the empty one.
-    cuts = [s for s in d._db.def_via("M4_M3_13")["shapes"] if s[0] == "Via3"]
+    cuts = [s for s in d.def_via("M4_M3_13")["shapes"] if s[0] == "Via3"]
     assert len(cuts) == 10 and min(s[2] for s in cuts) == -425 and max(s[4] for s in cuts) == 675
     # A fixed DEF via: "- via1Array_22 + RECT Metal1 ( -800 -800 ) ( 800 800 ) ...".
     s4 = _design("ispd19_sample4")
-    v = s4._db.def_via("via1Array_22")
+    v = s4.def_via("via1Array_22")
     assert not v["generated"]
     assert v["shapes"][0] == ("Metal1", -800, -800, 800, 800)
     assert (v["bottom"], v["cut"], v["top"]) == ("Metal1", "Via1", "Metal2")
@@ -234,7 +254,7 @@ def test_gcell_grid_and_tracks() -> None:
 
 def test_io_pin_nets_resolved() -> None:
     d = _design("ispd18_sample3")
-    p = d._db.io_pin("iopin5")
+    p = d.io_pin("iopin5")
     assert p["net"] == "ionet5" and p["net_id"] == d.net_id("ionet5")
     assert p["orient"] == "E" and p["location"] == (0, 1810944)
 
@@ -289,7 +309,7 @@ def test_skipped_statements_counted(tmp_path: Path) -> None:
     path = tmp_path / "skippy.def"
     path.write_text(SKIPPY_DEF)
     d = load_design(lef=found.lef, def_=path)
-    skipped = d._db.skipped_statements()
+    skipped = d.skipped_statements()
     for key, count in {
         "NAMESCASESENSITIVE": 1, "TECHNOLOGY": 1, "HISTORY": 1, "PROPERTYDEFINITIONS": 1, "ROW.PROPERTY": 1,
         "NONDEFAULTRULES": 1, "REGIONS": 1, "COMPONENTS.SOURCE": 1, "COMPONENTS.WEIGHT": 1,
@@ -301,9 +321,9 @@ def test_skipped_statements_counted(tmp_path: Path) -> None:
     c = d.counts()
     assert (c["components"], c["io_pins"], c["nets"], c["net_pins"], c["blockages"]) == (2, 2, 2, 4, 1)
     assert d.component("u2")["status"] == "UNPLACED"
-    assert d._db.io_pin("in1")["shapes"] == [("Metal2", 0, 4930, 140, 5070)]
+    assert d.io_pin("in1")["shapes"] == [("Metal2", 0, 4930, 140, 5070)]
     # A pin whose net NETS lacks is kept with its net name and no net id.
-    lonely = d._db.io_pin("lonely")
+    lonely = d.io_pin("lonely")
     assert lonely["net"] == "not_in_nets" and lonely["net_id"] == -1
     out = d.write_def(tmp_path / "out.def")
     assert load_design(lef=found.lef, def_=out).compare(d) == []

@@ -91,6 +91,11 @@ def test_good_design_loads(lef: Path, tmp_path: Path) -> None:
         (21, "  + ROUTED Metal3 ( 1000 1000 ) ( 3000 1000 ) VIA12_1C ( 3000 2000 )", "does not connect"),
         (5, "UNITS DISTANCE MICRONS 1000 ;", "differs from the LEF"),
         (7, "FOO bar ;", "expected a DEF statement, found 'FOO'"),
+        (2, "DIVIDERCHAR / ;", "expected a divider character in double quotes, found '/'"),
+        (3, 'BUSBITCHARS "[" ;', "expected bus bit characters in double quotes, found '['"),
+        (4, 'DESIGN "tiny" ;', "expected a design name, found the quoted string 'tiny'"),
+        (10, '- "u 1" OR4X1 + PLACED ( 400 0 ) N ;', "expected a component name, found the quoted string 'u 1'"),
+        (19, '- "n1" ( PIN in1 ) ( u1 D ) ;', "expected a net name, found the quoted string 'n1'"),
     ],
 )
 def test_bad_line(lef: Path, tmp_path: Path, line: int, text: str, message: str) -> None:
@@ -126,6 +131,11 @@ def test_truncated(lef: Path, tmp_path: Path) -> None:
     lines = GOOD[:9] + ["- u1 OR4X1 + PLACED ( 400"]
     e = _error(lef, tmp_path, lines)
     assert e.line == 11 and "unexpected end of file" in e.message
+
+
+def test_missing_design_statement(lef: Path, tmp_path: Path) -> None:
+    e = _error(lef, tmp_path, _with(4, "# no DESIGN statement"))
+    assert e.line == 24 and e.message == "missing DESIGN statement before END DESIGN"
 
 
 def test_garbage_after_end_design(lef: Path, tmp_path: Path) -> None:

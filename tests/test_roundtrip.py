@@ -110,7 +110,7 @@ def test_routed_roundtrip(tmp_path: Path) -> None:
     src.write_text(ROUTED_DEF)
     d = load_design(lef=found.lef, def_=src)
     n2 = d.net_id("n2")
-    r = d._db.net_routing(n2)
+    r = d.net_routing(n2)
     # (layer, x1, y1, x2, y2, width (0 = default), ext_from, ext_to (-1 = half width))
     assert r["wires"] == [
         ("Metal1", 1000, 1000, 3000, 1000, 0, -1, -1),
@@ -121,7 +121,7 @@ def test_routed_roundtrip(tmp_path: Path) -> None:
     assert r["patches"] == [("Metal1", 400, 450, 600, 550)]
     c = d.counts()
     assert (c["route_wires"], c["route_vias"], c["blockages"], c["special_nets"]) == (3, 1, 2, 1)
-    vdd = d._db.special_net("VDD")
+    vdd = d.special_net("VDD")
     assert vdd["wires"] == [("Metal1", 300, "FOLLOWPIN", 0, 3420, 20000, 3420)]
     assert vdd["vias"] == [("VIA12_1C", 1000, 3420, "")]
     assert d.net_pins("n1") == [("PIN", "in1"), ("u1", "D")]
@@ -129,7 +129,7 @@ def test_routed_roundtrip(tmp_path: Path) -> None:
     out = d.write_def(tmp_path / "out.def")
     again = load_design(lef=found.lef, def_=out)
     assert d.compare(again) == []
-    assert again._db.net_routing(again.net_id("n2")) == r
+    assert again.net_routing(again.net_id("n2")) == r
     assert again.def_text() == out.read_text()
     # The written paths: one piece per wire, vias on their bottom layer, patches as RECT.
     text = out.read_text()

@@ -92,6 +92,12 @@ class Design:
         return dict(self._db.skipped_statements())
 
     @property
+    def warning_count(self) -> int:
+        """Warnings raised while reading: one per LEF statement skipped, one per DEF item kept only
+        approximately (a polygon as its bounding box, a dropped via orientation, ...)."""
+        return int(self._db.warning_count)
+
+    @property
     def layers(self) -> list[LayerInfo]:
         if self._layers is None:
             out = []
@@ -236,6 +242,41 @@ class Design:
     @property
     def macro_names(self) -> list[str]:
         return list(self._db.macro_names())
+
+    # -- vias, IO pins, special nets and routing -----------------------------
+    def via(self, name: str) -> dict[str, Any]:
+        """A LEF VIA: ``name``, ``default``, ``bottom``/``cut``/``top`` layer names and
+        ``shapes`` as (layer, xlo, ylo, xhi, yhi) in DBU. KeyError if absent."""
+        return dict(self._db.via(name))
+
+    def via_rule(self, name: str) -> dict[str, Any]:
+        """A LEF VIARULE: ``generate``/``default`` flags and its ``layers`` in order (DBU). KeyError if absent."""
+        return dict(self._db.via_rule(name))
+
+    def sites(self) -> list[dict[str, Any]]:
+        """LEF SITEs in order: ``name``, ``class``, ``size`` (DBU), ``symmetry``."""
+        return [dict(s) for s in self._db.sites()]
+
+    def def_via(self, name: str) -> dict[str, Any]:
+        """A DEF VIAS entry: ``generated``, ``rule``, ``rowcol``, ``bottom``/``cut``/``top``
+        layer names and ``shapes`` as (layer, xlo, ylo, xhi, yhi) in DBU. KeyError if absent."""
+        return dict(self._db.def_via(name))
+
+    def io_pin(self, name: str) -> dict[str, Any]:
+        """A DEF PINS entry: ``net``, ``net_id``, ``direction``, ``use``, ``status``, ``location``,
+        ``orient`` and ``shapes`` placed in design coordinates (layer, xlo, ylo, xhi, yhi). KeyError if absent."""
+        return dict(self._db.io_pin(name))
+
+    def special_net(self, name: str) -> dict[str, Any]:
+        """A SPECIALNETS entry: ``use``, ``pins`` (component, pin), ``wires`` (layer, width, shape,
+        x1, y1, x2, y2), ``vias`` (name, x, y, shape), ``rects`` (layer, xlo, ylo, xhi, yhi); DBU.
+        KeyError if absent."""
+        return dict(self._db.special_net(name))
+
+    def net_routing(self, net: str | int) -> dict[str, Any]:
+        """A net's routing: ``wires`` (layer, x1, y1, x2, y2, width, ext_from, ext_to; width 0 =
+        default, ext -1 = half width), ``vias`` (name, x, y), ``patches`` (layer, xlo, ylo, xhi, yhi); DBU."""
+        return dict(self._db.net_routing(self.net_id(net)))
 
     # -- output ----------------------------------------------------------------
     def write_def(self, path: str | os.PathLike[str]) -> Path:

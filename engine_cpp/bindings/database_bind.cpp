@@ -5,6 +5,7 @@
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <map>
@@ -200,12 +201,16 @@ void bindDatabase(nb::module_& m) {
                    "LEF UNITS DATABASE MICRONS.")
       .def_prop_ro("manufacturing_grid", [](const Database& d) { return d.tech.manufacturingGrid; },
                    "MANUFACTURINGGRID in DBU (0 if none).")
-      .def_prop_ro("die_area", [](const Database& d) { return rectTuple(d.design.dieArea); },
+      .def_prop_ro("die_area",
+                   [](const Database& d) {
+                     const Rect& r = d.design.dieArea;
+                     return std::tuple<Dbu, Dbu, Dbu, Dbu>(r.xlo, r.ylo, r.xhi, r.yhi);
+                   },
                    "DIEAREA bounding box (xlo, ylo, xhi, yhi) in DBU.")
       .def(
           "counts",
           [](const Database& d) {
-            nb::dict c;
+            nb::typed<nb::dict, nb::str, int> c;
             c["layers"] = d.tech.layers.size();
             c["routing_layers"] = d.tech.routingLayers.size();
             c["cut_layers"] = d.tech.cutLayers.size();
@@ -240,7 +245,7 @@ void bindDatabase(nb::module_& m) {
             std::map<std::string, int> all;
             addCounts(all, d.tech.skippedStatements);
             addCounts(all, d.design.skippedStatements);
-            return nb::cast(all);
+            return all;
           },
           "Statements the readers skipped (not understood), keyword -> count.")
       .def_prop_ro("warning_count", [](const Database& d) { return d.tech.warningCount + d.design.warningCount; },

@@ -1,9 +1,14 @@
 // libFuzzer target: arbitrary bytes as a DEF file, read against a real LEF
-// (XROUTE_FUZZ_LEF). Bad input must end in an InputError.
+// (XROUTE_FUZZ_LEF). Bad input must end in an InputError. What was read must
+// also survive a round trip: written back, re-read without error, and equal.
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
+#include "db/compare.hpp"
 #include "fuzz_context.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -11,9 +16,21 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   xroute::Design design;
   try {
     xroute::readDefText("fuzz.def", std::string(reinterpret_cast<const char*>(data), size), tech, design);
-    // What was read must also be writable.
-    (void)xroute::writeDefText(tech, design);
   } catch (const xroute::InputError&) {
+    return 0;
+  }
+  const std::string text = xroute::writeDefText(tech, design);
+  xroute::Design again;
+  try {
+    xroute::readDefText("written.def", text, tech, again);
+  } catch (const xroute::InputError& e) {
+    std::fprintf(stderr, "written DEF does not re-read: %s\n%s\n", e.what(), text.c_str());
+    std::abort();
+  }
+  const std::vector<std::string> diffs = xroute::compareDesigns(design, again, 5);
+  if (!diffs.empty()) {
+    for (const std::string& d : diffs) std::fprintf(stderr, "round trip differs: %s\n", d.c_str());
+    std::abort();
   }
   return 0;
 }

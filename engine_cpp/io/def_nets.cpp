@@ -80,11 +80,11 @@ void DefParser::readSpecialNets() {
 void DefParser::readSpecialNet() {
   lex_.expect("-");
   SpecialNet net;
-  net.name = lex_.word("a net name");
+  net.name = plainWord("a net name");
   while (peekIs("(")) {
     lex_.next();
-    std::string comp = lex_.word("a component name");
-    std::string pin = lex_.word("a pin name");
+    std::string comp = plainWord("a component name");
+    std::string pin = plainWord("a pin name");
     if (lex_.accept("+")) {
       lex_.expect("SYNTHESIZED");
       countSkip("SPECIALNETS.SYNTHESIZED");
@@ -106,7 +106,7 @@ void DefParser::readSpecialNet() {
       countSkip("SPECIALNETS.SHIELD");
       readSpecialWiring(net);
     } else if (k == "USE") {
-      net.use = lex_.word("a net use");
+      net.use = plainWord("a net use");
     } else if (k == "RECT") {
       const LayerId layer = layerAt(lex_.next());
       if (lex_.accept("+")) {
@@ -165,7 +165,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
       lex_.next();
       const Token kw = lex_.next();
       if (is(kw, "SHAPE")) {
-        shape = lex_.word("a shape type");
+        shape = plainWord("a shape type");
       } else if (is(kw, "STYLE") || is(kw, "MASK")) {
         lex_.integer();
         countSkip("SPECIALNETS." + std::string(kw.text));
@@ -264,7 +264,7 @@ void DefParser::readNets() {
 void DefParser::readNet() {
   lex_.expect("-");
   const Token nameTok = lex_.next();
-  if (is(nameTok, ";")) unexpected(nameTok, "a net name");
+  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a net name");
   if (is(nameTok, "MUSTJOIN")) {
     lex_.skipStatement();
     countSkip("NETS.MUSTJOIN");
@@ -315,7 +315,7 @@ void DefParser::readNet() {
       if (k != "ROUTED") countSkip("NETS." + std::string(k));
       readRegularWiring(net);
     } else if (k == "USE") {
-      net.use = lex_.word("a net use");
+      net.use = plainWord("a net use");
     } else if (k.empty() || k == ";") {
       unexpected(kw, "a net option");
     } else {

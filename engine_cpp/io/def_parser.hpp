@@ -68,6 +68,9 @@ class DefParser {
   int readSectionCount();                 // "n ;" after a section keyword
   // Expects "END <section>" next (or a '-' item was expected); checks counts.
   bool atSectionEnd(std::string_view section, int declared, int found);
+  std::string quotedChars(size_t count, const std::string& what);
+  // A name or value written back as is: any token but ';' and a "quoted string".
+  std::string plainWord(const std::string& what);  // "..." of exactly `count` printable chars
   void skipToOptionEnd();                 // skip tokens up to the next '+' or ';' (not consumed)
   void countSkip(std::string_view key, int n = 1);
   [[noreturn]] void unexpected(const Token& t, const std::string& expected) const;

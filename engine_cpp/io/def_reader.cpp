@@ -62,7 +62,7 @@ void DefParser::countSkip(std::string_view key, int n) {
 }
 
 void DefParser::unexpected(const Token& t, const std::string& expected) const {
-  lex_.failAt(t, "expected " + expected + ", found " + quoteToken(t.text));
+  lex_.failAt(t, "expected " + expected + ", found " + (t.quoted ? "the quoted string " : "") + quoteToken(t.text));
 }
 
 Point DefParser::readPoint() {
@@ -129,6 +129,19 @@ bool DefParser::atSectionEnd(std::string_view section, int declared, int found) 
   return true;
 }
 
+std::string DefParser::quotedChars(size_t count, const std::string& what) {
+  const Token t = lex_.next();
+  bool ok = t.quoted && t.text.size() == count;
+  for (char c : t.text) ok = ok && c > ' ' && c < 127 && c != '"' && c != '\\';
+  if (!ok) lex_.failAt(t, "expected " + what + " in double quotes, found " + quoteToken(t.text));
+  return std::string(t.text);
+}
+
+std::string DefParser::plainWord(const std::string& what) {
+  if (!lex_.atEnd() && lex_.peek().quoted) unexpected(lex_.peek(), what);
+  return lex_.word(what);
+}
+
 void DefParser::skipToOptionEnd() {
   while (true) {
     const Token& t = lex_.peek();
@@ -155,25 +168,28 @@ void DefParser::skipSection(std::string_view keyword) {
 void DefParser::parse() {
   design_.netPinStart.assign(1, 0);
   bool ended = false;
+  bool named = false;
   while (!lex_.atEnd()) {
     const Token t = lex_.next();
     if (t.quoted) unexpected(t, "a DEF statement");
     const std::string_view k = t.text;
     if (k == "END") {
       lex_.expect("DESIGN");
+      if (!named) lex_.failAt(t, "missing DESIGN statement before END DESIGN");
       ended = true;
       break;
     } else if (k == "VERSION") {
       design_.version = lex_.word("a version number");
       lex_.expect(";");
     } else if (k == "DIVIDERCHAR") {
-      design_.dividerChar = lex_.word("a divider character");
+      design_.dividerChar = quotedChars(1, "a divider character");
       lex_.expect(";");
     } else if (k == "BUSBITCHARS") {
-      design_.busBitChars = lex_.word("bus bit characters");
+      design_.busBitChars = quotedChars(2, "bus bit characters");
       lex_.expect(";");
     } else if (k == "DESIGN") {
-      design_.name = lex_.word("a design name");
+      design_.name = plainWord("a design name");
+      named = true;
       lex_.expect(";");
     } else if (k == "UNITS") {
       readUnits();
@@ -242,7 +258,7 @@ void DefParser::readDieArea() {
 
 void DefParser::readRow() {
   Row row;
-  row.name = lex_.word("a row name");
+  row.name = plainWord("a row name");
   const Token site = lex_.next();
   if (is(site, ";") || tech_.siteIndex.find(site.text) == tech_.siteIndex.end()) {
     lex_.failAt(site, "unknown site " + quoteToken(site.text));
@@ -338,7 +354,7 @@ void DefParser::readComponents() {
 void DefParser::readComponent() {
   lex_.expect("-");
   const Token nameTok = lex_.next();
-  if (is(nameTok, ";")) unexpected(nameTok, "a component name");
+  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a component name");
   const Token macroTok = lex_.next();
   const MacroId macro = tech_.findMacro(macroTok.text);
   if (!macro.valid() || macroTok.quoted) lex_.failAt(macroTok, "unknown macro " + quoteToken(macroTok.text));
@@ -393,7 +409,7 @@ struct PinPort {
 void DefParser::readPin() {
   lex_.expect("-");
   const Token nameTok = lex_.next();
-  if (is(nameTok, ";")) unexpected(nameTok, "a pin name");
+  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a pin name");
   const IoPinId id(static_cast<int32_t>(design_.ioPins.size()));
   if (!design_.ioPinIndex.emplace(std::string(nameTok.text), id).second) {
     lex_.failAt(nameTok, "duplicate pin " + quoteToken(nameTok.text));
@@ -409,11 +425,11 @@ void DefParser::readPin() {
     const Token kw = lex_.next();
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "NET") {
-      pin.netName = lex_.word("a net name");
+      pin.netName = plainWord("a net name");
     } else if (k == "DIRECTION") {
-      pin.direction = lex_.word("a direction");
+      pin.direction = plainWord("a direction");
     } else if (k == "USE") {
-      pin.use = lex_.word("a pin use");
+      pin.use = plainWord("a pin use");
     } else if (k == "PORT") {
       if (explicitPorts) ports.emplace_back();
       explicitPorts = true;

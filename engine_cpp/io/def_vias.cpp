@@ -139,7 +139,7 @@ void DefParser::readVias() {
 void DefParser::readVia() {
   lex_.expect("-");
   const Token nameTok = lex_.next();
-  if (is(nameTok, ";")) unexpected(nameTok, "a via name");
+  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a via name");
   const DefViaId id(static_cast<int32_t>(design_.vias.size()));
   if (!design_.viaIndex.emplace(std::string(nameTok.text), id).second) {
     lex_.failAt(nameTok, "duplicate via " + quoteToken(nameTok.text));
@@ -220,7 +220,7 @@ void DefParser::readVia() {
       v.topOffX = lex_.dbu();
       v.topOffY = lex_.dbu();
     } else if (k == "PATTERN") {
-      v.pattern = lex_.word("a cut pattern");
+      v.pattern = plainWord("a cut pattern");
     } else if (k.empty() || k == ";") {
       unexpected(kw, "a via option");
     } else {

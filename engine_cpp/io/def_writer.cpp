@@ -81,14 +81,17 @@ class DefWriter {
     out_ << "DIVIDERCHAR \"" << d_.dividerChar << "\" ;\n";
     out_ << "BUSBITCHARS \"" << d_.busBitChars << "\" ;\n";
     out_ << "DESIGN " << d_.name << " ;\n";
-    out_ << "UNITS DISTANCE MICRONS " << d_.dbuPerMicron << " ;\n\n";
-    out_ << "DIEAREA";
+    // UNITS and DIEAREA only when the design has them (a DEF may lack them).
+    if (d_.dbuPerMicron != 0) out_ << "UNITS DISTANCE MICRONS " << d_.dbuPerMicron << " ;\n";
+    out_ << '\n';
     if (d_.diePolygon.size() >= 2) {
+      out_ << "DIEAREA";
       for (const Point& p : d_.diePolygon) out_ << ' ' << p;
-    } else {
-      out_ << ' ' << Point{d_.dieArea.xlo, d_.dieArea.ylo} << ' ' << Point{d_.dieArea.xhi, d_.dieArea.yhi};
+      out_ << " ;\n\n";
+    } else if (d_.dieArea.width() > 0 || d_.dieArea.height() > 0) {
+      out_ << "DIEAREA " << Point{d_.dieArea.xlo, d_.dieArea.ylo} << ' ' << Point{d_.dieArea.xhi, d_.dieArea.yhi}
+           << " ;\n\n";
     }
-    out_ << " ;\n\n";
   }
 
   void writeRowsTracksGrid() {

@@ -84,6 +84,7 @@ def summarize(design: Design) -> dict[str, Any]:
         "guides": counts["guides"] if design.guide_path else None,
         "routing_layers": counts["routing_layers"],
         "layers": layers,
+        "warnings": design.warning_count,
         "skipped_statements": design.skipped_statements(),
         "counts": counts,
     }
@@ -122,6 +123,7 @@ def _design_table(s: dict[str, Any]) -> Table:
         ("tracks", s["tracks"]),
         ("GCell grid", "{} x {}".format(*s["gcell_grid"]) if s["gcell_grid"] else "none"),
         ("guides", s["guides"] if s["guides"] is not None else "no guide file"),
+        ("warnings", s["warnings"]),
     ]
     for item, value in rows:
         table.add_row(item, escape(str(value)))
