@@ -155,6 +155,67 @@ class Database:
     def compare(self, other: Database, max_diffs: int = 20) -> list[str]:
         """Differences between two designs (empty list = equal)."""
 
+    def check_drc(self, skip_fixed_pairs: bool = True, window: tuple[int, int, int, int] | None = None) -> list:
+        """
+        Design-rule check of the whole design (pins, OBS, blockages, special and regular routing).
+        Net ids in the markers: regular nets 0..nets-1, special nets next, then pins on no net;
+        -1 = obstruction. Same marker dicts as check_shapes.
+        """
+
+    def drc_shapes(self) -> list:
+        """
+        The shapes check_drc checks: (layer index, xlo, ylo, xhi, yhi, net, origin) tuples.
+        """
+
+    def check_connectivity(self) -> dict:
+        """
+        Opens check of every regular net with >= 2 pins: are its pins joined by its routing?
+
+        Conductors: pin shapes (one node per pin), wires (half-width or given extensions), vias (one node
+        each), patches; same-layer shapes connect when they overlap or share an edge segment (a corner
+        point does not), layers connect only through vias. Returns {nets_checked, open_nets,
+        single_pin_nets (fewer than 2 pins, not checked), unrouted_nets (checked nets without routing),
+        floating_pieces (routing components touching no pin), opens: [{net, pins, groups, floating_pieces}]}
+        where groups lists the connected pin groups, each a list of (component, pin) names
+        (("PIN", name) for an IO pin), groups ordered by their first pin in the net.
+        """
+
+    def metrics(self) -> dict:
+        """
+        Routing metrics of the regular nets: {wirelength_dbu (sum of wire piece lengths, extensions not
+        counted), wirelength_um, wirelength_by_layer {routing layer: DBU}, vias (instances),
+        vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.
+        """
+
+    def write_drc_report(self, path: str, skip_fixed_pairs: bool = True) -> dict:
+        """
+        Design-rule check of the whole design (as check_drc), written to `path` atomically: a header
+        '# markers N <type> <count> ...' then one line per marker '<type> <layer> <xlo> <ylo> <xhi> <yhi>
+        <net1> <net2>' (DBU; net names, '-' for none or an obstruction; pins on no net as comp/pin,
+        */pin or PIN/name). Returns {marker type: count} for every type. Raises InputError when the
+        file cannot be written (nothing is left behind).
+        """
+
+    def pin_access(self, max_points_per_pin: int = 3, threads: int = 1, share_classes: bool = True) -> dict:
+        """
+        Access points of every net pin (every entry of pin_refs), best first.
+
+        Returns a dict:
+          start: int32[pin_refs + 1]; pin ref i owns rows start[i] .. start[i+1] of points.
+          points: int32[n, 5] rows (x, y, z, dirs, cost): x, y in DBU; z = routing layer index;
+            dirs = OR of ACCESS_UP (1), ACCESS_EAST (2), ACCESS_WEST (4), ACCESS_NORTH (8),
+            ACCESS_SOUTH (16); cost: 0 = on-track in x and y, 1 per half-track coordinate, 2 per
+            shape-centre coordinate, 3 per enclosed-edge coordinate, +8 when only planar exits are
+            legal on a layer with vias up, 100 = fallback (no legal point found).
+          via: int32[n], LEF via index (into via_names) of the ACCESS_UP exit, -1 for none.
+          via_names: list of every LEF via name, by index.
+          fallback_pins: number of pin refs whose only point is a fallback.
+          classes: number of component classes computed (same macro, orientation and track phase).
+        threads > 1 splits the classes over worker threads; the result is the same.
+        share_classes=False computes every component on its own (slow; to check the classes):
+        the points are the same, classes is then the number of components with net pins.
+        """
+
 def load(lef_paths: Sequence[str], def_path: str, guide_path: str | None = None) -> Database:
     """
     Reads LEF files, a DEF and optionally a guide file. Raises xroute_cli.errors.InputError on bad input.
@@ -164,3 +225,31 @@ def load_lef(lef_paths: Sequence[str]) -> Database:
     """
     Reads LEF files only (the design part stays empty). Raises InputError on bad input.
     """
+
+def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shape=(None, None), order='C', device='cpu', writable=False)], origins: Annotated[NDArray[numpy.int32], dict(shape=(None,), order='C', device='cpu', writable=False)] | None = None, skip_fixed_pairs: bool = False, window: tuple[int, int, int, int] | None = None) -> list:
+    """
+    Design-rule check of a set of shapes against the technology of `db`.
+
+    shapes: int32[N, 6] rows (LEF layer index, xlo, ylo, xhi, yhi, net) in DBU; net < 0 marks an
+    obstruction. origins: optional int[N], 0 wire, 1 via, 2 pin, 3 obstruction, 4 special net
+    (default: 3 for net < 0, else 0). skip_fixed_pairs drops violations among pins, obstructions
+    and special nets only. window: optional (xlo, ylo, xhi, yhi); only markers touching it.
+    Returns markers sorted, as dicts {type, layer, box: (xlo, ylo, xhi, yhi), nets: (n1, n2)}.
+    """
+
+POLICY_FEATURES: tuple = ...
+
+def route(db: Database, region_size: int = 3, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, progress: object | None = None, costs: dict = {}) -> dict:
+    """
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.
+    """
+
+ACCESS_UP: int = 1
+
+ACCESS_EAST: int = 2
+
+ACCESS_WEST: int = 4
+
+ACCESS_NORTH: int = 8
+
+ACCESS_SOUTH: int = 16
