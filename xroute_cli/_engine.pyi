@@ -253,3 +253,69 @@ ACCESS_WEST: int = 4
 ACCESS_NORTH: int = 8
 
 ACCESS_SOUTH: int = 16
+
+class RoutingSession:
+    """
+    What every region of one design shares: tracks, vias, pin access, fixed shapes.
+    """
+
+    def __init__(self, db: Database, threads: int = 1) -> None:
+        """
+        Prepares routing of a loaded Database (pin access is computed here, once).
+        """
+
+    @property
+    def gcell_lines(self) -> tuple:
+        """The GCell grid lines (xs, ys) in DBU that regions align to."""
+
+    def open_region(self, box: tuple[int, int, int, int], iteration: int = 0) -> Region:
+        """
+        Opens the region box (xlo, ylo, xhi, yhi) in DBU: nets with pins or routing inside, or whose guides cross its edges, become candidates (routed nets are ripped up inside the box).
+        """
+
+class Region:
+    """One routing region, routed net by net in the caller's order."""
+
+    @property
+    def box(self) -> tuple:
+        """The region box (xlo, ylo, xhi, yhi) in DBU."""
+
+    @property
+    def candidates(self) -> NDArray[numpy.int32]:
+        """
+        int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.
+        """
+
+    def is_routed(self, index: int) -> bool:
+        """Whether candidate i has been routed."""
+
+    def unrouted(self) -> list[int]:
+        """Indices of the candidates not routed yet."""
+
+    def route_net(self, index: int) -> dict:
+        """
+        Routes candidate i now; returns its wirelength_dbu, vias and unreached terminals.
+        """
+
+    def route_rest(self, policy: str = 'heuristic', seed: int = 1) -> None:
+        """Routes every candidate not routed yet in a built-in policy's order."""
+
+    def metrics(self) -> dict:
+        """
+        The new routing so far: wirelength_dbu, vias, nets_routed, unreached terminals, and the design-rule violations inside the box (fixed-only ones skipped).
+        """
+
+    def grid(self) -> dict:
+        """
+        Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags (1 on track, 2 access point, 4 boundary terminal; 0 = no node), fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none).
+        """
+
+    def node_type(self) -> NDArray[numpy.uint8]:
+        """
+        uint8[nz, ny, nx]: 0 NOTEXIST, 1 BLOCKAGE, 2 NORMAL, 3 ACCESS (a copy).
+        """
+
+    def commit(self) -> None:
+        """
+        Writes the region's new routing into the design (other open regions of the session become stale).
+        """

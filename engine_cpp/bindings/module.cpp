@@ -12,6 +12,7 @@ void bindDrc(nb::module_& m);
 void bindVerify(nb::module_& m);
 void bindRouter(nb::module_& m);
 void bindPinAccess(nb::module_& m);
+void bindRegion(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -31,4 +32,5 @@ NB_MODULE(_engine, m) {
   bindVerify(m);
   bindRouter(m);
   bindPinAccess(m);
+  bindRegion(m);
 }

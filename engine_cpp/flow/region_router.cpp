@@ -480,6 +480,55 @@ void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
   for (int32_t k : order) routeNet(pending[k], ws);
 }
 
+const RegionNetResult& RegionRouter::result(int32_t candidate) const { return impl_->nets[candidate].result; }
+
+std::vector<Marker> RegionRouter::check() const {
+  const Impl& im = *impl_;
+  const Rect& box = im.task.region.box;
+  const Dbu reach = 2 * im.ctx.halo;
+  const Rect win{box.xlo - reach, box.ylo - reach, box.xhi + reach, box.yhi + reach};
+  std::vector<DrcShape> shapes;
+  im.ctx.fixedIndex.query(win, [&](int32_t id) { shapes.push_back(im.ctx.fixedShapes[id]); });
+  std::unordered_map<int32_t, const NetState*> mine;
+  for (const NetState& ns : im.nets) mine[ns.task.net] = &ns;
+  std::vector<NetShape> ns;
+  auto add = [&](int32_t net, const NetRouting& r, ShapeOrigin origin) {
+    ns.clear();
+    netRoutingShapes(im.ctx.tech, im.ctx.design, r, ns);
+    for (const NetShape& s : ns) {
+      if (s.rect.overlaps(win)) shapes.push_back({s.layer, s.rect, net, origin});
+    }
+  };
+  std::vector<int32_t> nets = im.ctx.netsNear(win);
+  for (const auto& [n, st] : mine) nets.push_back(n);
+  std::sort(nets.begin(), nets.end());
+  nets.erase(std::unique(nets.begin(), nets.end()), nets.end());
+  for (int32_t n : nets) {
+    auto it = mine.find(n);
+    if (it == mine.end()) {
+      add(n, im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
+      continue;
+    }
+    add(n, it->second->task.ripup ? it->second->kept : im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
+    add(n, it->second->result.added, ShapeOrigin::Wire);
+  }
+  DrcOptions o;
+  o.skipFixedPairs = true;
+  o.window = box;
+  return checkShapes(im.ctx.tech, std::move(shapes), o);
+}
+
+void commitRegion(const Tech& tech, Design& design, const Rect& box, const RegionResult& result) {
+  for (const RegionNetResult& nr : result.nets) {
+    if (!nr.routed) continue;
+    NetRouting& routing = design.nets[nr.net].routing;
+    if (nr.ripup) routing = clipOutside(tech, design, routing, box, nullptr);
+    routing.wires.insert(routing.wires.end(), nr.added.wires.begin(), nr.added.wires.end());
+    routing.vias.insert(routing.vias.end(), nr.added.vias.begin(), nr.added.vias.end());
+    routing.patches.insert(routing.patches.end(), nr.added.patches.begin(), nr.added.patches.end());
+  }
+}
+
 RegionResult RegionRouter::finish() {
   RegionResult r;
   r.regionId = impl_->task.region.id;

@@ -79,12 +79,21 @@ class RegionRouter {
   void routeNet(int32_t index, MazeWorkspace& ws);
   // Routes every candidate not yet routed in the policy's order.
   void routeAll(NetOrderPolicy& policy, MazeWorkspace& ws);
+  // The new routing of a candidate so far (empty until routed).
+  const RegionNetResult& result(int32_t candidate) const;
+  // Design-rule markers inside the box with the new routing in place of the
+  // ripped-up routing (fixed-only markers skipped).
+  std::vector<Marker> check() const;
   RegionResult finish();
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Applies a region's result to the design: ripped-up nets lose their routing
+// inside the box, every routed net gains its new routing.
+void commitRegion(const Tech& tech, Design& design, const Rect& box, const RegionResult& result);
 
 // Runs a whole region: prepare, order by the policy, route, finish.
 RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,

@@ -202,13 +202,9 @@ class Flow {
   }
 
   void commit(const RegionTask& task, const RegionResult& res, CrossingPlan& plan, IterationReport& rep) {
+    commitRegion(tech_, design_, task.region.box, res);
     for (const RegionNetResult& nr : res.nets) {
       if (!nr.routed) continue;
-      NetRouting& routing = design_.nets[nr.net].routing;
-      if (nr.ripup) routing = clipOutside(tech_, design_, routing, task.region.box, nullptr);
-      routing.wires.insert(routing.wires.end(), nr.added.wires.begin(), nr.added.wires.end());
-      routing.vias.insert(routing.vias.end(), nr.added.vias.begin(), nr.added.vias.end());
-      routing.patches.insert(routing.patches.end(), nr.added.patches.begin(), nr.added.patches.end());
       ++rep.netRoutes;
       rep.unreached += nr.unreached;
     }

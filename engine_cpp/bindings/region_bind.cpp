@@ -1,0 +1,256 @@
+// Python view of one routing region, steppable net by net: what a learning
+// environment drives. A RoutingSession holds what every region of a design
+// shares (tracks, pin access, fixed shapes); a Region routes the nets of one
+// box in the order the caller chooses and can be committed to the design.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "db/database.hpp"
+#include "flow/region_router.hpp"
+#include "flow/route_context.hpp"
+#include "flow/router.hpp"
+#include "flow/standalone.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+using namespace xroute;
+
+namespace {
+
+struct RoutingSession {
+  Database* db = nullptr;
+  std::unique_ptr<RouteContext> ctx;
+  MazeCosts costs;
+  int32_t regions = 0;
+};
+
+struct RegionHandle {
+  RoutingSession* session = nullptr;
+  RegionTask task;
+  CrossingPlan plan;
+  std::unique_ptr<RegionRouter> router;
+  MazeWorkspace ws;
+  bool committed = false;
+
+  void checkOpen() const {
+    if (committed) throw std::runtime_error("this region was committed; open a new one");
+  }
+  int32_t candidate(int32_t i) const {
+    const int32_t n = static_cast<int32_t>(router->candidates().size());
+    if (i < 0 || i >= n) throw nb::index_error(("candidate index out of range 0.." + std::to_string(n - 1)).c_str());
+    return i;
+  }
+};
+
+template <class T>
+nb::ndarray<nb::numpy, T> gridView(const RegionGrid& g, std::vector<T>& v) {
+  const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
+  return nb::ndarray<nb::numpy, T>(v.data(), 3, shape, nb::handle());
+}
+
+nb::ndarray<nb::numpy, int32_t> coordView(const std::vector<Dbu>& v) {
+  const size_t shape[1] = {v.size()};
+  return nb::ndarray<nb::numpy, int32_t>(const_cast<Dbu*>(v.data()), 1, shape, nb::handle());
+}
+
+nb::dict netResultDict(const Tech& tech, const RegionNetResult& r) {
+  int64_t wl = 0;
+  for (const RouteWire& w : r.added.wires) wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
+  nb::dict d;
+  d["net"] = r.net;
+  d["routed"] = r.routed;
+  d["wirelength_dbu"] = wl;
+  d["vias"] = r.added.vias.size();
+  d["unreached"] = r.unreached;
+  return d;
+}
+
+}  // namespace
+
+void bindRegion(nb::module_& m) {
+  nb::class_<RoutingSession>(m, "RoutingSession",
+                             "What every region of one design shares: tracks, vias, pin access, fixed shapes.")
+      .def(
+          "__init__",
+          [](RoutingSession* self, Database& db, int threads) {
+            new (self) RoutingSession();
+            self->db = &db;
+            nb::gil_scoped_release release;
+            self->ctx = std::make_unique<RouteContext>(db.tech, db.design, std::max(1, threads));
+          },
+          "db"_a, "threads"_a = 1, nb::keep_alive<1, 2>(),
+          "Prepares routing of a loaded Database (pin access is computed here, once).")
+      .def_prop_ro(
+          "gcell_lines",
+          [](const RoutingSession& s) { return nb::make_tuple(s.ctx->gcells.xs, s.ctx->gcells.ys); },
+          "The GCell grid lines (xs, ys) in DBU that regions align to.")
+      .def(
+          "open_region",
+          [](RoutingSession& s, std::tuple<Dbu, Dbu, Dbu, Dbu> box, int iteration) {
+            auto* h = new RegionHandle();
+            h->session = &s;
+            const Rect r = Rect::fromCorners({std::get<0>(box), std::get<1>(box)}, {std::get<2>(box), std::get<3>(box)});
+            {
+              nb::gil_scoped_release release;
+              h->task = makeStandaloneTask(*s.ctx, r, s.regions++, iteration, s.costs, h->plan);
+              h->router = std::make_unique<RegionRouter>(*s.ctx, h->task, &h->plan);
+              h->router->prepare();
+            }
+            return h;
+          },
+          "box"_a, "iteration"_a = 0, nb::rv_policy::take_ownership, nb::keep_alive<0, 1>(),
+          "Opens the region box (xlo, ylo, xhi, yhi) in DBU: nets with pins or routing inside, or whose guides "
+          "cross its edges, become candidates (routed nets are ripped up inside the box).");
+
+  nb::class_<RegionHandle>(m, "Region", "One routing region, routed net by net in the caller's order.")
+      .def_prop_ro(
+          "box",
+          [](const RegionHandle& h) {
+            const Rect& b = h.task.region.box;
+            return nb::make_tuple(b.xlo, b.ylo, b.xhi, b.yhi);
+          },
+          "The region box (xlo, ylo, xhi, yhi) in DBU.")
+      .def_prop_ro(
+          "candidates",
+          [](const RegionHandle& h) {
+            const auto& c = h.router->candidates();
+            std::vector<int32_t> flat;
+            for (const NetCandidate& k : c) {
+              const int32_t row[9] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
+                                      k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
+              flat.insert(flat.end(), row, row + 9);
+            }
+            auto* data = new std::vector<int32_t>(std::move(flat));
+            nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
+            static int32_t empty[1] = {0};
+            const size_t shape[2] = {c.size(), 9};
+            return nb::ndarray<nb::numpy, int32_t>(data->empty() ? empty : data->data(), 2, shape, owner);
+          },
+          nb::rv_policy::move, "int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.")
+      .def(
+          "is_routed", [](const RegionHandle& h, int32_t i) { return h.router->isRouted(h.candidate(i)); }, "index"_a,
+          "Whether candidate i has been routed.")
+      .def(
+          "unrouted",
+          [](const RegionHandle& h) {
+            std::vector<int32_t> out;
+            for (int32_t i = 0; i < static_cast<int32_t>(h.router->candidates().size()); ++i) {
+              if (!h.router->isRouted(i)) out.push_back(i);
+            }
+            return out;
+          },
+          "Indices of the candidates not routed yet.")
+      .def(
+          "route_net",
+          [](RegionHandle& h, int32_t i) {
+            h.checkOpen();
+            h.candidate(i);
+            if (h.router->isRouted(i)) throw nb::value_error(("candidate " + std::to_string(i) + " is already routed").c_str());
+            {
+              nb::gil_scoped_release release;
+              h.router->routeNet(i, h.ws);
+            }
+            return netResultDict(h.session->db->tech, h.router->result(i));
+          },
+          "index"_a, "Routes candidate i now; returns its wirelength_dbu, vias and unreached terminals.")
+      .def(
+          "route_rest",
+          [](RegionHandle& h, const std::string& policy, uint64_t seed) {
+            h.checkOpen();
+            std::unique_ptr<NetOrderPolicy> p;
+            if (policy == "heuristic") p = makeHeuristicPolicy();
+            else if (policy == "random") p = makeRandomPolicy(seed);
+            else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
+            nb::gil_scoped_release release;
+            h.router->routeAll(*p, h.ws);
+          },
+          "policy"_a = "heuristic", "seed"_a = 1, "Routes every candidate not routed yet in a built-in policy's order.")
+      .def(
+          "metrics",
+          [](const RegionHandle& h) {
+            int64_t wl = 0, vias = 0;
+            int routed = 0, unreached = 0;
+            for (int32_t i = 0; i < static_cast<int32_t>(h.router->candidates().size()); ++i) {
+              const RegionNetResult& r = h.router->result(i);
+              if (!r.routed) continue;
+              ++routed;
+              unreached += r.unreached;
+              for (const RouteWire& w : r.added.wires)
+                wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
+              vias += static_cast<int64_t>(r.added.vias.size());
+            }
+            std::vector<Marker> markers;
+            {
+              nb::gil_scoped_release release;
+              markers = h.router->check();
+            }
+            nb::dict byType;
+            for (int t = 0; t < kMarkerTypes; ++t) byType[std::string(markerTypeName(static_cast<MarkerType>(t))).c_str()] = 0;
+            for (const Marker& mk : markers) {
+              const std::string k(markerTypeName(mk.type));
+              byType[k.c_str()] = nb::cast<int>(byType[k.c_str()]) + 1;
+            }
+            nb::dict d;
+            d["wirelength_dbu"] = wl;
+            d["vias"] = vias;
+            d["violations"] = markers.size();
+            d["violations_by_type"] = byType;
+            d["nets_routed"] = routed;
+            d["unreached"] = unreached;
+            return d;
+          },
+          "The new routing so far: wirelength_dbu, vias, nets_routed, unreached terminals, and the design-rule "
+          "violations inside the box (fixed-only ones skipped).")
+      .def(
+          "grid",
+          [](RegionHandle& h) {
+            RegionGrid& g = const_cast<RegionGrid&>(h.router->grid());
+            nb::dict d;
+            d["xs"] = coordView(g.xs());
+            d["ys"] = coordView(g.ys());
+            d["flags"] = gridView(g, g.flags);
+            d["fixed_owner"] = gridView(g, g.fixedOwner);
+            d["via_fixed_owner"] = gridView(g, g.viaFixedOwner);
+            d["wire_use"] = gridView(g, g.wireUse);
+            d["via_use"] = gridView(g, g.viaUse);
+            d["marker_cost"] = gridView(g, g.markerCost);
+            d["access_net"] = gridView(g, g.accessNet);
+            d["access_pin"] = gridView(g, g.accessPin);
+            d["routed_net"] = gridView(g, g.routedNet);
+            return d;
+          },
+          nb::rv_policy::reference_internal,
+          "Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags "
+          "(1 on track, 2 access point, 4 boundary terminal; 0 = no node), fixed_owner / via_fixed_owner (-1 free, "
+          "net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), "
+          "marker_cost, access_net, access_pin, routed_net (-1 = none).")
+      .def(
+          "node_type",
+          [](const RegionHandle& h) {
+            const RegionGrid& g = h.router->grid();
+            auto* data = new std::vector<uint8_t>(g.size());
+            for (size_t n = 0; n < g.size(); ++n) (*data)[n] = static_cast<uint8_t>(g.nodeType(static_cast<int32_t>(n)));
+            nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<uint8_t>*>(p); });
+            const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
+            return nb::ndarray<nb::numpy, uint8_t>(data->data(), 3, shape, owner);
+          },
+          "uint8[nz, ny, nx]: 0 NOTEXIST, 1 BLOCKAGE, 2 NORMAL, 3 ACCESS (a copy).")
+      .def(
+          "commit",
+          [](RegionHandle& h) {
+            h.checkOpen();
+            RegionResult res = h.router->finish();
+            nb::gil_scoped_release release;
+            RouteContext& ctx = *h.session->ctx;
+            commitRegion(ctx.tech, ctx.design, h.task.region.box, res);
+            ctx.rebuildRoutedIndex();
+            h.committed = true;
+          },
+          "Writes the region's new routing into the design (other open regions of the session become stale).");
+}
