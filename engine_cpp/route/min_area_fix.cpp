@@ -49,7 +49,7 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
                const std::vector<MetalAnchor>& anchors, const std::vector<PinMetal>& pins, const RepairScore& score,
                NetRouting& added) {
   int repairs = 0;
-  std::vector<RouteWire> extra;
+  std::vector<RoutePatch> extra;
   for (size_t z = 0; z < tracks.layers.size(); ++z) {
     const LayerTracks& lt = tracks.layers[z];
     const Layer& layer = tech.layer(lt.layer);
@@ -131,11 +131,13 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
       }
       if (bestScore < 0) continue;
       const RouteWire w = best;
-      extra.push_back(w);
+      Rect patch;
+      routeWireRect(tech, w, patch);
+      extra.push_back({w.layer, patch});
       ++repairs;
     }
   }
-  added.wires.insert(added.wires.end(), extra.begin(), extra.end());
+  added.patches.insert(added.patches.end(), extra.begin(), extra.end());
   return repairs;
 }
 

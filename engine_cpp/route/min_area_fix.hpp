@@ -1,9 +1,10 @@
 // Minimum-area repair of freshly routed metal: a piece of a net's new
 // routing on one layer (wires and via metal that touch) whose area is below
-// the layer's AREA gets a wire along the preferred direction, long enough to
-// reach it. Pin metal of the net joins the pieces it touches and counts in
-// their area; pieces touching an anchor (a boundary terminal: the routing
-// outside adds area) are left alone.
+// the layer's AREA gets a patch of wire width along the preferred direction
+// (or across it, where that conflicts less), long enough to reach it. Pin
+// metal of the net joins the pieces it touches and counts in their area;
+// pieces touching an anchor (a boundary terminal: the routing outside adds
+// area) are left alone.
 #pragma once
 
 #include <functional>
@@ -20,7 +21,8 @@ struct MetalAnchor {
   int z = 0;  // routing index
 };
 
-// Appends the repair wires to `added.wires`; returns how many it added.
+// Appends the repairs to `added.patches` (metal patches, as DEF RECTs: they
+// are not wires and do not count as wirelength); returns how many it added.
 struct PinMetal {
   int z = 0;   // routing index
   Rect rect;   // DBU
