@@ -144,7 +144,7 @@ void bindRouter(nb::module_& m) {
         result["policy"] = policy_fn.is_none() ? policy : std::string("python");
         return result;
       },
-      "db"_a, "region_size"_a = 3, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
+      "db"_a, "region_size"_a = 5, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
       "policy_fn"_a = nb::none(), "progress"_a = nb::none(), "costs"_a = nb::dict(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
       "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, "

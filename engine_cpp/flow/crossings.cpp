@@ -113,23 +113,45 @@ struct Planner {
       adj[key.first].push_back(key.second);
       adj[key.second].push_back(key.first);
     }
-    // BFS spanning tree from the first pin region.
+    // A Steiner tree of regions over the guide links: grow from the first
+    // pin region, each time joining the pin region nearest to the tree (a
+    // breadth-first search from the whole tree) by its shortest path. (A
+    // shortest-path tree from one root would star out and waste wire on
+    // nets with many pins.)
     std::map<int32_t, int32_t> parent;
     const int32_t root = *pinRegions.begin();
-    std::queue<int32_t> q;
-    q.push(root);
     parent[root] = -1;
-    while (!q.empty()) {
-      const int32_t u = q.front();
-      q.pop();
-      auto it = adj.find(u);
-      if (it == adj.end()) continue;
-      std::vector<int32_t> next = it->second;
-      std::sort(next.begin(), next.end());
-      for (int32_t v : next) {
-        if (parent.count(v)) continue;
-        parent[v] = u;
-        q.push(v);
+    std::set<int32_t> left(pinRegions);
+    left.erase(root);
+    while (!left.empty()) {
+      std::map<int32_t, int32_t> from;
+      std::queue<int32_t> q;
+      for (const auto& [reg, par] : parent) {
+        from[reg] = -1;
+        q.push(reg);
+      }
+      int32_t hit = -1;
+      while (!q.empty()) {
+        const int32_t u = q.front();
+        q.pop();
+        if (left.count(u)) {
+          hit = u;
+          break;
+        }
+        auto it = adj.find(u);
+        if (it == adj.end()) continue;
+        std::vector<int32_t> next = it->second;
+        std::sort(next.begin(), next.end());
+        for (int32_t v : next) {
+          if (from.count(v)) continue;
+          from[v] = u;
+          q.push(v);
+        }
+      }
+      if (hit < 0) break;  // the rest is not linked by guides
+      for (int32_t v = hit; !parent.count(v); v = from[v]) {
+        parent[v] = from[v];
+        left.erase(v);
       }
     }
     // Pin regions the guides do not reach: an L-shaped chain from the nearest reached region.

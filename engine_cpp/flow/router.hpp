@@ -19,7 +19,7 @@
 namespace xroute {
 
 struct RouterSettings {
-  int regionSize = 3;              // GCells per region side (C)
+  int regionSize = 5;              // GCells per region side (C); 5 measured best on ispd18_test1
   int iterations = 10;             // iterations 0..iterations-1 at most (1..64)
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<int> offsets;        // region offset in GCells per iteration (cycled); empty = 0, C/2, C-1, ...
