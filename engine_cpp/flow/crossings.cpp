@@ -192,11 +192,53 @@ struct Planner {
         changed = true;
       }
     }
+    std::map<int32_t, std::vector<int32_t>> tree;
+    for (const auto& [reg, par] : parent) {
+      if (removed.count(reg) || par < 0) continue;
+      tree[reg].push_back(par);
+      tree[par].push_back(reg);
+    }
+    std::map<int32_t, std::vector<Point>> pinsByRegion;
+    for (int32_t r = d.netPinStart[net]; r < d.netPinStart[net + 1]; ++r) {
+      if (ctx.access.count(r) == 0) continue;
+      const Point p = ctx.access.begin(r)->at;
+      pinsByRegion[regionOf(p)].push_back(p);
+    }
     for (const auto& [reg, par] : parent) {
       if (removed.count(reg) || par < 0) continue;
       const auto key = std::make_pair(std::min(reg, par), std::max(reg, par));
       auto it = edges.find(key);
       addCrossing(net, reg, par, it == edges.end() ? EdgeInfo{} : it->second);
+      Crossing& c = plan.crossings.back();
+      // For each side, the pins beyond the edge nearest in the tree.
+      for (int side = 0; side < 2; ++side) {
+        const int32_t here = side == 0 ? c.regionA : c.regionB;
+        const int32_t there = here == reg ? par : reg;
+        std::map<int32_t, int> depth{{there, 0}};
+        std::queue<int32_t> q;
+        q.push(there);
+        std::vector<Point> near, all;
+        while (!q.empty()) {
+          const int32_t u = q.front();
+          q.pop();
+          for (const Point& p : pinsByRegion[u]) {
+            all.push_back(p);
+            if (depth[u] <= 2) near.push_back(p);
+          }
+          for (int32_t v : tree[u]) {
+            if (v == here || depth.count(v)) continue;
+            depth[v] = depth[u] + 1;
+            q.push(v);
+          }
+        }
+        const std::vector<Point>& use = near.empty() ? all : near;
+        for (const Point& p : use) {
+          const Dbu along = c.vertical ? p.y : p.x;
+          c.wantLo[side] = c.hasWant[side] ? std::min(c.wantLo[side], along) : along;
+          c.wantHi[side] = c.hasWant[side] ? std::max(c.wantHi[side], along) : along;
+          c.hasWant[side] = true;
+        }
+      }
       if (!pinRegions.count(reg)) plan.regionNets[reg].push_back(net);
     }
   }

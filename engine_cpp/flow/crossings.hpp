@@ -19,6 +19,10 @@ struct Crossing {
   Dbu coord = 0;                       // DBU
   Dbu lo = 0, hi = 0;                  // DBU, span along the edge
   uint32_t layerMask = 0;              // routing layers (bit z) of guides crossing here; 0 = any
+  // Where along the edge the net's nearby pins on the far side lie, as seen
+  // from region A ([0]) and from region B ([1]): the crossing is best there.
+  bool hasWant[2] = {false, false};
+  Dbu wantLo[2] = {0, 0}, wantHi[2] = {0, 0};  // DBU
   // Set when the first of the two regions routes the net through it.
   bool chosen = false;
   Point at;                            // DBU

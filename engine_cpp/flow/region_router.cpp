@@ -117,10 +117,11 @@ struct RegionRouter::Impl {
     // Where along the edge the net's pins beyond it lie: crossing there
     // keeps the route short on the far side.
     const bool farIsHigh = c.regionA == task.region.id;
-    bool anyFar = false;
-    Dbu wantLo = 0, wantHi = 0;
+    const int side = farIsHigh ? 0 : 1;
+    bool anyFar = c.hasWant[side];
+    Dbu wantLo = c.wantLo[side], wantHi = c.wantHi[side];
     const Design& d = ctx.design;
-    for (int32_t pin = d.netPinStart[c.net]; pin < d.netPinStart[c.net + 1]; ++pin) {
+    for (int32_t pin = d.netPinStart[c.net]; pin < d.netPinStart[c.net + 1] && !c.hasWant[side]; ++pin) {
       if (ctx.access.count(pin) == 0) continue;
       const Point p = ctx.access.begin(pin)->at;
       const Dbu across = c.vertical ? p.x : p.y, along = c.vertical ? p.y : p.x;
