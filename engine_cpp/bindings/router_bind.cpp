@@ -118,6 +118,7 @@ void bindRouter(nb::module_& m) {
           else if (key == "use_penalty") s.costs.usePenalty = val;
           else if (key == "bottom_layer_factor") s.costs.bottomLayerFactor = val;
           else if (key == "reserve_penalty") s.costs.reservePenalty = val;
+          else if (key == "crossing_pull") s.costs.crossingPull = val;
           else if (key == "use_penalty_step") s.usePenaltyStep = val;
           else if (key == "marker_penalty") s.markerPenalty = val;
           else if (key == "history_penalty") s.historyPenalty = val;
@@ -150,5 +151,5 @@ void bindRouter(nb::module_& m) {
       "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, "
       "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
       "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
-      "reserve_penalty, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.");
+      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.");
 }

@@ -138,7 +138,7 @@ struct RegionRouter::Impl {
         for (Dbu t : tracksIn(lt.pref, lo, hi)) {
           spec.points.push_back(edgeIsX ? Point{c.coord, t} : Point{t, c.coord});
           spec.zs.push_back(z);
-          spec.exitCost.push_back(anyFar ? (t < wantLo ? wantLo - t : (t > wantHi ? t - wantHi : 0)) : 0);
+          spec.exitCost.push_back(anyFar ? task.costs.crossingPull * (t < wantLo ? wantLo - t : (t > wantHi ? t - wantHi : 0)) : 0);
         }
       }
     };

@@ -19,6 +19,7 @@ struct MazeCosts {
   int64_t markerUnit = 1;          // multiplier of RegionGrid::markerCost
   int64_t bottomLayerFactor = 4;   // wire length multiplier on routing layer 0 (the pin layer)
   int64_t reservePenalty = 20000;  // entering another net's access point or boundary terminal
+  int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
 };
 
 struct MazeTerminal {
