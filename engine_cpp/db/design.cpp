@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "geom/polygon.hpp"
+
 namespace xroute {
 
 CompId Design::findComponent(std::string_view name) const {
@@ -55,6 +57,17 @@ bool routeWireRect(const Tech& tech, const RouteWire& w, Rect& out) {
     return true;
   }
   return false;
+}
+
+void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out) {
+  if (shape.polygon.empty()) {
+    out.push_back(t.apply(shape.rect));
+    return;
+  }
+  std::vector<Point> pts;
+  pts.reserve(shape.polygon.size());
+  for (const Point& p : shape.polygon) pts.push_back(t.apply(p));
+  polygonRects(pts, out);
 }
 
 std::vector<Dbu> gcellLines(const Design& design, bool isX) {

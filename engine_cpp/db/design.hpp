@@ -234,6 +234,9 @@ std::vector<PlacedShape> netPinShapes(const Tech& tech, const Design& design, Ne
 // without a layer.
 bool routeWireRect(const Tech& tech, const RouteWire& wire, Rect& out);
 
+// Appends a macro shape placed by `t` as rects (a POLYGON cut into slabs).
+void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out);
+
 // All GCell grid line coordinates along x (isX) or y, sorted, deduplicated.
 std::vector<Dbu> gcellLines(const Design& design, bool isX);
 

@@ -36,20 +36,12 @@ struct PinRect {
 
 // ---- pin_geometry.cpp ----
 
-// The rects of a macro shape placed by `t` (a rectilinear polygon is cut into
-// horizontal slabs; a polygon with a slanted edge becomes its bounding box).
-void placedRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out);
-
 // Area of `r` outside the union of the rects of `metal` on layer z (DBU^2).
 Area uncoveredArea(const std::vector<PinRect>& metal, int32_t z, const Rect& r);
 
 // True when `r` (with positive area) is covered by the union of the rects of
 // `metal` on layer z.
 bool coveredBy(const std::vector<PinRect>& metal, int32_t z, const Rect& r);
-
-// Appends the parts of `r` outside `cut` (up to four rects; `r` itself when
-// they share no area).
-void subtractRect(const Rect& r, const Rect& cut, std::vector<Rect>& out);
 
 // ---- layer_access.cpp ----
 

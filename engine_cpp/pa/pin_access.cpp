@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "drc/layer_shapes.hpp"
+#include "geom/polygon.hpp"
 #include "pa/pa_internal.hpp"
 
 namespace xroute {
@@ -151,7 +152,7 @@ JobResult runComponentJob(const Tech& tech, const Design& design, const std::vec
   for (int32_t k = 0; k < int32_t(m.pins.size()); ++k) {
     for (const MacroShape& s : m.pins[k].shapes) {
       rects.clear();
-      pa::placedRects(s, t, rects);
+      placedShapeRects(s, t, rects);
       const int32_t z = tech.layer(s.layer).routingIndex;
       for (const Rect& r : rects) {
         context.push_back({s.layer, r, k, ShapeOrigin::Pin});
@@ -163,11 +164,11 @@ JobResult runComponentJob(const Tech& tech, const Design& design, const std::vec
   std::vector<Rect> pieces, next;
   for (const MacroShape& s : m.obstructions) {
     pieces.clear();
-    pa::placedRects(s, t, pieces);
+    placedShapeRects(s, t, pieces);
     for (const auto& [layer, r] : pinRects) {
       if (layer != s.layer) continue;
       next.clear();
-      for (const Rect& piece : pieces) pa::subtractRect(piece, r, next);
+      for (const Rect& piece : pieces) subtractRect(piece, r, next);
       pieces.swap(next);
     }
     for (const Rect& r : pieces) context.push_back({s.layer, r, -1, ShapeOrigin::Obstruction});
