@@ -57,8 +57,10 @@ int64_t Search::viaNodeCost(int32_t v) const {
   if (own(v)) return cost;
   if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
   if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
+  // Above the net's own access point, pin access has checked the via
+  // exactly; the footprint's bloated estimate would only forbid it.
   const int32_t fo = g_.viaFixedOwner[v];
-  if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
+  if (fo != kOwnerNone && fo != net_.net && g_.reservedNet[v] != net_.net) cost += c_.fixedPenalty;
   if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
   return cost;
 }
