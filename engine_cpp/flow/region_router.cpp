@@ -268,7 +268,10 @@ struct RegionRouter::Impl {
           if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
           if (v >= 0 && (ap->dirs & kAccessUp) && ap->z + 1 < g.nz()) {
             const int32_t above = nodeAt(ap->at, ap->z + 1);
-            if (above >= 0) claimOwner(g.reservedNet[above], ns.task.net);
+            if (above >= 0) {
+              g.flags[above] |= kLanding;
+              claimOwner(g.reservedNet[above], ns.task.net);
+            }
           }
         }
       }

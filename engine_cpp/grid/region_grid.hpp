@@ -25,6 +25,7 @@ enum NodeFlag : uint8_t {
   kOnTrack = 1,   // on one of the layer's preferred tracks
   kAccess = 2,    // an access point of a pin being routed in this region
   kTerminal = 4,  // a boundary terminal (where a net's outside routing ends)
+  kLanding = 8,   // right above an access point: where its via lands (may be off-track)
 };
 
 // Observation node types (what the RL side sees).
