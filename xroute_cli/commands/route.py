@@ -92,13 +92,17 @@ class ProgressDisplay:
             )
 
 
+def _seconds(t: float) -> str:
+    return f"{t:.2f}" if t < 10 else f"{t:.1f}"
+
+
 def final_line(outputs: RouteOutputs, out_dir: Path) -> str:
     f = outputs.final
     status = "routed" if f["open_nets"] == 0 else "OPENS REMAIN"
     return (
         f"{outputs.metrics['design']}: {status}: {f['nets']} nets, {f['open_nets']} open, "
         f"{f['violations']} violations, WL {f['wirelength_um']:,.1f} um, {f['vias']:,} vias, "
-        f"{f['runtime_seconds']:.1f} s, {f['peak_rss_mb']:.0f} MB -> {out_dir}"
+        f"{_seconds(f['runtime_seconds'])} s, {f['peak_rss_mb']:.0f} MB -> {out_dir}"
     )
 
 
@@ -119,8 +123,8 @@ def summary_table(outputs: RouteOutputs) -> Table:
             table.add_row(f"  {kind}", str(count))
     table.add_row("nets (routed / with >= 2 pins)", f"{f['nets_routed']} / {f['nets_checked']}")
     table.add_row("open nets", str(f["open_nets"]), style="red" if f["open_nets"] else None)
-    table.add_row("route time (s)", f"{f['route_seconds']:.1f}")
-    table.add_row("total time (s)", f"{f['runtime_seconds']:.1f}")
+    table.add_row("route time (s)", _seconds(f["route_seconds"]))
+    table.add_row("total time (s)", _seconds(f["runtime_seconds"]))
     table.add_row("peak memory (MB)", f"{f['peak_rss_mb']:.0f}")
     return table
 
