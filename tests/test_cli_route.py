@@ -120,6 +120,14 @@ def test_route_bad_settings(runner: CliRunner, tmp_path: Path, args: list[str], 
     assert result.stderr.strip() == message
 
 
+def test_route_output_folder_that_is_a_file(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd18_sample")
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(blocker / "sub")])
+    assert result.exit_code == 2 and result.stderr.startswith(f"error: {blocker / 'sub'}: ")
+
+
 def test_route_unknown_testcase_and_usage_errors(runner: CliRunner, tmp_path: Path) -> None:
     result = runner.invoke(app, ["route", "no_such_testcase_xyz", "--out", str(tmp_path)])
     assert result.exit_code == 2 and result.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")

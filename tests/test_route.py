@@ -175,6 +175,19 @@ def test_heuristic_in_python_gives_the_builtin_routing(name: str) -> None:
     assert route_def(name, policy=str(REPO_ROOT / "bench" / "python_heuristic_policy.py")) == builtin
 
 
+def test_subclass_of_a_builtin_that_overrides_order_is_called() -> None:
+    class Reversed(HeuristicPolicy):
+        name = "reversed-heuristic"
+        calls = 0
+
+        def order(self, region, features):
+            Reversed.calls += 1
+            return list(super().order(region, features))[::-1]
+
+    result = route_design(fresh("ispd18_sample"), policy=Reversed())
+    assert result.policy == "reversed-heuristic" and Reversed.calls == sum(it.regions for it in result.iterations)
+
+
 @pytest.mark.parametrize(
     ("fn", "message"),
     [

@@ -16,7 +16,7 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from policies.base import NetOrderPolicy, PolicyError, RandomPolicy, check_order
+from policies.base import HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy, check_order
 from policies.registry import get_policy
 from xroute_cli.errors import XrouteError
 
@@ -170,6 +170,15 @@ def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
     return policy
 
 
+def _builtin(policy: NetOrderPolicy) -> str | None:
+    """The engine's name for a built-in policy; None for one that must be called from Python
+    (including a subclass of a built-in that overrides ``order``)."""
+    for cls in (HeuristicPolicy, RandomPolicy):
+        if isinstance(policy, cls) and type(policy).order is cls.order:
+            return cls.builtin
+    return None
+
+
 def _policy_callback(policy: NetOrderPolicy) -> Callable[[dict[str, Any], Any], list[int]]:
     """The engine's policy_fn for a Python policy: calls ``policy.order`` and checks its result."""
     name = policy.name
@@ -203,7 +212,7 @@ def route_design(
     """
     settings = RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)
     pol = resolve_policy(policy, seed)
-    builtin = getattr(pol, "builtin", None)
+    builtin = _builtin(pol)
     kwargs: dict[str, Any] = {}
     if builtin == "heuristic":
         kwargs["policy"] = "heuristic"

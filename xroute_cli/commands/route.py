@@ -180,6 +180,7 @@ def route(
     else:
         design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
     out_dir = out if out is not None else Path("out") / design.name
+    out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
 
     console = stdout_console()
     mode = "off" if (as_json or quiet) else ("rich" if console.is_terminal else "lines")
