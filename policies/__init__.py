@@ -1,0 +1,28 @@
+"""Net-order policies: the protocol, the built-ins and the registry (see :mod:`policies.base`).
+
+Importing this package loads no engine and no torch.
+"""
+
+from policies.base import (
+    FEATURE_COLUMNS,
+    CallablePolicy,
+    HeuristicPolicy,
+    NetOrderPolicy,
+    PolicyError,
+    RandomPolicy,
+    heuristic_order,
+)
+from policies.registry import BUILTIN_POLICIES, get_policy, load_policy_file
+
+__all__ = [
+    "BUILTIN_POLICIES",
+    "FEATURE_COLUMNS",
+    "CallablePolicy",
+    "HeuristicPolicy",
+    "NetOrderPolicy",
+    "PolicyError",
+    "RandomPolicy",
+    "get_policy",
+    "heuristic_order",
+    "load_policy_file",
+]

@@ -1,0 +1,63 @@
+"""Policies by name: ``get_policy("heuristic" | "random" | "path/to/file.py", seed)``.
+
+A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
+define ``order(region, features)`` (see :mod:`policies.base`); it may also set ``NAME`` (default:
+the file's stem). ONNX policies arrive with the learning milestone (issue 4).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import sys
+from pathlib import Path
+from typing import Any
+
+from policies.base import CallablePolicy, HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy
+
+BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random")
+
+
+def load_policy_file(path: str | Path) -> CallablePolicy:
+    """The policy defined by a Python file's ``order(region, features)`` function."""
+    p = Path(path)
+    if not p.is_file():
+        raise PolicyError(f"policy file not found: {p}")
+    # A module name unique per file, so two policy files with the same stem do not collide.
+    module_name = "xroute_policy_" + hashlib.sha1(str(p.resolve()).encode()).hexdigest()[:12]
+    spec = importlib.util.spec_from_file_location(module_name, p)
+    if spec is None or spec.loader is None:
+        raise PolicyError(f"cannot load policy file {p}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[module_name] = module
+    try:
+        spec.loader.exec_module(module)
+    except Exception as exc:  # noqa: BLE001 - the user's file: report it as one line
+        sys.modules.pop(module_name, None)
+        raise PolicyError(f"policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+    fn: Any = getattr(module, "order", None)
+    if not callable(fn):
+        raise PolicyError(f"policy file {p} defines no function order(region, features)")
+    name = getattr(module, "NAME", None) or p.stem
+    return CallablePolicy(fn, name=str(name))
+
+
+def get_policy(spec: str, seed: int = 1) -> NetOrderPolicy:
+    """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), or a ``.py``
+    file defining ``order(region, features)``. Raises :class:`PolicyError` (an ``XrouteError``)
+    for anything else, including ``.onnx`` files (not supported yet)."""
+    if spec == "heuristic":
+        return HeuristicPolicy()
+    if spec == "random":
+        return RandomPolicy(seed)
+    suffix = Path(spec).suffix.lower()
+    if suffix == ".onnx":
+        raise PolicyError(
+            f"{spec}: ONNX policies are not supported yet; they arrive with the learning milestone (issue 4). "
+            "Use heuristic, random or a .py file defining order(region, features)"
+        )
+    if suffix == ".py":
+        return load_policy_file(spec)
+    raise PolicyError(
+        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)} or a .py file defining order(region, features)"
+    )

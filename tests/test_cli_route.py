@@ -1,0 +1,166 @@
+"""``xroute route`` through Typer's CliRunner: outputs, --json, --quiet, policies, errors and the
+exit status (0 routed, 1 opens on the written DEF, 2 user errors)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from xroute_cli.app import app
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    try:
+        return CliRunner(mix_stderr=False)  # Click < 8.2 mixes stderr into stdout by default
+    except TypeError:
+        return CliRunner()  # Click >= 8.2: result.stderr is always separate
+
+
+def outputs(folder: Path, design: str) -> list[Path]:
+    return [folder / f"{design}.routed.def", folder / f"{design}.metrics.json", folder / f"{design}.drc.rpt"]
+
+
+def test_route_quiet_writes_three_files_and_one_line(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd18_sample")
+    out = tmp_path / "tmp"
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(out), "--quiet"])
+    assert result.exit_code == 0, result.output + result.stderr
+    assert all(p.is_file() for p in outputs(out, "ispd18_sample"))
+    assert sorted(p.name for p in out.iterdir()) == sorted(p.name for p in outputs(out, "ispd18_sample"))  # no temp left
+    lines = result.stdout.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("ispd18_sample: routed: 11 nets, 0 open, 0 violations")
+    assert result.stderr == ""
+
+
+def test_route_json_parses_and_matches_the_file(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd19_sample4")
+    result = runner.invoke(app, ["route", "ispd19_sample4", "--out", str(tmp_path), "--json", "--iterations", "3",
+                                 "--threads", "2", "--region-size", "4"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data == json.loads((tmp_path / "ispd19_sample4.metrics.json").read_text())
+    assert data["settings"] == {"region_size": 4, "iterations": 3, "threads": 2, "seed": 1, "policy": "heuristic"}
+    assert 1 <= len(data["iterations"]) <= 3
+    assert data["final"]["open_nets"] == 0 and data["final"]["nets"] == 22
+
+
+def test_route_default_output_folder_and_progress_lines(runner: CliRunner, testcase, tmp_path: Path,
+                                                        monkeypatch: pytest.MonkeyPatch) -> None:
+    testcase("ispd18_sample2")
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(app, ["route", "ispd18_sample2"], env={"COLUMNS": "200"})
+    assert result.exit_code == 0, result.output + result.stderr
+    assert all(p.is_file() for p in outputs(tmp_path / "out" / "ispd18_sample2", "ispd18_sample2"))
+    out = result.stdout
+    # Not a terminal: plain progress lines, then the table, then the final line.
+    assert out.startswith("routing ispd18_sample2: 16 nets, region size 5, up to 10 iterations, 1 thread(s), "
+                          "policy heuristic\niteration 0: ")
+    assert "open nets" in out and "wirelength (µm)" in out
+    assert out.strip().splitlines()[-1].startswith("ispd18_sample2: routed: 16 nets, 0 open")
+
+
+def test_route_with_lef_def_files(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    found = testcase("ispd18_sample")
+    result = runner.invoke(app, ["route", "--lef", str(found.lef), "--def", str(found.def_), "--guide",
+                                 str(found.guide), "--out", str(tmp_path), "--json"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data["testcase"] is None and data["inputs"]["def"] == str(found.def_)
+    assert data["final"]["open_nets"] == 0
+
+
+def test_route_python_policy_file(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd18_sample")
+    policy = tmp_path / "longest_first.py"
+    policy.write_text(
+        "def order(region, features):\n"
+        "    hp = (features[:, 6] - features[:, 4]) + (features[:, 7] - features[:, 5])\n"
+        "    return sorted(range(len(features)), key=lambda i: (-int(hp[i]), i))\n"
+    )
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(tmp_path / "o"), "--policy", str(policy),
+                                 "--json"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data["policy"] == "longest_first" and data["final"]["open_nets"] == 0
+
+
+@pytest.mark.parametrize("spec", ["missing.onnx", "model.onnx", "nonexistent.py", "greedy"])
+def test_route_bad_policy_is_a_one_line_error(runner: CliRunner, testcase, tmp_path: Path, spec: str) -> None:
+    testcase("ispd18_sample")
+    if spec == "model.onnx":
+        (tmp_path / spec).write_bytes(b"\0")
+    out = tmp_path / "o"
+    policy = spec if spec == "greedy" else str(tmp_path / spec)
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(out), "--policy", policy])
+    assert result.exit_code == 2, result.output + result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    expected = {"missing.onnx": "issue 4", "model.onnx": "issue 4", "nonexistent.py": "policy file not found",
+                "greedy": "unknown policy 'greedy'"}[spec]
+    assert expected in lines[0]
+    assert "Traceback" not in result.output + result.stderr
+    assert not out.exists()  # nothing routed, nothing written
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--region-size", "0"], "error: region size must be at least 1 GCell, got 0"),
+        (["--iterations", "65"], "error: iterations must be between 1 and 64, got 65"),
+        (["--threads", "0"], "error: threads must be at least 1, got 0"),
+    ],
+)
+def test_route_bad_settings(runner: CliRunner, tmp_path: Path, args: list[str], message: str) -> None:
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(tmp_path / "o"), *args])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == message
+
+
+def test_route_output_folder_that_is_a_file(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd18_sample")
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(blocker / "sub")])
+    assert result.exit_code == 2 and result.stderr.startswith(f"error: {blocker / 'sub'}: ")
+
+
+def test_route_unknown_testcase_and_usage_errors(runner: CliRunner, tmp_path: Path) -> None:
+    result = runner.invoke(app, ["route", "no_such_testcase_xyz", "--out", str(tmp_path)])
+    assert result.exit_code == 2 and result.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")
+    result = runner.invoke(app, ["route"])
+    assert result.exit_code == 2 and "give a testcase name" in result.output + result.stderr
+
+
+def test_route_exit_1_when_the_written_def_has_opens(runner: CliRunner, testcase, tmp_path: Path,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    """A router that claims success but routes nothing: the check of the written DEF finds the opens."""
+    testcase("ispd18_sample")
+    import xroute_cli.router as router
+
+    def no_routing(design, **kw):
+        fake = router.IterationReport(iteration=0, offset=0, regions=0, net_routes=0, unreached=0,
+                                      wirelength_dbu=0, wirelength_um=0.0, vias=0,
+                                      violations_by_type={t: 0 for t in router.VIOLATION_TYPES})
+        return router.RouteResult(iterations=(fake,), policy="none", settings=router.RouteSettings(), seconds=0.0,
+                                  violations_by_type=dict(fake.violations_by_type))
+
+    monkeypatch.setattr(router, "route_design", no_routing)
+    result = runner.invoke(app, ["route", "ispd18_sample", "--out", str(tmp_path), "--quiet"])
+    assert result.exit_code == 1, result.output + result.stderr
+    assert "OPENS REMAIN: 11 nets, 11 open" in result.stdout
+    opens = result.stderr.strip().splitlines()
+    assert len(opens) == 11 and all(line.startswith("open net ") for line in opens)
+    data = json.loads((tmp_path / "ispd18_sample.metrics.json").read_text())
+    assert data["final"]["open_nets"] == data["final"]["unrouted_nets"] == 11
+    assert len(data["final"]["opens"]) == 11
+
+
+def test_route_help(runner: CliRunner) -> None:
+    result = runner.invoke(app, ["route", "--help"], env={"COLUMNS": "200"})
+    assert result.exit_code == 0
+    for option in ("--out", "--region-size", "--iterations", "--threads", "--policy", "--seed", "--json", "--quiet"):
+        assert option in result.output

@@ -1,0 +1,149 @@
+"""The outputs of a routing run, checked on what was written.
+
+:func:`write_route_outputs` writes ``<design>.routed.def``, reads it back with the same LEF and
+checks the written file (opens, wirelength, vias, design rules), then writes
+``<design>.drc.rpt`` and ``<design>.metrics.json``. Every file is written atomically (a
+temporary file in the same folder, then ``os.replace``): an interrupted run leaves no partial
+file. The figures in the metrics therefore describe the written DEF, not the router's belief.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import sys
+import time
+import uuid
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from xroute_cli.design import Design
+    from xroute_cli.router import RouteResult
+
+METRICS_FORMAT = 1  # version of the metrics JSON layout
+MAX_OPENS_LISTED = 100  # open nets listed by name in the metrics JSON (all are counted)
+
+
+def peak_rss_mb() -> float:
+    """Peak resident set size of this process so far, in MB (2^20 bytes)."""
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return peak / 2**20 if sys.platform == "darwin" else peak / 2**10  # bytes on macOS, KiB on Linux
+
+
+def atomic_write_text(path: Path, text: str) -> None:
+    """Writes ``text`` to ``path`` through a temporary file in the same folder and ``os.replace``
+    (the file gets the usual permissions: 0666 less the umask)."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    try:
+        with open(tmp, "x", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+@dataclass(frozen=True)
+class RouteOutputs:
+    """Where the outputs went and the checked figures of the written DEF."""
+
+    def_path: Path
+    metrics_path: Path
+    drc_report_path: Path
+    metrics: dict[str, Any]  # the content of the metrics JSON
+
+    @property
+    def final(self) -> dict[str, Any]:
+        return self.metrics["final"]
+
+    @property
+    def open_nets(self) -> int:
+        return int(self.final["open_nets"])
+
+
+def output_paths(out_dir: Path, design_name: str) -> tuple[Path, Path, Path]:
+    """(routed DEF, metrics JSON, DRC report) paths for a design in ``out_dir``."""
+    return (
+        out_dir / f"{design_name}.routed.def",
+        out_dir / f"{design_name}.metrics.json",
+        out_dir / f"{design_name}.drc.rpt",
+    )
+
+
+def write_route_outputs(
+    design: Design,
+    result: RouteResult,
+    out_dir: str | os.PathLike[str],
+    *,
+    started: float | None = None,
+) -> RouteOutputs:
+    """Writes the routed DEF, re-reads and checks it, and writes the DRC report and metrics JSON.
+
+    ``started`` is the ``time.perf_counter()`` of the start of the whole run (loading included),
+    for the runtime figure; by default the routing time is used.
+    """
+    from xroute_cli.design import load_design
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    def_path, metrics_path, drc_path = output_paths(out, design.name)
+    design.write_def(def_path)
+
+    written = load_design(lef=design.lef_paths, def_=def_path)  # check the file, not the memory
+    conn = written.engine.check_connectivity()
+    measured = written.engine.metrics()
+    drc = {str(k): int(v) for k, v in written.engine.write_drc_report(str(drc_path)).items()}
+
+    counts = design.counts()
+    runtime = time.perf_counter() - started if started is not None else result.seconds
+    opens = conn["opens"]
+    metrics: dict[str, Any] = {
+        "format": METRICS_FORMAT,
+        "design": design.name,
+        "testcase": design.testcase,
+        "inputs": {"lef": design.lef_paths, "def": design.def_path, "guide": design.guide_path},
+        "outputs": {"def": str(def_path), "metrics": str(metrics_path), "drc_report": str(drc_path)},
+        "settings": {
+            "region_size": result.settings.region_size,
+            "iterations": result.settings.iterations,
+            "threads": result.settings.threads,
+            "seed": result.settings.seed,
+            "policy": result.policy,
+        },
+        "policy": result.policy,
+        "iterations": [r.to_dict() for r in result.iterations],
+        "final": {
+            "wirelength_dbu": int(measured["wirelength_dbu"]),
+            "wirelength_um": float(measured["wirelength_um"]),
+            "vias": int(measured["vias"]),
+            "violations": sum(drc.values()),
+            "violations_by_type": drc,
+            "nets": int(counts["nets"]),
+            "nets_checked": int(conn["nets_checked"]),
+            "nets_routed": int(measured["nets_routed"]),
+            "open_nets": int(conn["open_nets"]),
+            "opens": [
+                {"net": o["net"], "pin_groups": len(o["groups"]), "floating_pieces": int(o["floating_pieces"])}
+                for o in opens[:MAX_OPENS_LISTED]
+            ],
+            "unrouted_nets": int(conn["unrouted_nets"]),
+            "single_pin_nets": int(conn["single_pin_nets"]),
+            "floating_pieces": int(conn["floating_pieces"]),
+            "iterations_run": len(result.iterations),
+            "route_seconds": result.seconds,
+            "runtime_seconds": runtime,
+            "peak_rss_mb": round(peak_rss_mb(), 1),
+            "wirelength_by_layer": {str(k): int(v) for k, v in measured["wirelength_by_layer"].items()},
+            "vias_by_cut_layer": {str(k): int(v) for k, v in measured["vias_by_cut_layer"].items()},
+        },
+    }
+    atomic_write_text(metrics_path, json.dumps(metrics, indent=2) + "\n")
+    return RouteOutputs(def_path=def_path, metrics_path=metrics_path, drc_report_path=drc_path, metrics=metrics)

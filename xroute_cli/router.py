@@ -1,0 +1,254 @@
+"""Route a loaded design: ``route_design(design, region_size=5, iterations=10, threads=1, policy=...)``.
+
+The engine routes every net of the design in place (any routing the DEF had is replaced):
+iteration 0 routes all nets region by region (regions of ``region_size`` x ``region_size``
+GCells, non-touching regions in parallel on ``threads`` threads); each later iteration rips up
+and reroutes the nets in design-rule markers, and the flow stops early when an iteration ends
+with no marker. The result is the same for any thread count, and for a given policy and seed.
+
+The library never prints; ``progress`` receives a :class:`RouteProgress` after each batch of
+regions and at the end of each iteration.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Mapping
+
+from policies.base import HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy, check_order
+from policies.registry import get_policy
+from xroute_cli.errors import XrouteError
+
+if TYPE_CHECKING:
+    from xroute_cli.design import Design
+
+DEFAULT_REGION_SIZE = 5  # GCells per region side: measured best on ispd18_test1 (3: more violations, 7: slower)
+DEFAULT_ITERATIONS = 10  # the flow stops earlier when an iteration ends with zero violations
+MAX_ITERATIONS = 64
+
+VIOLATION_TYPES: tuple[str, ...] = (
+    "Short",
+    "MetalSpacing",
+    "EndOfLine",
+    "CutShort",
+    "CutSpacing",
+    "AdjacentCuts",
+    "MinArea",
+    "CornerSpacing",
+)
+"""Design-rule marker types, in the engine's order."""
+
+
+class RouteArgumentError(XrouteError, ValueError):
+    """An invalid routing setting (region size, iteration count, thread count, seed)."""
+
+
+@dataclass(frozen=True)
+class RouteSettings:
+    """The settings of one routing run (validated on construction)."""
+
+    region_size: int = DEFAULT_REGION_SIZE  # GCells per region side
+    iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..64)
+    threads: int = 1  # worker threads for the regions of one colour
+    seed: int = 1  # seed of the random policy
+
+    def __post_init__(self) -> None:
+        for name in ("region_size", "iterations", "threads", "seed"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
+        if self.region_size < 1:
+            raise RouteArgumentError(f"region size must be at least 1 GCell, got {self.region_size}")
+        if not 1 <= self.iterations <= MAX_ITERATIONS:
+            raise RouteArgumentError(f"iterations must be between 1 and {MAX_ITERATIONS}, got {self.iterations}")
+        if self.threads < 1:
+            raise RouteArgumentError(f"threads must be at least 1, got {self.threads}")
+        if not 0 <= self.seed < 2**64:
+            raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {self.seed}")
+
+
+@dataclass(frozen=True)
+class IterationReport:
+    """What one iteration did and the state after it (lengths in DBU unless named _um)."""
+
+    iteration: int
+    offset: int  # region offset of this iteration, GCells
+    regions: int  # regions with work
+    net_routes: int  # (net, region) pairs routed
+    unreached: int  # terminals the maze could not reach
+    wirelength_dbu: int  # all wires after the iteration
+    wirelength_um: float
+    vias: int
+    violations_by_type: dict[str, int] = field(default_factory=dict)  # marker type -> count
+    violations: int = 0  # all markers after the iteration
+    seconds: float = 0.0  # wall time of the iteration (routing + check)
+
+    @classmethod
+    def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
+        return cls(
+            iteration=int(d["iteration"]),
+            offset=int(d["offset"]),
+            regions=int(d["regions"]),
+            net_routes=int(d["net_routes"]),
+            unreached=int(d["unreached"]),
+            wirelength_dbu=int(d["wirelength_dbu"]),
+            wirelength_um=float(d["wirelength_um"]),
+            vias=int(d["vias"]),
+            violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
+            violations=int(d["violations"]),
+            seconds=float(d["seconds"]),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "iteration": self.iteration,
+            "offset": self.offset,
+            "regions": self.regions,
+            "net_routes": self.net_routes,
+            "unreached": self.unreached,
+            "wirelength_dbu": self.wirelength_dbu,
+            "wirelength_um": self.wirelength_um,
+            "vias": self.vias,
+            "violations": self.violations,
+            "violations_by_type": dict(self.violations_by_type),
+            "seconds": self.seconds,
+        }
+
+
+@dataclass(frozen=True)
+class RouteProgress:
+    """One progress event: ``report`` is the iteration so far (its wirelength, vias and violations
+    are final only when ``iteration_done``)."""
+
+    report: IterationReport
+    regions_done: int  # regions routed so far in this iteration
+    regions_total: int  # regions of the iteration (all of them during the batches; those with work at the end)
+    iteration_done: bool  # the iteration's design-rule check is done and its figures are final
+    iterations: int  # the iteration limit of the run
+
+
+@dataclass(frozen=True)
+class RouteResult:
+    """The outcome of :func:`route_design` (the design itself now holds the routing)."""
+
+    iterations: tuple[IterationReport, ...]  # one per iteration run (the flow may stop early)
+    policy: str  # the policy's name
+    settings: RouteSettings
+    seconds: float  # wall time of the whole run
+    violations_by_type: dict[str, int]  # after the last iteration
+
+    @property
+    def final(self) -> IterationReport:
+        return self.iterations[-1]
+
+    @property
+    def violations(self) -> int:
+        return sum(self.violations_by_type.values())
+
+    @property
+    def wirelength_um(self) -> float:
+        return self.final.wirelength_um
+
+    @property
+    def vias(self) -> int:
+        return self.final.vias
+
+
+def _engine() -> Any:
+    from xroute_cli import _engine as engine  # compiled module; imported on first use
+
+    return engine
+
+
+def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
+    """A policy object from a name/path (see :func:`policies.get_policy`) or a policy object."""
+    if isinstance(policy, str):
+        return get_policy(policy, seed)
+    if not isinstance(policy, NetOrderPolicy):
+        raise PolicyError(f"not a net-order policy (needs name and order(region, features)): {policy!r}")
+    return policy
+
+
+def _builtin(policy: NetOrderPolicy) -> str | None:
+    """The engine's name for a built-in policy; None for one that must be called from Python
+    (including a subclass of a built-in that overrides ``order``)."""
+    for cls in (HeuristicPolicy, RandomPolicy):
+        if isinstance(policy, cls) and type(policy).order is cls.order:
+            return cls.builtin
+    return None
+
+
+def _policy_callback(policy: NetOrderPolicy) -> Callable[[dict[str, Any], Any], list[int]]:
+    """The engine's policy_fn for a Python policy: calls ``policy.order`` and checks its result."""
+    name = policy.name
+
+    def policy_fn(region: dict[str, Any], features: Any) -> list[int]:
+        return check_order(policy.order(region, features), len(features), name)
+
+    return policy_fn
+
+
+def route_design(
+    design: Design,
+    *,
+    region_size: int = DEFAULT_REGION_SIZE,
+    iterations: int = DEFAULT_ITERATIONS,
+    threads: int = 1,
+    policy: str | NetOrderPolicy = "heuristic",
+    seed: int = 1,
+    progress: Callable[[RouteProgress], None] | None = None,
+) -> RouteResult:
+    """Routes every net of ``design`` in place and returns the per-iteration reports.
+
+    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), a path to a ``.py`` policy
+    file, or a policy object (:class:`~policies.base.HeuristicPolicy`, ``RandomPolicy(seed)`` -
+    whose own seed is used -, ``CallablePolicy(fn)`` or anything with ``name`` and ``order``).
+    Built-in policies run in C++; any other is called once per region. Raises
+    :class:`RouteArgumentError` for invalid settings and :class:`~policies.base.PolicyError`
+    when the policy cannot be loaded or returns something other than a permutation; an exception
+    raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
+    raises, the design holds a partial routing.
+    """
+    settings = RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)
+    pol = resolve_policy(policy, seed)
+    builtin = _builtin(pol)
+    kwargs: dict[str, Any] = {}
+    if builtin == "heuristic":
+        kwargs["policy"] = "heuristic"
+    elif builtin == "random":
+        kwargs["policy"] = "random"
+        kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
+    else:
+        kwargs["policy_fn"] = _policy_callback(pol)
+    if progress is not None:
+
+        def on_progress(report: dict[str, Any], done: int, total: int) -> None:
+            # The engine's end-of-iteration call is the only one with the iteration's time set.
+            rep = IterationReport.from_engine(report)
+            progress(RouteProgress(rep, int(done), int(total), rep.seconds > 0, settings.iterations))
+
+        kwargs["progress"] = on_progress
+
+    start = time.perf_counter()
+    try:
+        out = _engine().route(
+            design.engine,
+            region_size=settings.region_size,
+            iterations=settings.iterations,
+            threads=settings.threads,
+            **kwargs,
+        )
+    except ValueError as exc:
+        if "not a permutation" in str(exc):  # the engine's own check (the Python wrapper checks first)
+            raise PolicyError(str(exc).replace("'python'", f"'{pol.name}'")) from exc
+        raise
+    seconds = time.perf_counter() - start
+    reports = tuple(IterationReport.from_engine(d) for d in out["iterations"])
+    return RouteResult(
+        iterations=reports,
+        policy=pol.name,
+        settings=settings,
+        seconds=seconds,
+        violations_by_type=dict(reports[-1].violations_by_type) if reports else {},
+    )
