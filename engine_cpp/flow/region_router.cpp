@@ -448,6 +448,7 @@ struct RegionRouter::Impl {
           const int32_t v = grid->index(x, y, z);
           if (grid->routedNet[v] >= 0 && grid->routedNet[v] != net) bad += 10;
           if (grid->accessNet[v] >= 0 && grid->accessNet[v] != net) bad += 5;
+          if (grid->wireUse[v] && grid->wireUseOwner[v] != net) bad += 1000;
         }
       return bad;
     };

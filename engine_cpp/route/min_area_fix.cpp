@@ -34,9 +34,7 @@ Area unionArea(const std::vector<Rect>& rects) {
 
 namespace {
 
-struct Piece {
-  Rect rect;
-};
+constexpr int64_t kConflict = 1000;  // a RepairScore at or above this means another net's metal
 
 int find(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -129,7 +127,9 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
           }
         }
       }
-      if (bestScore < 0) continue;
+      // A patch that would touch another net's metal is worse than the
+      // minimum-area violation it mends (a later iteration reroutes instead).
+      if (bestScore < 0 || bestScore >= kConflict) continue;
       const RouteWire w = best;
       Rect patch;
       routeWireRect(tech, w, patch);

@@ -28,7 +28,8 @@ struct PinMetal {
   Rect rect;   // DBU
 };
 
-// How bad a repair rect on layer z would be (0 = harmless); the repair picks
+// How bad a repair rect on layer z would be (0 = harmless, >= 1000 = it
+// would meet another net's metal: then no repair is made); the repair picks
 // the least bad of a few placements (along and across the preferred
 // direction, centred or shifted).
 using RepairScore = std::function<int64_t(int z, const Rect& rect)>;
