@@ -48,15 +48,17 @@ struct RegionHandle {
   }
 };
 
+// Views into the grid owned by the Region object `owner` (kept alive by them).
 template <class T>
-nb::ndarray<nb::numpy, T> gridView(const RegionGrid& g, std::vector<T>& v) {
+nb::object gridView(const RegionGrid& g, std::vector<T>& v, nb::handle owner) {
   const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
-  return nb::ndarray<nb::numpy, T>(v.data(), 3, shape, nb::handle());
+  return nb::cast(nb::ndarray<nb::numpy, T>(v.data(), 3, shape, owner), nb::rv_policy::reference);
 }
 
-nb::ndarray<nb::numpy, int32_t> coordView(const std::vector<Dbu>& v) {
+nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
   const size_t shape[1] = {v.size()};
-  return nb::ndarray<nb::numpy, int32_t>(const_cast<Dbu*>(v.data()), 1, shape, nb::handle());
+  return nb::cast(nb::ndarray<nb::numpy, int32_t>(const_cast<Dbu*>(v.data()), 1, shape, owner),
+                  nb::rv_policy::reference);
 }
 
 nb::dict netResultDict(const Tech& tech, const RegionNetResult& r) {
@@ -209,27 +211,28 @@ void bindRegion(nb::module_& m) {
           "violations inside the box (fixed-only ones skipped).")
       .def(
           "grid",
-          [](RegionHandle& h) {
+          [](nb::handle self) {
+            RegionHandle& h = nb::cast<RegionHandle&>(self);
             RegionGrid& g = const_cast<RegionGrid&>(h.router->grid());
             nb::dict d;
-            d["xs"] = coordView(g.xs());
-            d["ys"] = coordView(g.ys());
-            d["flags"] = gridView(g, g.flags);
-            d["fixed_owner"] = gridView(g, g.fixedOwner);
-            d["via_fixed_owner"] = gridView(g, g.viaFixedOwner);
-            d["wire_use"] = gridView(g, g.wireUse);
-            d["via_use"] = gridView(g, g.viaUse);
-            d["marker_cost"] = gridView(g, g.markerCost);
-            d["access_net"] = gridView(g, g.accessNet);
-            d["access_pin"] = gridView(g, g.accessPin);
-            d["routed_net"] = gridView(g, g.routedNet);
+            d["xs"] = coordView(g.xs(), self);
+            d["ys"] = coordView(g.ys(), self);
+            d["flags"] = gridView(g, g.flags, self);
+            d["fixed_owner"] = gridView(g, g.fixedOwner, self);
+            d["via_fixed_owner"] = gridView(g, g.viaFixedOwner, self);
+            d["wire_use"] = gridView(g, g.wireUse, self);
+            d["via_use"] = gridView(g, g.viaUse, self);
+            d["marker_cost"] = gridView(g, g.markerCost, self);
+            d["access_net"] = gridView(g, g.accessNet, self);
+            d["access_pin"] = gridView(g, g.accessPin, self);
+            d["routed_net"] = gridView(g, g.routedNet, self);
             return d;
           },
-          nb::rv_policy::reference_internal,
           "Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags "
-          "(1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point; 0 = no node), fixed_owner / via_fixed_owner (-1 free, "
-          "net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), "
-          "marker_cost, access_net, access_pin, routed_net (-1 = none).")
+          "(1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point; 0 = no node), "
+          "fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a "
+          "wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay "
+          "valid while the Region lives and change as nets are routed.")
       .def(
           "node_type",
           [](const RegionHandle& h) {
