@@ -50,7 +50,11 @@ def test_route_json_parses_and_matches_the_file(runner: CliRunner, testcase, tmp
 
 def test_route_default_output_folder_and_progress_lines(runner: CliRunner, testcase, tmp_path: Path,
                                                         monkeypatch: pytest.MonkeyPatch) -> None:
-    testcase("ispd18_sample2")
+    found = testcase("ispd18_sample2")
+    # The default output folder is relative to the working directory; moving
+    # there must not lose the testcases (an installed package finds them
+    # relative to the working directory), so name their folder explicitly.
+    monkeypatch.setenv("XROUTE_TESTCASES", str(found.folder.parent))
     monkeypatch.chdir(tmp_path)
     result = runner.invoke(app, ["route", "ispd18_sample2"], env={"COLUMNS": "200"})
     assert result.exit_code == 0, result.output + result.stderr
