@@ -138,7 +138,8 @@ struct RegionRouter::Impl {
         for (Dbu t : tracksIn(lt.pref, lo, hi)) {
           spec.points.push_back(edgeIsX ? Point{c.coord, t} : Point{t, c.coord});
           spec.zs.push_back(z);
-          spec.exitCost.push_back(anyFar ? task.costs.crossingPull * (t < wantLo ? wantLo - t : (t > wantHi ? t - wantHi : 0)) : 0);
+          const Dbu off = t < wantLo ? wantLo - t : (t > wantHi ? t - wantHi : 0);
+          spec.exitCost.push_back(anyFar ? task.costs.crossingPull * off : 0);
         }
       }
     };
@@ -452,7 +453,7 @@ struct RegionRouter::Impl {
         }
       return bad;
     };
-    if (!getenv("XR_NOFIX")) fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
+    fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
   }
 };
