@@ -118,3 +118,33 @@ def test_a_routed_region_reopened_rips_up_and_reroutes_its_nets() -> None:
     again.commit()
     assert d.engine.check_connectivity()["open_nets"] == 0
     assert d.engine.metrics()["wirelength_dbu"] == wirelength
+
+
+def test_a_region_of_ispd18_test1_connects_every_net_it_holds_whole() -> None:
+    from xroute_cli import _engine
+
+    d = fresh("ispd18_test1")
+    session = _engine.RoutingSession(d.engine)
+    xs, ys = session.gcell_lines
+    box = (int(xs[30]), int(ys[30]), int(xs[35]), int(ys[35]))  # 5 x 5 GCells in the middle of the die
+    region = session.open_region(box)
+    cands = region.candidates
+    assert len(cands) > 50
+    region.route_rest("heuristic")
+    m = region.metrics()
+    assert m["nets_routed"] == len(cands) and m["unreached"] == 0
+    region.commit()
+
+    # Nets whose pins all lie in the box are routed whole here: none may be open.
+    pa = d.engine.pin_access()
+    start = d.net_pin_start
+    inside = set()
+    for n in cands[:, 0].tolist():
+        pts = [pa["points"][pa["start"][p]] for p in range(start[n], start[n + 1])]
+        if all(box[0] <= x <= box[2] and box[1] <= y <= box[3] for x, y, *_ in pts):
+            inside.add(d.net_names[n])
+    assert len(inside) > 10
+    open_names = {o["net"] for o in d.engine.check_connectivity()["opens"]}
+    assert not (inside & open_names)
+    # The rest of the die is unrouted: every other multi-pin net is still open.
+    assert len(open_names) == int((d.pins_per_net() >= 2).sum()) - len(inside)
