@@ -277,3 +277,8 @@ def test_ispd18_test1_end_to_end(tmp_path: Path) -> None:
     assert outputs.final["violations"] <= 50  # issue 3's floor
     assert outputs.final["violations_by_type"]["Short"] == 0
     assert outputs.final["violations_by_type"] == result.violations_by_type
+
+
+def test_a_region_size_too_large_for_the_design_is_a_clear_error() -> None:
+    with pytest.raises(RouteArgumentError, match="smaller region size"):
+        route_design(fresh("ispd18_sample3"), region_size=1000, iterations=1)

@@ -242,6 +242,8 @@ def route_design(
     except ValueError as exc:
         if "not a permutation" in str(exc):  # the engine's own check (the Python wrapper checks first)
             raise PolicyError(str(exc).replace("'python'", f"'{pol.name}'")) from exc
+        if "grid nodes exceeds" in str(exc):  # the region size is too large for this design
+            raise RouteArgumentError(str(exc)) from exc
         raise
     seconds = time.perf_counter() - start
     reports = tuple(IterationReport.from_engine(d) for d in out["iterations"])

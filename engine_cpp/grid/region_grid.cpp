@@ -1,6 +1,8 @@
 #include "grid/region_grid.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace xroute {
 
@@ -45,6 +47,11 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
   sortUnique(ys_);
 
   const size_t n = xs_.size() * ys_.size() * static_cast<size_t>(nz_);
+  if (n > kMaxRegionNodes) {
+    throw std::invalid_argument("a region of " + std::to_string(xs_.size()) + " x " + std::to_string(ys_.size()) +
+                                " x " + std::to_string(nz_) + " grid nodes exceeds the limit of " +
+                                std::to_string(kMaxRegionNodes) + "; use a smaller region size");
+  }
   flags.assign(n, 0);
   fixedOwner.assign(n, kOwnerNone);
   viaFixedOwner.assign(n, kOwnerNone);

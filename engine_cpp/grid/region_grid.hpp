@@ -31,11 +31,16 @@ enum NodeFlag : uint8_t {
 // Observation node types (what the RL side sees).
 enum class NodeType : uint8_t { NotExist = 0, Blockage = 1, Normal = 2, Access = 3 };
 
+// Largest grid a region may have (about 85 bytes a node with the search
+// buffers): a bigger one means the region size is far too large for the design.
+inline constexpr size_t kMaxRegionNodes = 20'000'000;
+
 inline constexpr int32_t kOwnerNone = -1;   // no shape claims the node
 inline constexpr int32_t kOwnerMixed = -2;  // shapes of several nets / an obstruction
 
 class RegionGrid {
  public:
+  // Throws std::invalid_argument when the grid would exceed kMaxRegionNodes.
   RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu> extraXs, std::vector<Dbu> extraYs);
 
   const Rect& box() const { return box_; }
