@@ -9,9 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from drawn import contest_input, load_drawn
 from xroute_cli import _engine
-
-TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
 
 # Three routing layers, all 100 DBU wide (half width 50); V12 / V23 are
 # 100 x 100 squares on each of their three layers, centred on the via point.
@@ -128,11 +127,7 @@ END DESIGN
 
 
 def load(tmp_path: Path, nets: list[str], pins: str = ""):
-    lef = tmp_path / "conn.lef"
-    lef.write_text(TECH_LEF)
-    def_ = tmp_path / "conn.def"
-    def_.write_text(DEF_TEMPLATE.format(pins=pins, count=len(nets), nets="\n".join(nets)))
-    return _engine.load([str(lef)], str(def_))
+    return load_drawn(tmp_path, TECH_LEF, DEF_TEMPLATE.format(pins=pins, count=len(nets), nets="\n".join(nets)), "conn")
 
 
 def single(report: dict) -> dict:
@@ -275,12 +270,9 @@ def test_floating_pieces_and_totals(tmp_path):
 def test_pins_touching_directly_need_no_routing(tmp_path):
     # u2 at x 2000 is replaced by one abutting u1: u1/Y (700..900) and a cell at
     # x 600 with A at (700..900) overlap -> connected without any routing.
-    lef = tmp_path / "conn.lef"
-    lef.write_text(TECH_LEF)
-    def_ = tmp_path / "abut.def"
-    def_.write_text(DEF_TEMPLATE.replace("- u2 CELL + PLACED ( 2000 0 ) N", "- u2 CELL + PLACED ( 600 0 ) N")
-                    .format(pins="", count=1, nets="- n1 ( u1 Y ) ( u2 A ) ;"))
-    r = _engine.load([str(lef)], str(def_)).check_connectivity()
+    abut = (DEF_TEMPLATE.replace("- u2 CELL + PLACED ( 2000 0 ) N", "- u2 CELL + PLACED ( 600 0 ) N")
+            .format(pins="", count=1, nets="- n1 ( u1 Y ) ( u2 A ) ;"))
+    r = load_drawn(tmp_path, TECH_LEF, abut, "conn", def_stem="abut").check_connectivity()
     assert (r["open_nets"], r["unrouted_nets"]) == (0, 1)
 
 
@@ -472,9 +464,7 @@ def multi_pin_nets_in_def_text(path: Path) -> tuple[int, int]:
 
 @pytest.mark.parametrize("name, multi, single_pin", [("ispd18_sample", 11, 0), ("ispd18_test1", 3152, 1)])
 def test_unrouted_contest_design_is_all_open(name, multi, single_pin):
-    base = TESTCASES / name / f"{name}.input"
-    if not Path(str(base) + ".def").exists():
-        pytest.skip(f"{name} not available")
+    base = contest_input(name)
     assert multi_pin_nets_in_def_text(Path(str(base) + ".def")) == (multi, single_pin)
     db = _engine.load([str(base) + ".lef"], str(base) + ".def")
     r = db.check_connectivity()

@@ -9,10 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from drawn import load_contest, load_drawn
 from test_drc_rules import TECH_LEF
-from xroute_cli import _engine
-
-TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
 
 CELL_LEF = """\
 SITE core
@@ -91,11 +89,7 @@ WIRE, VIA, PIN, OBS, SPECIAL = 0, 1, 2, 3, 4
 
 
 def load(tmp_path: Path, extra: str = ""):
-    lef = tmp_path / "tiny.lef"
-    lef.write_text(TECH_LEF.replace("END LIBRARY\n", "") + CELL_LEF)
-    def_ = tmp_path / "tiny.def"
-    def_.write_text(DEF_TEMPLATE.format(extra=extra))
-    return _engine.load([str(lef)], str(def_))
+    return load_drawn(tmp_path, TECH_LEF.replace("END LIBRARY\n", "") + CELL_LEF, DEF_TEMPLATE.format(extra=extra))
 
 
 def test_collected_shapes(tmp_path):
@@ -143,10 +137,7 @@ def test_design_check_finds_a_routed_short(tmp_path):
 
 
 def contest(name: str):
-    base = TESTCASES / name / f"{name}.input"
-    if not Path(str(base) + ".def").exists():
-        pytest.skip(f"{name} not available")
-    return _engine.load([str(base) + ".lef"], str(base) + ".def")
+    return load_contest(name)
 
 
 @pytest.mark.parametrize("name", ["ispd18_sample", "ispd18_sample2", "ispd18_test1"])

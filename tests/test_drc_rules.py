@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from drawn import shape_rows
 from xroute_cli import _engine
 
 TECH_LEF = """\
@@ -123,7 +124,7 @@ def db(tmp_path_factory):
 
 def check(db, shapes, origins=None, skip_fixed_pairs=False, window=None):
     """shapes: (layer name, xlo, ylo, xhi, yhi, net) rows -> [(type, layer, box, nets)]."""
-    rows = np.array([[LAYERS.index(s[0]), *s[1:]] for s in shapes], dtype=np.int32).reshape(-1, 6)
+    rows = shape_rows([[LAYERS.index(s[0]), *s[1:]] for s in shapes])
     org = None if origins is None else np.array(origins, dtype=np.int8)
     markers = _engine.check_shapes(db, rows, org, skip_fixed_pairs=skip_fixed_pairs, window=window)
     return [(m["type"], m["layer"], m["box"], m["nets"]) for m in markers]

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from drawn import shape_rows, write_design
 from xroute_cli import _engine
 from xroute_cli.design import load_design
 
@@ -129,10 +130,9 @@ END DESIGN
 
 
 def write_tiny(tmp_path: Path, components: list[str], more: str = "") -> Any:
-    lef = tmp_path / "tiny.lef"
-    def_ = tmp_path / "tiny.def"
-    lef.write_text(TINY_LEF)
-    def_.write_text(TINY_DEF.format(count=len(components), components="".join(c + "\n" for c in components), more=more))
+    lef, def_ = write_design(
+        tmp_path, TINY_LEF, TINY_DEF.format(count=len(components), components="".join(c + "\n" for c in components), more=more)
+    )
     return load_design(lef=lef, def_=def_).engine
 
 
@@ -193,11 +193,10 @@ def test_drawn_case_blocked_pin_falls_back(tmp_path: Path) -> None:
     # point is the pin's centre snapped to the tracks (no x track crosses
     # it; y 500), cost 100, exit up through V12.
     lef = TINY_LEF.replace("RECT 0.10 0.30 0.26 0.70 ;", "RECT 0.00 0.30 0.04 0.70 ;")
-    (tmp_path / "tiny.lef").write_text(lef)
-    (tmp_path / "tiny.def").write_text(
-        TINY_DEF.format(count=1, components="- u1 CELL + PLACED ( 0 0 ) N ;\n", more="")
+    lef_path, def_path = write_design(
+        tmp_path, lef, TINY_DEF.format(count=1, components="- u1 CELL + PLACED ( 0 0 ) N ;\n", more="")
     )
-    db = load_design(lef=tmp_path / "tiny.lef", def_=tmp_path / "tiny.def").engine
+    db = load_design(lef=lef_path, def_=def_path).engine
     r = db.pin_access()
     assert r["fallback_pins"] == 1
     assert points_of(r, 0) == [[20, 500, 0, UP, 100]]
@@ -386,7 +385,7 @@ def new_markers(db: Any, rows: list[tuple[int, ...]], near: int | None = None) -
                 & (base_rows[:, 4] >= ylo - near)
             )
         base_rows, base_origins = base_rows[keep], base_origins[keep]
-    shapes = np.concatenate([base_rows, np.array(rows, dtype=np.int32).reshape(-1, 6)])
+    shapes = np.concatenate([base_rows, shape_rows(rows)])
     origins = np.concatenate([base_origins, np.ones(len(rows), dtype=np.int32)])
     before = {(m["type"], m["layer"], m["box"], m["nets"]) for m in _engine.check_shapes(db, base_rows, base_origins)}
     after = _engine.check_shapes(db, shapes, origins, skip_fixed_pairs=True)

@@ -7,12 +7,16 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.console import Console
 
 from xroute_cli.errors import InputError, XrouteError
+
+if TYPE_CHECKING:
+    from xroute_cli.design import Design
 
 # Width of tables when stdout is not a terminal (pipes, CliRunner) and COLUMNS is unset.
 PIPE_WIDTH = 160
@@ -49,3 +53,35 @@ def print_error(exc: BaseException) -> None:
 
 
 USER_ERRORS: tuple[type[BaseException], ...] = (XrouteError, OSError)
+
+
+# The design inputs shared by commands that read one design: a testcase name, or LEF/DEF (+ guide) files.
+TestcaseArg = Annotated[
+    str | None,
+    typer.Argument(help="Testcase name, looked up on the search path (see `xroute testcases`).", show_default=False),
+]
+LefOption = Annotated[
+    list[Path] | None,
+    typer.Option("--lef", help="LEF file to read instead of a testcase (repeatable, in order).", show_default=False),
+]
+DefOption = Annotated[Path | None, typer.Option("--def", help="DEF file to read (with --lef).", show_default=False)]
+GuideOption = Annotated[
+    Path | None, typer.Option("--guide", help="Route guide file (optional, with --lef/--def).", show_default=False)
+]
+
+
+def check_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> None:
+    """Raises typer.BadParameter unless exactly one of a testcase name or --lef and --def is given."""
+    if testcase is not None and (lef or def_ is not None or guide is not None):
+        raise typer.BadParameter("give a testcase name or --lef/--def files, not both", param_hint="TESTCASE")
+    if testcase is None and (not lef or def_ is None):
+        raise typer.BadParameter("give a testcase name, or both --lef and --def", param_hint="TESTCASE")
+
+
+def load_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> Design:
+    """Loads the design the (checked) arguments name; the compiled engine loads only now."""
+    from xroute_cli.design import load_design
+
+    if testcase is not None:
+        return load_design(testcase)
+    return load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)

@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 
+#include "bindings/arrays.hpp"
 #include "db/compare.hpp"
 #include "db/database.hpp"
 #include "io/readers.hpp"
@@ -20,38 +21,6 @@ using namespace nb::literals;
 
 namespace xroute {
 namespace {
-
-using IntView = nb::ndarray<nb::numpy, const int32_t>;
-using IntArray = nb::ndarray<nb::numpy, int32_t>;
-
-// A read-only view of `count` rows of `cols` int32 each, starting at `data`.
-// The caller binds it with rv_policy::reference_internal, so the view keeps
-// the Database alive.
-IntView view(const void* data, size_t count, size_t cols) {
-  static const int32_t kEmpty[1] = {0};
-  const int32_t* p = count ? static_cast<const int32_t*>(data) : kEmpty;
-  if (cols == 1) {
-    const size_t shape[1] = {count};
-    return IntView(p, 1, shape, nb::handle());
-  }
-  const size_t shape[2] = {count, cols};
-  return IntView(p, 2, shape, nb::handle());
-}
-
-// A new array that owns its (copied) data.
-IntArray ownedArray(std::vector<int32_t>&& values, size_t cols) {
-  auto* heap = new std::vector<int32_t>(std::move(values));
-  nb::capsule owner(heap, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
-  const size_t rows = cols ? heap->size() / cols : 0;
-  static int32_t kEmpty[1] = {0};
-  int32_t* data = heap->empty() ? kEmpty : heap->data();
-  if (cols == 1) {
-    const size_t shape[1] = {rows};
-    return IntArray(data, 1, shape, owner);
-  }
-  const size_t shape[2] = {rows, cols};
-  return IntArray(data, 2, shape, owner);
-}
 
 const char* layerTypeName(LayerType t) {
   switch (t) {
@@ -278,7 +247,7 @@ void bindDatabase(nb::module_& m) {
           [](const Database& d, const std::string& axis) {
             if (axis != "x" && axis != "y") throw nb::value_error("axis must be 'x' or 'y'");
             std::vector<Dbu> lines = gcellLines(d.design, axis == "x");
-            return ownedArray(std::vector<int32_t>(lines.begin(), lines.end()), 1);
+            return ownedInt32(std::vector<int32_t>(lines.begin(), lines.end()), 1);
           },
           "axis"_a, "GCell grid line coordinates along 'x' or 'y' (DBU, sorted); empty without GCELLGRID.")
       .def(
@@ -294,23 +263,23 @@ void bindDatabase(nb::module_& m) {
            "Net id by name, -1 if absent.")
       .def_prop_ro(
           "net_pin_start",
-          [](const Database& d) { return view(d.design.netPinStart.data(), d.design.netPinStart.size(), 1); },
+          [](const Database& d) { return int32View(d.design.netPinStart.data(), d.design.netPinStart.size(), 1); },
           nb::rv_policy::reference_internal, "int32[nets+1]: net i owns pin_refs[start[i]:start[i+1]].")
       .def_prop_ro(
-          "pin_refs", [](const Database& d) { return view(d.design.pinRefs.data(), d.design.pinRefs.size(), 2); },
+          "pin_refs", [](const Database& d) { return int32View(d.design.pinRefs.data(), d.design.pinRefs.size(), 2); },
           nb::rv_policy::reference_internal,
           "int32[pins, 2]: (component id or -1 for an IO pin, macro pin index or IO pin id).")
       .def_prop_ro(
           "guide_start",
-          [](const Database& d) { return view(d.design.guideStart.data(), d.design.guideStart.size(), 1); },
+          [](const Database& d) { return int32View(d.design.guideStart.data(), d.design.guideStart.size(), 1); },
           nb::rv_policy::reference_internal, "int32[nets+1] (empty without guides): net i owns guide rows.")
       .def_prop_ro(
           "guide_rects",
-          [](const Database& d) { return view(d.design.guideRects.data(), d.design.guideRects.size(), 4); },
+          [](const Database& d) { return int32View(d.design.guideRects.data(), d.design.guideRects.size(), 4); },
           nb::rv_policy::reference_internal, "int32[guides, 4]: xlo, ylo, xhi, yhi in DBU.")
       .def_prop_ro(
           "guide_layers",
-          [](const Database& d) { return view(d.design.guideLayers.data(), d.design.guideLayers.size(), 1); },
+          [](const Database& d) { return int32View(d.design.guideLayers.data(), d.design.guideLayers.size(), 1); },
           nb::rv_policy::reference_internal, "int32[guides]: LEF layer index of each guide.")
       .def(
           "net_pins",
@@ -345,7 +314,7 @@ void bindDatabase(nb::module_& m) {
                                       s.rect.xhi, s.rect.yhi};
               flat.insert(flat.end(), row, row + 6);
             }
-            return ownedArray(std::move(flat), 6);
+            return ownedInt32(std::move(flat), 6);
           },
           "net"_a,
           "int32[shapes, 6]: (pin index within the net, LEF layer index, xlo, ylo, xhi, yhi) in DBU, placed.")

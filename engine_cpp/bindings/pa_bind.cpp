@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "bindings/arrays.hpp"
 #include "db/database.hpp"
 #include "grid/tracks.hpp"
 #include "pa/pin_access.hpp"
@@ -15,22 +16,6 @@ using namespace nb::literals;
 
 namespace xroute {
 namespace {
-
-using IntArray = nb::ndarray<nb::numpy, int32_t>;
-
-// A numpy array owning `values` (rows x cols, or 1-D when cols == 1).
-IntArray ownedInts(std::vector<int32_t>&& values, size_t cols) {
-  auto* heap = new std::vector<int32_t>(std::move(values));
-  nb::capsule owner(heap, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
-  static int32_t kEmpty[1] = {0};
-  int32_t* data = heap->empty() ? kEmpty : heap->data();
-  if (cols == 1) {
-    const size_t shape[1] = {heap->size()};
-    return IntArray(data, 1, shape, owner);
-  }
-  const size_t shape[2] = {heap->size() / cols, cols};
-  return IntArray(data, 2, shape, owner);
-}
 
 nb::dict pinAccessDict(const Database& db, int maxPointsPerPin, int threads, bool shareClasses) {
   if (maxPointsPerPin < 1) throw nb::value_error("max_points_per_pin must be >= 1");
@@ -52,9 +37,9 @@ nb::dict pinAccessDict(const Database& db, int maxPointsPerPin, int threads, boo
   nb::list viaNames;
   for (const Via& v : db.tech.vias) viaNames.append(v.name);
   nb::dict d;
-  d["start"] = ownedInts(std::move(table.start), 1);
-  d["points"] = ownedInts(std::move(points), 5);
-  d["via"] = ownedInts(std::move(vias), 1);
+  d["start"] = ownedInt32(std::move(table.start), 1);
+  d["points"] = ownedInt32(std::move(points), 5);
+  d["via"] = ownedInt32(std::move(vias), 1);
   d["via_names"] = viaNames;
   d["fallback_pins"] = table.fallbackPins;
   d["classes"] = table.classes;

@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bindings/arrays.hpp"
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
 #include "flow/route_context.hpp"
@@ -128,11 +129,7 @@ void bindRegion(nb::module_& m) {
                                       k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
               flat.insert(flat.end(), row, row + 9);
             }
-            auto* data = new std::vector<int32_t>(std::move(flat));
-            nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
-            static int32_t empty[1] = {0};
-            const size_t shape[2] = {c.size(), 9};
-            return nb::ndarray<nb::numpy, int32_t>(data->empty() ? empty : data->data(), 2, shape, owner);
+            return ownedInt32(std::move(flat), 9);
           },
           nb::rv_policy::move, "int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.")
       .def(

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "bindings/arrays.hpp"
 #include "db/database.hpp"
 #include "flow/policy.hpp"
 #include "flow/router.hpp"
@@ -39,17 +40,14 @@ class PythonPolicy final : public NetOrderPolicy {
   std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& c) override {
     std::lock_guard<std::mutex> lock(mutex_);
     nb::gil_scoped_acquire gil;
-    auto* data = new std::vector<int32_t>();
-    data->reserve(c.size() * kFeatureCount);
+    std::vector<int32_t> flat;
+    flat.reserve(c.size() * kFeatureCount);
     for (const NetCandidate& k : c) {
       const int32_t row[kFeatureCount] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
                                           k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
-      data->insert(data->end(), row, row + kFeatureCount);
+      flat.insert(flat.end(), row, row + kFeatureCount);
     }
-    nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
-    static int32_t empty[1] = {0};
-    const size_t shape[2] = {c.size(), kFeatureCount};
-    nb::ndarray<nb::numpy, int32_t> features(data->empty() ? empty : data->data(), 2, shape, owner);
+    IntArray features = ownedInt32(std::move(flat), kFeatureCount);
     nb::dict info;
     info["iteration"] = region.iteration;
     info["region"] = region.regionId;

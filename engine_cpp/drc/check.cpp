@@ -1,10 +1,10 @@
 // checkShapes: groups the shapes by layer, builds each layer's index and
 // connectivity, runs the rule families, then filters, merges and sorts.
 #include <algorithm>
-#include <numeric>
 #include <tuple>
 
 #include "drc/layer_shapes.hpp"
+#include "geom/union_find.hpp"
 
 namespace xroute {
 
@@ -43,19 +43,6 @@ Dbu interactionRange(const Layer& l) {
 }
 
 namespace {
-
-struct UnionFind {
-  std::vector<int32_t> parent;
-  explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int32_t find(int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int32_t a, int32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Same-net rects are connected when they share a segment, not just a point.
 bool connected(const Rect& a, const Rect& b) {

@@ -1,7 +1,8 @@
 #include "route/min_area_fix.hpp"
 
 #include <algorithm>
-#include <numeric>
+
+#include "geom/union_find.hpp"
 
 namespace xroute {
 
@@ -36,11 +37,6 @@ namespace {
 
 constexpr int64_t kConflict = 1000;  // a RepairScore at or above this means another net's metal
 
-int find(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
 }  // namespace
 
 int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, const Rect& box,
@@ -67,16 +63,15 @@ int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, c
     for (const PinMetal& p : pins) {
       if (p.z == static_cast<int>(z)) rects.push_back(p.rect);
     }
-    std::vector<int> parent(rects.size());
-    std::iota(parent.begin(), parent.end(), 0);
+    UnionFind sets(rects.size());
     for (size_t i = 0; i < rects.size(); ++i)
       for (size_t j = i + 1; j < rects.size(); ++j)
-        if (rects[i].overlaps(rects[j])) parent[find(parent, int(i))] = find(parent, int(j));
+        if (rects[i].overlaps(rects[j])) sets.attach(int32_t(i), int32_t(j));
     std::vector<std::vector<Rect>> comps(rects.size());
     std::vector<int> routedCount(rects.size(), 0);
     std::vector<Rect> firstRouted(rects.size());
     for (size_t i = 0; i < rects.size(); ++i) {
-      const int root = find(parent, int(i));
+      const int root = sets.find(int32_t(i));
       comps[root].push_back(rects[i]);
       if (i < routed && routedCount[root]++ == 0) firstRouted[root] = rects[i];
     }

@@ -4,9 +4,9 @@
 #include "verify/connectivity.hpp"
 
 #include <algorithm>
-#include <numeric>
 
 #include "geom/box_index.hpp"
+#include "geom/union_find.hpp"
 
 namespace xroute {
 
@@ -37,25 +37,17 @@ class NetChecker {
   NetConnectivity check(NetId net);
 
  private:
-  int32_t find(int32_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int32_t a, int32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
   void collect(NetId net, int32_t pins);
   void connectLayer(size_t begin, size_t end);
 
   const Tech& tech_;
   const Design& design_;
   std::vector<NetShape> shapes_;
-  std::vector<int32_t> parent_;
+  UnionFind sets_;              // over the nodes (index)
   std::vector<int32_t> label_;  // per root node: group id, or -1
 };
 
-// Fills shapes_ and sizes parent_: node p < pins is pin p of the net; every
+// Fills shapes_ and sizes sets_: node p < pins is pin p of the net; every
 // wire, via and patch is one node after those.
 void NetChecker::collect(NetId net, int32_t pins) {
   shapes_.clear();
@@ -75,8 +67,7 @@ void NetChecker::collect(NetId net, int32_t pins) {
   for (const RoutePatch& p : routing.patches) shapes_.push_back({p.layer, p.rect, node++});
   shapes_.erase(std::remove_if(shapes_.begin(), shapes_.end(), [](const NetShape& s) { return !s.layer.valid(); }),
                 shapes_.end());
-  parent_.resize(node);
-  std::iota(parent_.begin(), parent_.end(), 0);
+  sets_.reset(size_t(node));
 }
 
 // Unites the nodes of touching shapes in shapes_[begin, end) (one layer,
@@ -86,7 +77,7 @@ void NetChecker::connectLayer(size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Rect& a = shapes_[i].rect;
       for (size_t j = i + 1; j < end && shapes_[j].rect.xlo <= a.xhi; ++j) {
-        if (shapes_[i].node != shapes_[j].node && touches(a, shapes_[j].rect)) unite(shapes_[i].node, shapes_[j].node);
+        if (shapes_[i].node != shapes_[j].node && touches(a, shapes_[j].rect)) sets_.unite(shapes_[i].node, shapes_[j].node);
       }
     }
     return;
@@ -99,7 +90,7 @@ void NetChecker::connectLayer(size_t begin, size_t end) {
     const NetShape& a = shapes_[i];
     index.query(a.rect, [&](int32_t k) {
       const NetShape& b = shapes_[begin + k];
-      if (begin + k > i && a.node != b.node && touches(a.rect, b.rect)) unite(a.node, b.node);
+      if (begin + k > i && a.node != b.node && touches(a.rect, b.rect)) sets_.unite(a.node, b.node);
     });
   }
 }
@@ -117,11 +108,11 @@ NetConnectivity NetChecker::check(NetId net) {
     connectLayer(b, e);
   }
   // Groups in the order of their first pin; then routing-only components.
-  label_.assign(parent_.size(), -1);
+  label_.assign(sets_.size(), -1);
   std::vector<std::vector<int32_t>> groups;
   const int32_t first = design_.netPinStart[*net];
   for (int32_t p = 0; p < out.pinCount; ++p) {
-    const int32_t root = find(p);
+    const int32_t root = sets_.find(p);
     if (label_[root] < 0) {
       label_[root] = int32_t(groups.size());
       groups.emplace_back();
@@ -129,8 +120,8 @@ NetConnectivity NetChecker::check(NetId net) {
     groups[label_[root]].push_back(first + p);
   }
   out.pinGroups = int32_t(groups.size());
-  for (int32_t n = out.pinCount; n < int32_t(parent_.size()); ++n) {
-    const int32_t root = find(n);
+  for (int32_t n = out.pinCount; n < int32_t(sets_.size()); ++n) {
+    const int32_t root = sets_.find(n);
     if (label_[root] < 0) {
       label_[root] = out.pinGroups + out.floatingPieces;
       ++out.floatingPieces;

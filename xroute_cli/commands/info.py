@@ -2,14 +2,22 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute_cli.console import print_json, stdout_console
+from xroute_cli.console import (
+    DefOption,
+    GuideOption,
+    LefOption,
+    TestcaseArg,
+    check_design_args,
+    load_design_args,
+    print_json,
+    stdout_console,
+)
 
 if TYPE_CHECKING:
     from xroute_cli.design import Design
@@ -158,32 +166,15 @@ def _skipped_table(skipped: dict[str, int]) -> Table:
 
 
 def info(
-    testcase: Annotated[
-        str | None,
-        typer.Argument(help="Testcase name, looked up on the search path (see `xroute testcases`).", show_default=False),
-    ] = None,
-    lef: Annotated[
-        list[Path] | None,
-        typer.Option("--lef", help="LEF file to read instead of a testcase (repeatable, in order).", show_default=False),
-    ] = None,
-    def_: Annotated[Path | None, typer.Option("--def", help="DEF file to read (with --lef).", show_default=False)] = None,
-    guide: Annotated[
-        Path | None, typer.Option("--guide", help="Route guide file (optional, with --lef/--def).", show_default=False)
-    ] = None,
+    testcase: TestcaseArg = None,
+    lef: LefOption = None,
+    def_: DefOption = None,
+    guide: GuideOption = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the summary as JSON on stdout, nothing else.")] = False,
 ) -> None:
     """Read a design (a testcase name, or --lef and --def files, optionally --guide) and print a summary of it."""
-    if testcase is not None and (lef or def_ is not None or guide is not None):
-        raise typer.BadParameter("give a testcase name or --lef/--def files, not both", param_hint="TESTCASE")
-    if testcase is None and (not lef or def_ is None):
-        raise typer.BadParameter("give a testcase name, or both --lef and --def", param_hint="TESTCASE")
-
-    from xroute_cli.design import load_design  # the compiled engine loads only when needed
-
-    if testcase is not None:
-        design = load_design(testcase)
-    else:
-        design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
+    check_design_args(testcase, lef, def_, guide)
+    design = load_design_args(testcase, lef, def_, guide)
     summary = summarize(design)
     if as_json:
         print_json(summary)

@@ -15,7 +15,16 @@ from rich.markup import escape
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from xroute_cli.console import print_json, stdout_console
+from xroute_cli.console import (
+    DefOption,
+    GuideOption,
+    LefOption,
+    TestcaseArg,
+    check_design_args,
+    load_design_args,
+    print_json,
+    stdout_console,
+)
 from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteProgress, RouteSettings
 
 if TYPE_CHECKING:
@@ -130,18 +139,10 @@ def summary_table(outputs: RouteOutputs) -> Table:
 
 
 def route(
-    testcase: Annotated[
-        str | None,
-        typer.Argument(help="Testcase name, looked up on the search path (see `xroute testcases`).", show_default=False),
-    ] = None,
-    lef: Annotated[
-        list[Path] | None,
-        typer.Option("--lef", help="LEF file to read instead of a testcase (repeatable, in order).", show_default=False),
-    ] = None,
-    def_: Annotated[Path | None, typer.Option("--def", help="DEF file to read (with --lef).", show_default=False)] = None,
-    guide: Annotated[
-        Path | None, typer.Option("--guide", help="Route guide file (optional, with --lef/--def).", show_default=False)
-    ] = None,
+    testcase: TestcaseArg = None,
+    lef: LefOption = None,
+    def_: DefOption = None,
+    guide: GuideOption = None,
     out: Annotated[
         Path | None,
         typer.Option("--out", help="Output folder (created if needed). Default: ./out/<design>.", show_default=False),
@@ -162,23 +163,16 @@ def route(
     """Route a design (a testcase name, or --lef and --def files) and write <design>.routed.def,
     <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
     when there are none, 1 when some remain."""
-    if testcase is not None and (lef or def_ is not None or guide is not None):
-        raise typer.BadParameter("give a testcase name or --lef/--def files, not both", param_hint="TESTCASE")
-    if testcase is None and (not lef or def_ is None):
-        raise typer.BadParameter("give a testcase name, or both --lef and --def", param_hint="TESTCASE")
+    check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
     from policies.registry import get_policy
-    from xroute_cli.design import load_design
     from xroute_cli.outputs import write_route_outputs
     from xroute_cli.router import route_design
 
     RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)  # fail before loading
     pol = get_policy(policy, seed)
-    if testcase is not None:
-        design = load_design(testcase)
-    else:
-        design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
+    design = load_design_args(testcase, lef, def_, guide)
     out_dir = out if out is not None else Path("out") / design.name
     out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
 
