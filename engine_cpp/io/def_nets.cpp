@@ -64,21 +64,39 @@ Point readPathPoint(Lexer& lex, const PathCursor& cur, Dbu& ext) {
 
 }  // namespace
 
+ViaRef DefParser::readPathVia(const Token& viaTok, bool havePoint, std::string_view section) {
+  if (viaTok.quoted || viaTok.text == ")") unexpected(viaTok, "a point or a via name");
+  const ViaRef ref = findVia(viaTok.text);
+  if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
+  if (!havePoint) lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " before any point");
+  if (isOrientName(lex_.peek())) {
+    const Token o = lex_.next();
+    if (o.text != "N") {
+      countSkip(std::string(section) + ".VIA.ORIENT");
+      ++design_.warningCount;
+    }
+  }
+  return ref;
+}
+
+LayerId DefParser::layerAfterVia(const Token& viaTok, ViaRef ref, LayerId layer) const {
+  const Via& via = design_.via(tech_, ref);
+  if (layer == via.bottom) return via.top;
+  if (layer == via.top) return via.bottom;
+  lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " does not connect to layer " +
+                          quoteToken(tech_.layer(layer).name));
+}
+
 // ---------------------------------------------------------------------------
 // SPECIALNETS
 
 void DefParser::readSpecialNets() {
   const int declared = readSectionCount();
-  design_.specialNets.reserve(design_.specialNets.size() + static_cast<size_t>(std::min(declared, 1 << 16)));
-  int found = 0;
-  while (!atSectionEnd("SPECIALNETS", declared, found)) {
-    readSpecialNet();
-    ++found;
-  }
+  design_.specialNets.reserve(design_.specialNets.size() + saneReserve(declared));
+  readEntries("SPECIALNETS", declared, [&] { readSpecialNet(); });
 }
 
 void DefParser::readSpecialNet() {
-  lex_.expect("-");
   SpecialNet net;
   net.name = plainWord("a net name");
   while (peekIs("(")) {
@@ -202,17 +220,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
         break;
       } else {
         const Token viaTok = lex_.next();
-        if (viaTok.quoted || viaTok.text == ")") unexpected(viaTok, "a point or a via name");
-        const ViaRef ref = findVia(viaTok.text);
-        if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
-        if (!cur.havePoint) lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " before any point");
-        if (isOrientName(lex_.peek())) {
-          const Token o = lex_.next();
-          if (o.text != "N") {
-            countSkip("SPECIALNETS.VIA.ORIENT");
-            ++design_.warningCount;
-          }
-        }
+        const ViaRef ref = readPathVia(viaTok, cur.havePoint, "SPECIALNETS");
         int numX = 1, numY = 1;
         Dbu stepX = 0, stepY = 0;
         if (lex_.accept("DO")) {
@@ -232,15 +240,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
             net.vias.push_back({ref, Point{cur.at.x + i * stepX, cur.at.y + j * stepY}, shape});
           }
         }
-        const Via& via = design_.via(tech_, ref);
-        if (cur.layer == via.bottom) {
-          cur.layer = via.top;
-        } else if (cur.layer == via.top) {
-          cur.layer = via.bottom;
-        } else {
-          lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " does not connect to layer " +
-                                  quoteToken(tech_.layer(cur.layer).name));
-        }
+        cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         cur.emitted = true;
       }
     }
@@ -252,19 +252,13 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
 
 void DefParser::readNets() {
   const int declared = readSectionCount();
-  design_.nets.reserve(design_.nets.size() + static_cast<size_t>(std::min(declared, 1 << 22)));
-  design_.netIndex.reserve(design_.netIndex.size() + static_cast<size_t>(std::min(declared, 1 << 22)));
-  int found = 0;
-  while (!atSectionEnd("NETS", declared, found)) {
-    readNet();
-    ++found;
-  }
+  design_.nets.reserve(design_.nets.size() + saneReserve(declared));
+  design_.netIndex.reserve(design_.netIndex.size() + saneReserve(declared));
+  readEntries("NETS", declared, [&] { readNet(); });
 }
 
 void DefParser::readNet() {
-  lex_.expect("-");
-  const Token nameTok = lex_.next();
-  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a net name");
+  const Token nameTok = entryName("a net name");
   if (is(nameTok, "MUSTJOIN")) {
     lex_.skipStatement();
     countSkip("NETS.MUSTJOIN");
@@ -385,27 +379,9 @@ void DefParser::readRegularWiring(Net& net) {
         break;
       } else {
         const Token viaTok = lex_.next();
-        if (viaTok.quoted || viaTok.text == ")") unexpected(viaTok, "a point or a via name");
-        const ViaRef ref = findVia(viaTok.text);
-        if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
-        if (!cur.havePoint) lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " before any point");
-        if (isOrientName(lex_.peek())) {
-          const Token o = lex_.next();
-          if (o.text != "N") {
-            countSkip("NETS.VIA.ORIENT");
-            ++design_.warningCount;
-          }
-        }
+        const ViaRef ref = readPathVia(viaTok, cur.havePoint, "NETS");
         r.vias.push_back({ref, cur.at});
-        const Via& via = design_.via(tech_, ref);
-        if (cur.layer == via.bottom) {
-          cur.layer = via.top;
-        } else if (cur.layer == via.top) {
-          cur.layer = via.bottom;
-        } else {
-          lex_.failAt(viaTok, "via " + quoteToken(viaTok.text) + " does not connect to layer " +
-                                  quoteToken(tech_.layer(cur.layer).name));
-        }
+        cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         cur.emitted = true;
       }
     }

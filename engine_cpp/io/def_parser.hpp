@@ -3,6 +3,8 @@
 // def_vias.cpp: VIAS; def_nets.cpp: NETS, SPECIALNETS and routing paths).
 #pragma once
 
+#include <algorithm>
+
 #include <string>
 #include <string_view>
 
@@ -55,6 +57,11 @@ class DefParser {
   void readRegularWiring(Net& net);
   void readSpecialWiring(SpecialNet& net);
   void resolveIoPinNets();
+  // A via name in a routing path (after its point), with an optional
+  // orientation (only N is kept; others are counted under <section>.VIA.ORIENT).
+  ViaRef readPathVia(const Token& viaTok, bool havePoint, std::string_view section);
+  // The layer a path continues on after `ref` from `layer`; throws if the via misses it.
+  LayerId layerAfterVia(const Token& viaTok, ViaRef ref, LayerId layer) const;
 
   // Shared helpers (def_reader.cpp).
   static bool is(const Token& t, std::string_view w) { return !t.quoted && t.text == w; }
@@ -68,6 +75,18 @@ class DefParser {
   int readSectionCount();                 // "n ;" after a section keyword
   // Expects "END <section>" next (or a '-' item was expected); checks counts.
   bool atSectionEnd(std::string_view section, int declared, int found);
+  // The entries of a section whose "n ;" gave `declared`: for each "- ...",
+  // consumes the '-' and calls readOne(); then checks "END <section>" and the count.
+  template <class ReadOne>
+  void readEntries(std::string_view section, int declared, ReadOne&& readOne) {
+    for (int found = 0; !atSectionEnd(section, declared, found); ++found) {
+      lex_.expect("-");
+      readOne();
+    }
+  }
+  Token entryName(std::string_view what);  // the name after '-': not ';', not quoted
+  // A reserve() that a bogus huge declared count cannot turn into a huge allocation.
+  static size_t saneReserve(int declared) { return static_cast<size_t>(std::clamp(declared, 0, 1 << 20)); }
   std::string quotedChars(size_t count, const std::string& what);
   // A name or value written back as is: any token but ';' and a "quoted string".
   std::string plainWord(const std::string& what);  // "..." of exactly `count` printable chars

@@ -43,9 +43,6 @@ bool contains(const std::string_view (&list)[N], std::string_view w) {
   return std::find(std::begin(list), std::end(list), w) != std::end(list);
 }
 
-// A reserve() that a bogus huge declared count cannot turn into a huge allocation.
-size_t saneReserve(int declared) { return static_cast<size_t>(std::clamp(declared, 0, 1 << 20)); }
-
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -127,6 +124,12 @@ bool DefParser::atSectionEnd(std::string_view section, int declared, int found) 
                          std::to_string(found) + " found");
   }
   return true;
+}
+
+Token DefParser::entryName(std::string_view what) {
+  const Token t = lex_.next();
+  if (is(t, ";") || t.quoted) unexpected(t, std::string(what));
+  return t;
 }
 
 std::string DefParser::quotedChars(size_t count, const std::string& what) {
@@ -344,17 +347,11 @@ void DefParser::readComponents() {
   const int declared = readSectionCount();
   design_.components.reserve(design_.components.size() + saneReserve(declared));
   design_.compIndex.reserve(design_.compIndex.size() + saneReserve(declared));
-  int found = 0;
-  while (!atSectionEnd("COMPONENTS", declared, found)) {
-    readComponent();
-    ++found;
-  }
+  readEntries("COMPONENTS", declared, [&] { readComponent(); });
 }
 
 void DefParser::readComponent() {
-  lex_.expect("-");
-  const Token nameTok = lex_.next();
-  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a component name");
+  const Token nameTok = entryName("a component name");
   const Token macroTok = lex_.next();
   const MacroId macro = tech_.findMacro(macroTok.text);
   if (!macro.valid() || macroTok.quoted) lex_.failAt(macroTok, "unknown macro " + quoteToken(macroTok.text));
@@ -389,11 +386,7 @@ void DefParser::readComponent() {
 void DefParser::readPins() {
   const int declared = readSectionCount();
   design_.ioPins.reserve(design_.ioPins.size() + saneReserve(declared));
-  int found = 0;
-  while (!atSectionEnd("PINS", declared, found)) {
-    readPin();
-    ++found;
-  }
+  readEntries("PINS", declared, [&] { readPin(); });
 }
 
 namespace {
@@ -407,9 +400,7 @@ struct PinPort {
 }  // namespace
 
 void DefParser::readPin() {
-  lex_.expect("-");
-  const Token nameTok = lex_.next();
-  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a pin name");
+  const Token nameTok = entryName("a pin name");
   const IoPinId id(static_cast<int32_t>(design_.ioPins.size()));
   if (!design_.ioPinIndex.emplace(std::string(nameTok.text), id).second) {
     lex_.failAt(nameTok, "duplicate pin " + quoteToken(nameTok.text));
@@ -517,15 +508,10 @@ void DefParser::resolveIoPinNets() {
 
 void DefParser::readBlockages() {
   const int declared = readSectionCount();
-  int found = 0;
-  while (!atSectionEnd("BLOCKAGES", declared, found)) {
-    readBlockage();
-    ++found;
-  }
+  readEntries("BLOCKAGES", declared, [&] { readBlockage(); });
 }
 
 void DefParser::readBlockage() {
-  lex_.expect("-");
   Blockage b;
   const Token kind = lex_.next();
   if (is(kind, "LAYER")) {

@@ -129,17 +129,11 @@ bool generateViaShapes(DefVia& d, std::string& error) {
 
 void DefParser::readVias() {
   const int declared = readSectionCount();
-  int found = 0;
-  while (!atSectionEnd("VIAS", declared, found)) {
-    readVia();
-    ++found;
-  }
+  readEntries("VIAS", declared, [&] { readVia(); });
 }
 
 void DefParser::readVia() {
-  lex_.expect("-");
-  const Token nameTok = lex_.next();
-  if (is(nameTok, ";") || nameTok.quoted) unexpected(nameTok, "a via name");
+  const Token nameTok = entryName("a via name");
   const DefViaId id(static_cast<int32_t>(design_.vias.size()));
   if (!design_.viaIndex.emplace(std::string(nameTok.text), id).second) {
     lex_.failAt(nameTok, "duplicate via " + quoteToken(nameTok.text));
