@@ -83,7 +83,7 @@ def test_grid_views_are_live_and_shaped_z_y_x() -> None:
     assert (g["routed_net"] == first).any()
 
 
-def test_an_order_changes_nothing_but_the_order_and_is_deterministic() -> None:
+def test_any_order_connects_every_net_and_repeats_byte_for_byte() -> None:
     from xroute_cli import _engine
 
     def run(order_key):

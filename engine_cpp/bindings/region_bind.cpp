@@ -122,14 +122,7 @@ void bindRegion(nb::module_& m) {
       .def_prop_ro(
           "candidates",
           [](const RegionHandle& h) {
-            const auto& c = h.router->candidates();
-            std::vector<int32_t> flat;
-            for (const NetCandidate& k : c) {
-              const int32_t row[9] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
-                                      k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
-              flat.insert(flat.end(), row, row + 9);
-            }
-            return ownedInt32(std::move(flat), 9);
+            return ownedInt32(featureRows(h.router->candidates()), kFeatureCount);
           },
           nb::rv_policy::move, "int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.")
       .def(

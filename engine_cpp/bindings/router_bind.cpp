@@ -22,11 +22,6 @@ using namespace xroute;
 
 namespace {
 
-// Columns of the candidate feature array handed to Python policies.
-constexpr const char* kFeatureColumns[] = {"net",       "pins", "terminals", "access_points", "bbox_xlo",
-                                           "bbox_ylo",  "bbox_xhi", "bbox_yhi", "net_pins"};
-constexpr size_t kFeatureCount = sizeof(kFeatureColumns) / sizeof(kFeatureColumns[0]);
-
 // A policy implemented by a Python callable:
 //   fn(region: dict, features: int32[n, 9]) -> sequence of n distinct ints.
 class PythonPolicy final : public NetOrderPolicy {
@@ -40,14 +35,7 @@ class PythonPolicy final : public NetOrderPolicy {
   std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& c) override {
     std::lock_guard<std::mutex> lock(mutex_);
     nb::gil_scoped_acquire gil;
-    std::vector<int32_t> flat;
-    flat.reserve(c.size() * kFeatureCount);
-    for (const NetCandidate& k : c) {
-      const int32_t row[kFeatureCount] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
-                                          k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
-      flat.insert(flat.end(), row, row + kFeatureCount);
-    }
-    IntArray features = ownedInt32(std::move(flat), kFeatureCount);
+    IntArray features = ownedInt32(featureRows(c), kFeatureCount);
     nb::dict info;
     info["iteration"] = region.iteration;
     info["region"] = region.regionId;
@@ -87,9 +75,9 @@ nb::dict reportDict(const IterationReport& r, int dbuPerMicron) {
 }  // namespace
 
 void bindRouter(nb::module_& m) {
-  m.attr("POLICY_FEATURES") = nb::make_tuple(kFeatureColumns[0], kFeatureColumns[1], kFeatureColumns[2],
-                                             kFeatureColumns[3], kFeatureColumns[4], kFeatureColumns[5],
-                                             kFeatureColumns[6], kFeatureColumns[7], kFeatureColumns[8]);
+  nb::list columns;
+  for (const char* c : kFeatureColumns) columns.append(c);
+  m.attr("POLICY_FEATURES") = nb::tuple(columns);
   m.def(
       "route",
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,

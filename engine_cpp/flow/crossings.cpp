@@ -176,25 +176,10 @@ struct Planner {
         prev = cur;
       }
     }
-    // Prune leaves without pins.
-    std::map<int32_t, int> children;
-    for (const auto& [reg, par] : parent) {
-      if (par >= 0) ++children[par];
-    }
-    std::set<int32_t> removed;
-    bool changed = true;
-    while (changed) {
-      changed = false;
-      for (const auto& [reg, par] : parent) {
-        if (removed.count(reg) || pinRegions.count(reg) || children[reg] > 0) continue;
-        removed.insert(reg);
-        if (par >= 0) --children[par];
-        changed = true;
-      }
-    }
+    // Every leaf of this tree is a pin region: each path added ends at one.
     std::map<int32_t, std::vector<int32_t>> tree;
     for (const auto& [reg, par] : parent) {
-      if (removed.count(reg) || par < 0) continue;
+      if (par < 0) continue;
       tree[reg].push_back(par);
       tree[par].push_back(reg);
     }
@@ -205,7 +190,7 @@ struct Planner {
       pinsByRegion[regionOf(p)].push_back(p);
     }
     for (const auto& [reg, par] : parent) {
-      if (removed.count(reg) || par < 0) continue;
+      if (par < 0) continue;
       const auto key = std::make_pair(std::min(reg, par), std::max(reg, par));
       auto it = edges.find(key);
       addCrossing(net, reg, par, it == edges.end() ? EdgeInfo{} : it->second);

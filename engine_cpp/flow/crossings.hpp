@@ -1,8 +1,9 @@
 // Initial routing (iteration 0) plan: for every net, the regions it must
 // pass and the region edges it crosses. Pins are assigned to the region of
-// their best access point; guides link regions; a spanning tree of the
-// net's regions (leaves without pins pruned) gives the crossings. Where the
-// guides do not link two pin regions, an L-shaped chain of regions does.
+// their best access point; guides link regions; a Steiner tree of the
+// net's regions over those links (the nearest pin region joins by its
+// shortest path) gives the crossings. Where the guides do not link two pin
+// regions, an L-shaped chain of regions does.
 #pragma once
 
 #include <vector>

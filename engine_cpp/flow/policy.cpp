@@ -52,6 +52,17 @@ class RandomPolicy final : public NetOrderPolicy {
 std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy() { return std::make_unique<HeuristicPolicy>(); }
 std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed) { return std::make_unique<RandomPolicy>(seed); }
 
+std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates) {
+  std::vector<int32_t> flat;
+  flat.reserve(candidates.size() * kFeatureCount);
+  for (const NetCandidate& k : candidates) {
+    const int32_t row[kFeatureCount] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
+                                        k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
+    flat.insert(flat.end(), row, row + kFeatureCount);
+  }
+  return flat;
+}
+
 bool isPermutation(const std::vector<int32_t>& order, size_t n) {
   if (order.size() != n) return false;
   std::vector<uint8_t> seen(n, 0);

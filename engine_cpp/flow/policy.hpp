@@ -28,6 +28,13 @@ struct NetCandidate {
   int32_t netPins = 0;       // pins of the whole net
 };
 
+// The candidates as a flat row-major table, one row of kFeatureCount int32
+// per candidate, columns named by kFeatureColumns (what Python policies see).
+inline constexpr const char* kFeatureColumns[] = {"net",      "pins",     "terminals", "access_points", "bbox_xlo",
+                                                  "bbox_ylo", "bbox_xhi", "bbox_yhi",  "net_pins"};
+inline constexpr size_t kFeatureCount = sizeof(kFeatureColumns) / sizeof(kFeatureColumns[0]);
+std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates);
+
 class NetOrderPolicy {
  public:
   virtual ~NetOrderPolicy() = default;

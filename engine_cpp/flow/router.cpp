@@ -7,7 +7,6 @@
 #include <mutex>
 #include <thread>
 
-#include "flow/clip.hpp"
 #include "flow/crossings.hpp"
 #include "flow/region_router.hpp"
 #include "flow/regions.hpp"
@@ -120,11 +119,6 @@ class Flow {
     t.costs = costsFor(it);
     std::vector<int32_t> dirty;
     const int32_t nNets = static_cast<int32_t>(design_.nets.size());
-    if (it <= s_.fullReroutes) {
-      for (int32_t n : ctx_.netsNear(r.box)) {
-        if (routingTouches(design_.nets[n].routing, r.box)) dirty.push_back(n);
-      }
-    }
     for (const Marker& m : markers_) {
       if (!m.box.overlaps(r.box)) continue;
       if (m.net1 >= 0 && m.net1 < nNets) dirty.push_back(m.net1);

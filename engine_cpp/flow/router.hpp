@@ -28,8 +28,6 @@ struct RouterSettings {
   int64_t markerPenalty = 10000;   // cost units per node near a marker of the last iteration
   int64_t historyPenalty = 3000;   // cost units per node near any earlier marker
   bool stopAtZero = true;          // stop when an iteration ends without markers
-  int fullReroutes = 0;            // iterations 1..fullReroutes reroute every net in every region
-                                   // (shifted boundaries straighten what iteration 0 bent), not only marked ones
 };
 
 inline constexpr int kMarkerTypes = 8;
