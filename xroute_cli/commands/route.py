@@ -101,6 +101,20 @@ class ProgressDisplay:
             )
 
 
+def parse_schedule(text: str) -> tuple[tuple[int, int], ...]:
+    """``'5:0,5:2'`` -> ``((5, 0), (5, 2))``; a malformed step raises RouteArgumentError."""
+    from xroute_cli.router import RouteArgumentError
+
+    steps = []
+    for item in text.split(","):
+        size, sep, offset = item.strip().partition(":")
+        try:
+            steps.append((int(size), int(offset) if sep else 0))
+        except ValueError:
+            raise RouteArgumentError(f"--schedule: '{item.strip()}' is not SIZE:OFFSET (two integers, GCells)") from None
+    return tuple(steps)
+
+
 def _seconds(t: float) -> str:
     return f"{t:.2f}" if t < 10 else f"{t:.1f}"
 
@@ -157,6 +171,12 @@ def route(
         typer.Option("--policy", help="Net-order policy: heuristic, random, or a .py file defining order(region, features)."),
     ] = "heuristic",
     seed: Annotated[int, typer.Option("--seed", help="Seed of the random policy.")] = 1,
+    schedule: Annotated[
+        str | None,
+        typer.Option("--schedule", help="Per-iteration region size and offset in GCells, cycled: e.g. '5:0,5:2,7:3' "
+                     "(overrides --region-size). Default: --region-size with offsets 0, C/3, 2C/3.",
+                     show_default=False),
+    ] = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the metrics JSON on stdout, nothing else.")] = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")] = False,
 ) -> None:
@@ -170,7 +190,9 @@ def route(
     from xroute_cli.outputs import write_route_outputs
     from xroute_cli.router import route_design
 
-    RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)  # fail before loading
+    steps = parse_schedule(schedule) if schedule is not None else None
+    RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed,
+                  schedule=steps)  # fail before loading
     pol = get_policy(policy, seed)
     design = load_design_args(testcase, lef, def_, guide)
     out_dir = out if out is not None else Path("out") / design.name
@@ -184,7 +206,7 @@ def route(
     with ProgressDisplay(console, mode, iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
         result = route_design(design, region_size=region_size, iterations=iterations, threads=threads,
-                              policy=pol, seed=seed, progress=display)
+                              policy=pol, seed=seed, schedule=steps, progress=display)
     outputs = write_route_outputs(design, result, out_dir, started=started)
 
     if as_json:
