@@ -96,6 +96,9 @@ class RegionStepper:
         self.cost = weights.cost(self.metrics, self.dbu)
         self.slots = np.zeros(0, dtype=np.int64)
         self.order: list[int] = []  # candidate indices in the order routed
+        # The net channels depend only on the terminals, fixed for the region: built once per row set.
+        self._nets: np.ndarray | None = None
+        self._nets_slots: np.ndarray | None = None
 
     @property
     def done(self) -> bool:
@@ -112,11 +115,16 @@ class RegionStepper:
         """The padded observation dict of the region now (and fixes the rows the next action means)."""
         mask = unrouted_mask(self.region)
         self.slots = self._choose_slots(mask)
-        obs = observe_arrays(self.region.grid(), self.rows, mask, tuple(self.region.box), select=self.slots)
         out = empty_observation(self.m)
+        reuse = self._nets is not None and np.array_equal(self._nets_slots, self.slots)
+        obs = observe_arrays(self.region.grid(), self.rows, mask, tuple(self.region.box), select=self.slots,
+                             nets_out=None if reuse else out["nets"], with_nets=not reuse)
         k = len(self.slots)
+        if reuse:
+            out["nets"][:k] = self._nets[:k]  # a new array every step (gymnasium's rule), same content
+        else:
+            self._nets, self._nets_slots = out["nets"], self.slots.copy()
         out["obstacle"] = obs.obstacle
-        out["nets"][:k] = obs.nets
         out["net_features"][:k] = obs.net_features
         out["action_mask"][:k] = obs.mask
         return out
