@@ -134,3 +134,34 @@ def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
     assert result.violations == reference.violations
     outputs = info["outputs"]
     assert outputs.def_path.is_file() and outputs.metrics_path.is_file() and outputs.drc_report_path.is_file()
+
+
+def test_region_loop_replays_a_region_from_the_same_state_and_location_pins_it() -> None:
+    from policies.rl.envs.ordering_training import ordering_training_env
+
+    require_testcase("ispd18_sample")
+
+    def finish(env) -> None:
+        done = False
+        while not done:
+            _, _, done, _, _ = env.step(int(np.flatnonzero(env.action_masks())[-1]))
+
+    env = ordering_training_env("ispd18_sample", region_size=2, region_loop=2, max_candidates=8)
+    obs1, info1 = env.reset(seed=0)
+    finish(env)
+    obs2, info2 = env.reset()
+    assert (info2["region_location"], info2["replay"]) == (info1["region_location"], 2)
+    assert all(np.array_equal(obs1[k], obs2[k]) for k in obs1)
+    finish(env)
+    _, info3 = env.reset()
+    assert info3["region_location"] != info1["region_location"] and info3["replay"] == 1
+
+    pinned = ordering_training_env("ispd18_sample", region_size=2, region_location=info3["region_location"],
+                                   max_candidates=8)
+    first, _ = pinned.reset(seed=1)
+    for _ in range(3):
+        finish(pinned)
+        again, info = pinned.reset()
+        assert info["region_location"] == info3["region_location"]
+        assert np.array_equal(again["obstacle"], first["obstacle"])
+    assert pinned.passes_done == 3 and pinned.finished

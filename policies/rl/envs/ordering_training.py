@@ -6,7 +6,8 @@ are skipped). Each region is replayed ``region_loop`` times from the same state 
 replay is committed into the design, so later regions see it as routed neighbours); after the last
 region the walk starts again on a freshly loaded design, ``testcase_loop`` passes in all
 (:attr:`finished` turns True after them; the env keeps going if asked). ``region_location``
-(GCell column, row of a region's lower-left) restricts the walk to that one region.
+(GCell column, row of a region's lower-left) restricts the walk to that one region, which is then
+never committed: every episode starts from the same state.
 
 Spaces and reward: see :mod:`policies.rl.envs.core`. One step routes one net; the episode
 terminates when every candidate of the region is routed.
@@ -127,7 +128,7 @@ class NetOrderingTrainingEnv(gym.Env):
             self._replay += 1  # the unfinished copy is dropped, never committed
             self._stepper = self._stepper_for(self._session.open_region(self._box))
             return
-        if current is not None:
+        if current is not None and len(self._walk) > 1:  # a lone region (region_location) is never committed
             current.region.route_rest("heuristic")  # an episode cut short still leaves a routed region
             current.region.commit()
             self._dirty = True
@@ -153,7 +154,7 @@ class NetOrderingTrainingEnv(gym.Env):
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         if seed is not None or self._session is None:
-            self._dirty = self._dirty or self._session is not None
+            self._dirty = True  # a seeded reset starts from a freshly loaded design
             self._stepper = None
             self.passes_done = 0
             self._fresh_design()
