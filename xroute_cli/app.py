@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import evaluate, info, route, testcases
+from xroute_cli.commands import batch, evaluate, info, route, testcases
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -43,6 +43,7 @@ app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
 app.command(name="evaluate")(evaluate.evaluate)
+app.command(name="batch")(batch.batch)
 
 
 def main() -> None:
