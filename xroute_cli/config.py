@@ -75,6 +75,8 @@ def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     if not path.suffix and os.sep not in value and "/" not in value and not path.exists():
         names = ", ".join(BUILTIN_POLICIES)
         return value, f"unknown policy '{value}': use {names}, or the path of a policy file (.py, .onnx)"
+    if path.exists() and not path.is_file():
+        return value, f"policy file {path} is not a file"
     if not path.is_file():
         return value, f"policy file not found: {path}"
     try:
