@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import batch, evaluate, info, route, testcases
+from xroute_cli.commands import batch, evaluate, info, report, route, testcases
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -44,6 +44,7 @@ app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
 app.command(name="evaluate")(evaluate.evaluate)
 app.command(name="batch")(batch.batch)
+app.command(name="report")(report.report)
 
 
 def main() -> None:
