@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import batch, evaluate, info, report, route, testcases
+from xroute_cli.commands import batch, evaluate, info, plot_region, report, route, testcases
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -45,6 +45,7 @@ app.command(name="route")(route.route)
 app.command(name="evaluate")(evaluate.evaluate)
 app.command(name="batch")(batch.batch)
 app.command(name="report")(report.report)
+app.command(name="plot-region")(plot_region.plot_region)
 
 
 def main() -> None:
