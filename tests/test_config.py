@@ -158,7 +158,7 @@ def test_route_config_values_and_flag_overrides(runner: CliRunner, testcase, tmp
     result = runner.invoke(app, ["route", "--config", str(p), "--seed", "9", "--json"])
     assert result.exit_code == 0, result.stdout + result.stderr
     settings = json.loads(result.stdout)["settings"]
-    assert settings == {"region_size": 3, "iterations": 2, "threads": 1, "seed": 9, "policy": "random"}
+    assert settings == {"region_size": 3, "iterations": 2, "threads": 1, "seed": 9, "schedule": None, "policy": "random"}
     assert (tmp_path / "out" / "ispd18_sample.metrics.json").is_file()
 
 
@@ -167,3 +167,19 @@ def test_net_loop_above_one_is_refused_by_route(runner: CliRunner, tmp_path: Pat
     result = runner.invoke(app, ["route", "ispd18_sample", "--config", str(p), "--out", str(tmp_path / "o")])
     assert result.exit_code == 2
     assert result.stderr.startswith("error: net_loop 2: the full-design router orders each region's nets once per visit")
+
+
+def test_iteration_schedule_from_the_config_reaches_the_router(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd19_sample4")
+    p = write(tmp_path, "router:\n  iteration_count: 3\n  iteration_schedule:\n    - {region_size: 2, offset: 0}\n"
+                        "    - {region_size: 3, offset: 1}\n")
+    result = runner.invoke(app, ["route", "ispd19_sample4", "--config", str(p), "--json", "--out", str(tmp_path / "o")])
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["settings"]["schedule"] == [[2, 0], [3, 1]]
+    steps = [(it["region_size"], it["offset"]) for it in data["iterations"]]
+    assert steps == [(2, 0), (3, 1), (2, 0)][: len(steps)]
+    # a --schedule flag overrides the config's schedule
+    result = runner.invoke(app, ["route", "ispd19_sample4", "--config", str(p), "--json", "--schedule", "4:1",
+                                 "--out", str(tmp_path / "o")])
+    assert json.loads(result.stdout)["settings"]["schedule"] == [[4, 1]]

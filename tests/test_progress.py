@@ -32,7 +32,7 @@ def test_output_mode(monkeypatch, terminal: bool, ci: str, flags: dict, expected
 
 
 def event(done: bool) -> RouteProgress:
-    report = IterationReport(iteration=0, offset=0, regions=4, net_routes=9, unreached=0, wirelength_dbu=2000,
+    report = IterationReport(iteration=0, region_size=5, offset=0, regions=4, net_routes=9, unreached=0, wirelength_dbu=2000,
                              wirelength_um=1.0, vias=3, violations_by_type={"Short": 2}, violations=2,
                              seconds=0.5 if done else 0.0)
     return RouteProgress(report, 4 if done else 2, 4, done, 10)

@@ -25,7 +25,6 @@ Other commands compose these sections with their own into a dataclass and load i
 
 from __future__ import annotations
 
-import inspect
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -206,15 +205,13 @@ class RunSettings:
 
     def route_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :func:`xroute_cli.router.route_design` (without the policy)."""
-        from xroute_cli.router import route_design
+        from xroute_cli.router import RouteSettings
 
         kwargs: dict[str, Any] = {"region_size": self.region_size, "iterations": self.iterations,
-                                  "threads": self.threads, "seed": self.seed}
-        if self.schedule:
-            if "schedule" not in inspect.signature(route_design).parameters:
-                raise XrouteError("iteration_schedule is not supported by this build's router "
-                                  "(route_design has no schedule argument yet)")
-            kwargs["schedule"] = list(self.schedule)
+                                  "threads": self.threads, "seed": self.seed,
+                                  "schedule": list(self.schedule) if self.schedule else None}
+        RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
+                      seed=self.seed, schedule=self.schedule or None)  # RouteArgumentError when invalid
         if self.net_loop != 1:
             raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
                               "once per visit; net_loop > 1 applies to the training environments only")
@@ -227,15 +224,18 @@ class RunSettings:
 
 
 def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iterations: int | None = None,
-                 threads: int | None = None, policy: str | None = None, seed: int | None = None) -> RunSettings:
+                 threads: int | None = None, policy: str | None = None, seed: int | None = None,
+                 schedule: tuple[tuple[int, int], ...] | None = None) -> RunSettings:
     """The run's settings: each flag that was given (not None) overrides the config value."""
+    if schedule is None:
+        schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
     return RunSettings(
         region_size=region_size if region_size is not None else cfg.region.region_size,
         iterations=iterations if iterations is not None else cfg.router.iteration_count,
         threads=threads if threads is not None else cfg.router.thread_count,
         policy=policy if policy is not None else cfg.policy.policy,
         seed=seed if seed is not None else cfg.policy.seed,
-        schedule=tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule),
+        schedule=tuple(schedule),
         net_loop=cfg.router.net_loop,
     )
 

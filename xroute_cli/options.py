@@ -45,3 +45,9 @@ PolicyOption = Annotated[
 SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. [default: 1]", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]
 QuietOption = Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")]
+ScheduleOption = Annotated[
+    str | None,
+    typer.Option("--schedule", help="Per-iteration region size and offset in GCells, cycled: e.g. '5:0,5:2,7:3' "
+                 "(overrides --region-size and the config's iteration_schedule). Default: --region-size with "
+                 "offsets 0, C/3, 2C/3.", show_default=False),
+]

@@ -154,6 +154,7 @@ def write_route_outputs(
             "iterations": result.settings.iterations,
             "threads": result.settings.threads,
             "seed": result.settings.seed,
+            "schedule": [list(step) for step in result.settings.schedule] if result.settings.schedule else None,
             "policy": result.policy,
         },
         "policy": result.policy,

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from policies.base import HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy, check_order
 from policies.registry import get_policy
@@ -52,8 +52,24 @@ class RouteSettings:
     iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..64)
     threads: int = 1  # worker threads for the regions of one colour
     seed: int = 1  # seed of the random policy
+    # per-iteration (region_size, offset) in GCells, cycled over the iterations; None: region_size
+    # every iteration with the offset shifted by a third of a region (0, C/3, 2C/3, 0, ...)
+    schedule: tuple[tuple[int, int], ...] | None = None
 
     def __post_init__(self) -> None:
+        if self.schedule is not None:
+            steps = tuple(tuple(step) for step in self.schedule)
+            object.__setattr__(self, "schedule", steps)
+            if not steps:
+                raise RouteArgumentError("schedule must have at least one (region_size, offset) step")
+            for i, step in enumerate(steps):
+                if len(step) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in step):
+                    raise RouteArgumentError(f"schedule step {i} must be two integers (region_size, offset), got {step!r}")
+                size, offset = step
+                if size < 1:
+                    raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
+                if not 0 <= offset < size:
+                    raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
         for name in ("region_size", "iterations", "threads", "seed"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
@@ -73,6 +89,7 @@ class IterationReport:
     """What one iteration did and the state after it (lengths in DBU unless named _um)."""
 
     iteration: int
+    region_size: int  # region side of this iteration, GCells
     offset: int  # region offset of this iteration, GCells
     regions: int  # regions with work
     net_routes: int  # (net, region) pairs routed
@@ -88,6 +105,7 @@ class IterationReport:
     def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
         return cls(
             iteration=int(d["iteration"]),
+            region_size=int(d["region_size"]),
             offset=int(d["offset"]),
             regions=int(d["regions"]),
             net_routes=int(d["net_routes"]),
@@ -103,6 +121,7 @@ class IterationReport:
     def to_dict(self) -> dict[str, Any]:
         return {
             "iteration": self.iteration,
+            "region_size": self.region_size,
             "offset": self.offset,
             "regions": self.regions,
             "net_routes": self.net_routes,
@@ -207,6 +226,7 @@ def route_design(
     threads: int = 1,
     policy: str | NetOrderPolicy = "heuristic",
     seed: int = 1,
+    schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
@@ -219,8 +239,18 @@ def route_design(
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.
+
+    ``schedule``: per-iteration ``(region_size, offset)`` pairs in GCells, cycled over the
+    iterations (iteration ``i`` uses step ``i % len(schedule)``); it overrides ``region_size``.
+    Default: ``region_size`` in every iteration, the offset shifted by a third of a region.
     """
-    settings = RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)
+    settings = RouteSettings(
+        region_size=region_size,
+        iterations=iterations,
+        threads=threads,
+        seed=seed,
+        schedule=tuple(tuple(step) for step in schedule) if schedule is not None else None,
+    )
     pol = resolve_policy(policy, seed)
     builtin = _builtin(pol)
     kwargs: dict[str, Any] = {}
@@ -249,6 +279,7 @@ def route_design(
             region_size=settings.region_size,
             iterations=settings.iterations,
             threads=settings.threads,
+            schedule=list(settings.schedule) if settings.schedule is not None else None,
             **kwargs,
         )
     except ValueError as exc:

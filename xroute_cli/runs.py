@@ -42,6 +42,8 @@ def run_summary(outputs: RouteOutputs, cost: CostSection) -> dict[str, Any]:
     iterations = [
         {
             "iteration": it["iteration"],
+            "region_size": it.get("region_size"),
+            "offset": it.get("offset"),
             "wirelength_um": it["wirelength_um"],
             "vias": it["vias"],
             "violations": it["violations"],

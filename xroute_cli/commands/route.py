@@ -32,6 +32,7 @@ from xroute_cli.options import (
     PolicyOption,
     QuietOption,
     RegionSizeOption,
+    ScheduleOption,
     SeedOption,
     ThreadsOption,
 )
@@ -43,6 +44,20 @@ if TYPE_CHECKING:
 
 EXIT_OPENS = 1
 MAX_OPENS_PRINTED = 20
+
+
+def parse_schedule(text: str) -> tuple[tuple[int, int], ...]:
+    """``'5:0,5:2'`` -> ``((5, 0), (5, 2))``; a malformed step raises RouteArgumentError."""
+    from xroute_cli.router import RouteArgumentError
+
+    steps = []
+    for item in text.split(","):
+        size, sep, offset = item.strip().partition(":")
+        try:
+            steps.append((int(size), int(offset) if sep else 0))
+        except ValueError:
+            raise RouteArgumentError(f"--schedule: '{item.strip()}' is not SIZE:OFFSET (two integers, GCells)") from None
+    return tuple(steps)
 
 
 def _seconds(t: float) -> str:
@@ -94,6 +109,7 @@ def route(
     threads: ThreadsOption = None,
     policy: PolicyOption = None,
     seed: SeedOption = None,
+    schedule: ScheduleOption = None,
     as_json: JsonOption = False,
     quiet: QuietOption = False,
 ) -> None:
@@ -117,8 +133,11 @@ def route(
     from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
     from xroute_cli.router import route_design
 
-    rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed)
-    RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed)  # fail early
+    steps = parse_schedule(schedule) if schedule is not None else None
+    rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
+                      schedule=steps)
+    RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed,
+                  schedule=rs.schedule or None)  # fail before loading
     kwargs = rs.route_kwargs()
     pol = get_policy(rs.policy, rs.seed)
     design = load_design_args(testcase, lef, def_, guide)
