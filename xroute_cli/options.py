@@ -24,25 +24,25 @@ OutOption = Annotated[
 ]
 RegionSizeOption = Annotated[
     int | None,
-    typer.Option("--region-size", help=f"Region side in GCells. [default: {DEFAULT_REGION_SIZE}]", show_default=False),
+    typer.Option("--region-size", help=f"Region side in GCells. Default: {DEFAULT_REGION_SIZE}.", show_default=False),
 ]
 IterationsOption = Annotated[
     int | None,
     typer.Option("--iterations",
-                 help=f"Iteration limit (1..{MAX_ITERATIONS}); stops early at 0 violations. [default: {DEFAULT_ITERATIONS}]",
+                 help=f"Iteration limit (1..{MAX_ITERATIONS}); stops early at 0 violations. Default: {DEFAULT_ITERATIONS}.",
                  show_default=False),
 ]
 ThreadsOption = Annotated[
     int | None,
-    typer.Option("--threads", help="Worker threads (the result does not depend on it). [default: 1]", show_default=False),
+    typer.Option("--threads", help="Worker threads (the result does not depend on it). Default: 1.", show_default=False),
 ]
 PolicyOption = Annotated[
     str | None,
     typer.Option("--policy",
                  help="Net-order policy: heuristic, random, or a policy file (.py defining order(region, features)). "
-                      "[default: heuristic]", show_default=False),
+                      "Default: heuristic.", show_default=False),
 ]
-SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. [default: 1]", show_default=False)]
+SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]
 QuietOption = Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")]
 ScheduleOption = Annotated[

@@ -99,9 +99,9 @@ def summary_table(doc: dict[str, Any]) -> Table:
 
 def batch(
     batch_file: Annotated[Path, typer.Argument(help="Batch YAML (see configs/batch.yaml).", show_default=False)],
-    jobs: Annotated[int | None, typer.Option("--jobs", "-j", help="Parallel jobs (processes). [default: the file's jobs, else 1]",
+    jobs: Annotated[int | None, typer.Option("--jobs", "-j", help="Parallel jobs (processes). Default: the file's jobs, else 1.",
                                              show_default=False, min=1)] = None,
-    out: Annotated[Path | None, typer.Option("--out", help="Output folder. [default: the file's out_dir]",
+    out: Annotated[Path | None, typer.Option("--out", help="Output folder. Default: the file's out_dir.",
                                              show_default=False)] = None,
     backend: Annotated[str, typer.Option("--backend", help="local (processes on this machine) or ray (optional extra).")] = "local",
     ray_address: Annotated[str | None, typer.Option("--ray-address", help="Existing Ray cluster (with --backend ray); "
@@ -113,8 +113,9 @@ def batch(
     as_json: JsonOption = False,
     quiet: QuietOption = False,
 ) -> None:
-    """Run every job of a batch matrix (testcases x policies x settings) in parallel processes and
-    write OUT/summary.json, summary.csv, summary.md and junit.xml (one testcase per job). Jobs whose
+    """Run a batch matrix of testcases x policies x settings, with summaries, JUnit and gates.
+
+    Runs every job in parallel processes (or Ray tasks) and writes OUT/summary.json, summary.csv, summary.md and junit.xml (one testcase per job). Jobs whose
     folder OUT/jobs/<job id> already holds a finished result with the same settings are skipped
     (resumable); an interrupted job leaves no partial folder. Gates in the YAML (max_violations,
     max_opens, max_wirelength_increase_pct over a baseline file, ...) make the exit status 1 and name
@@ -132,8 +133,12 @@ def batch(
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
     job_list = plan_jobs(cfg)
-    for job in job_list:  # settings checked before the first job starts
+    from policies.registry import get_policy
+
+    for job in job_list:  # settings and policies checked before the first job starts
         job.run.route_kwargs()
+    for spec in dict.fromkeys(job.run.policy for job in job_list):
+        get_policy(spec)
     out_root = out if out is not None else Path(cfg.batch.out_dir)
     (out_root / "jobs").mkdir(parents=True, exist_ok=True)
     clean_stale_job_folders(out_root)

@@ -85,8 +85,10 @@ def evaluate(
     as_json: JsonOption = False,
     quiet: QuietOption = False,
 ) -> None:
-    """Route TESTCASE with --policy and with --baseline (default heuristic) under the same settings and
-    print, per iteration, wirelength, vias, DRVs and runtime of both side by side, the final figures
+    """Compare a net-order policy with a baseline on one testcase (like the XRoute paper's Table 1).
+
+    Routes TESTCASE with --policy and with --baseline (default heuristic) under the same settings and
+    prints, per iteration, wirelength, vias, DRVs and runtime of both side by side, the final figures
     checked on each written DEF, the paper's cost (0.5 WL + 4 vias + 500 DRVs) and the share of
     routing time spent in a Python/ONNX policy. Writes <out>/evaluation.json and each run's outputs
     in <out>/policy-<name>/ and <out>/baseline-<name>/ (default out: ./out/evaluate/<testcase>).

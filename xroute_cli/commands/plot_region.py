@@ -20,10 +20,12 @@ def plot_region(
     lef: LefOption = None,
     guide: GuideOption = None,
     drc: Annotated[Path | None, typer.Option("--drc", help="DRC report whose markers to draw "
-                                             "[default: the run folder's <design>.drc.rpt]", show_default=False)] = None,
+                                             "Default: the run folder's <design>.drc.rpt.", show_default=False)] = None,
     out: Annotated[Path, typer.Option("--out", help="PNG file to write.")] = Path("region.png"),
 ) -> None:
-    """Draw the routing inside a region as a PNG: wires, vias and patches coloured by layer, pins
+    """Draw a region's routing as a PNG picture.
+
+    Wires, vias and patches coloured by layer, pins
     hatched, design-rule markers in red, with a legend. Give the region as --box xlo,ylo,xhi,yhi
     (DBU) or as --gcell X,Y --size C (GCells of the router's grid: the DEF's GCELLGRID, else the
     guides' most common size). Needs matplotlib

@@ -17,7 +17,9 @@ def report(
     title: Annotated[str, typer.Option("--title", help="Page title.")] = "xroute report",
     config: ConfigOption = None,
 ) -> None:
-    """Write one HTML page (inline CSS and SVG, nothing fetched) with the summary table of the runs
+    """Write a self-contained HTML report comparing routing runs.
+
+    One page (inline CSS and SVG, nothing fetched) with the summary table of the runs
     (WL, vias, DRVs by type, opens, runtime, the paper's cost with the weights of --config) and, per
     design, trend charts of WL / vias / DRVs over the iterations, one line per run.
 

@@ -113,7 +113,9 @@ def route(
     as_json: JsonOption = False,
     quiet: QuietOption = False,
 ) -> None:
-    """Route a design (a testcase name, or --lef and --def files) and write <design>.routed.def,
+    """Route a design and write the routed DEF, metrics JSON and DRC report.
+
+    The design is a testcase name, or --lef and --def files; the outputs are <design>.routed.def,
     <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
     when there are none, 1 when some remain.
 
