@@ -156,6 +156,8 @@ class RouteResult:
     settings: RouteSettings
     seconds: float  # wall time of the whole run
     violations_by_type: dict[str, int]  # after the last iteration
+    policy_seconds: float | None = None  # wall time inside a Python policy's order(); None for built-ins (C++)
+    policy_calls: int = 0  # calls of a Python policy's order() (one per region with candidates)
 
     @property
     def final(self) -> IterationReport:
@@ -198,14 +200,22 @@ def _builtin(policy: NetOrderPolicy) -> str | None:
     return None
 
 
-def _policy_callback(policy: NetOrderPolicy) -> Callable[[dict[str, Any], Any], list[int]]:
-    """The engine's policy_fn for a Python policy: calls ``policy.order`` and checks its result."""
-    name = policy.name
+class _PolicyCallback:
+    """The engine's policy_fn for a Python policy: calls ``policy.order``, checks its result and
+    adds up the time spent in it (the check included)."""
 
-    def policy_fn(region: dict[str, Any], features: Any) -> list[int]:
-        return check_order(policy.order(region, features), len(features), name)
+    def __init__(self, policy: NetOrderPolicy) -> None:
+        self.policy = policy
+        self.seconds = 0.0  # wall time in order() and the check
+        self.calls = 0
 
-    return policy_fn
+    def __call__(self, region: dict[str, Any], features: Any) -> list[int]:
+        start = time.perf_counter()
+        try:
+            return check_order(self.policy.order(region, features), len(features), self.policy.name)
+        finally:
+            self.seconds += time.perf_counter() - start
+            self.calls += 1
 
 
 def route_design(
@@ -244,13 +254,15 @@ def route_design(
     pol = resolve_policy(policy, seed)
     builtin = _builtin(pol)
     kwargs: dict[str, Any] = {}
+    callback: _PolicyCallback | None = None
     if builtin == "heuristic":
         kwargs["policy"] = "heuristic"
     elif builtin == "random":
         kwargs["policy"] = "random"
         kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
     else:
-        kwargs["policy_fn"] = _policy_callback(pol)
+        callback = _PolicyCallback(pol)
+        kwargs["policy_fn"] = callback
         # A policy that declares needs_region = True finds the region being routed (an
         # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
         kwargs["policy_needs_region"] = bool(getattr(pol, "needs_region", False))
@@ -287,4 +299,6 @@ def route_design(
         settings=settings,
         seconds=seconds,
         violations_by_type=dict(reports[-1].violations_by_type) if reports else {},
+        policy_seconds=callback.seconds if callback is not None else None,
+        policy_calls=callback.calls if callback is not None else 0,
     )
