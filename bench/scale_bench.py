@@ -62,7 +62,7 @@ def main() -> None:
               f"{'vias':>9} {'viol':>6} {'opens':>5}", flush=True)
         rows = []
         for r, c in tilings:
-            name = args.testcase if (r, c) == (1, 1) else tile_testcase(args.testcase, r, c, root).name
+            name = args.testcase if (r, c) == (1, 1) else tile_testcase(args.testcase, r, c, root / f"{args.testcase}_{r}x{c}").name
             run_args = argparse.Namespace(testcase=name, region_size=args.region_size, iterations=args.iterations,
                                           threads=args.threads, policy="heuristic", seed=1)
             run = route_bench.run_once(run_args)

@@ -1,7 +1,7 @@
 """Tiling: a larger testcase made of R x C copies of a real one, for measuring how cost grows.
 
-``tile_testcase(name, rows, cols, out_dir)`` writes ``out_dir/<tiled>/<tiled>.input.{lef,def,guide}``
-with ``<tiled> = <name>_<rows>x<cols>``. Copy (i, j) (row i from the bottom, column j from the
+``tile_testcase(name, rows, cols, out_dir)`` writes ``out_dir/<tiled>.input.{lef,def,guide}`` with
+``<tiled> = out_dir.name`` (the DEF's design name too; ``make-testcase`` uses ``<name>_<rows>x<cols>``). Copy (i, j) (row i from the bottom, column j from the
 left) is moved by (j * dx, i * dy) and everything it owns is renamed with the suffix
 ``_r{i}_c{j}``: components, nets, IO pins, rows, and the net names in the guides.
 
@@ -260,12 +260,12 @@ def parse_by(text: str) -> tuple[int, int]:
 
 
 def tile_testcase(name: str, rows: int, cols: int, out_dir: str | Path) -> Path:
-    """Writes the tiled testcase ``<name>_<rows>x<cols>`` into ``out_dir/<that name>/``; returns that folder."""
+    """Writes the testcase ``name`` tiled rows x cols into the folder ``out_dir`` (named after it); returns it."""
     if rows < 1 or cols < 1:
         raise XrouteError("tiling needs at least one row and one column")
     found = find_testcase(name)
-    tiled = f"{name}_{rows}x{cols}"
-    folder = Path(out_dir) / tiled
+    folder = Path(out_dir)
+    tiled = folder.resolve().name
     d = read_def_text(found.def_)
     guides = read_guides(found.guide) if found.guide else []
     out_def, out_guides = tile_def(d, guides, rows, cols, tiled)

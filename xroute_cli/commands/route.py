@@ -160,9 +160,13 @@ def route(
     as_json: Annotated[bool, typer.Option("--json", help="Print the metrics JSON on stdout, nothing else.")] = False,
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")] = False,
 ) -> None:
-    """Route a design (a testcase name, or --lef and --def files) and write <design>.routed.def,
-    <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
-    when there are none, 1 when some remain."""
+    """Route a design (a testcase name, or --lef and --def files; nothing: the shipped demo) and write
+    <design>.routed.def, <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF:
+    exit status 0 when there are none, 1 when some remain."""
+    if testcase is None and not lef and def_ is None and guide is None:
+        from testcases import DEMO
+
+        testcase = DEMO
     check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
