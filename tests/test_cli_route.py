@@ -149,7 +149,7 @@ def test_route_output_folder_that_is_a_file(runner: CliRunner, testcase, tmp_pat
 def test_route_unknown_testcase_and_usage_errors(runner: CliRunner, tmp_path: Path) -> None:
     result = runner.invoke(app, ["route", "no_such_testcase_xyz", "--out", str(tmp_path)])
     assert result.exit_code == 2 and result.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")
-    result = runner.invoke(app, ["route"])
+    result = runner.invoke(app, ["route", "--guide", str(tmp_path / "a.guide")])  # no argument at all routes the demo
     assert result.exit_code == 2 and "give a testcase name" in result.output + result.stderr
 
 

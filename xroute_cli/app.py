@@ -14,7 +14,17 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import batch, evaluate, info, make_region, plot_region, report, route, testcases
+from xroute_cli.commands import (
+    batch,
+    evaluate,
+    info,
+    make_region,
+    make_testcase,
+    plot_region,
+    report,
+    route,
+    testcases,
+)
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -43,6 +53,7 @@ app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
 app.command(name="make-region")(make_region.make_region_command)
+app.command(name="make-testcase")(make_testcase.make_testcase)
 app.command(name="evaluate")(evaluate.evaluate)
 app.command(name="batch")(batch.batch)
 app.command(name="report")(report.report)

@@ -115,8 +115,8 @@ def route(
 ) -> None:
     """Route a design and write the routed DEF, metrics JSON and DRC report.
 
-    The design is a testcase name, or --lef and --def files; the outputs are <design>.routed.def,
-    <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
+    The design is a testcase name, or --lef and --def files (nothing: the shipped demo); the
+    outputs are <design>.routed.def, <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
     when there are none, 1 when some remain.
 
     Settings come from --config (YAML, see configs/default.yaml) when given; flags override it.
@@ -128,6 +128,10 @@ def route(
     cfg = load_config(config)  # validated before anything else
     if testcase is None and not lef and def_ is None:
         testcase = cfg.testcase.testcase_name
+    if testcase is None and not lef and def_ is None and guide is None:
+        from testcases import DEMO
+
+        testcase = DEMO
     check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
