@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import info, route, testcases
+from xroute_cli.commands import global_route, info, route, testcases
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -42,6 +42,7 @@ app = typer.Typer(
 app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
+app.command(name="global-route")(global_route.global_route)
 
 
 def main() -> None:

@@ -30,6 +30,7 @@ from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERA
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from xroute_cli.groute import GlobalRouteStats
     from xroute_cli.outputs import RouteOutputs
 
 EXIT_OPENS = 1
@@ -101,6 +102,14 @@ class ProgressDisplay:
             )
 
 
+def global_route_summary(stats: GlobalRouteStats) -> str:
+    """One line of global-routing figures."""
+    nx, ny = stats.gcells
+    return (f"{nx} x {ny} GCells, {stats.nets} nets, overflow {stats.overflow} "
+            f"(after pattern routing {stats.initial_overflow}), {stats.wirelength_gcells:,} GCells of wire, "
+            f"{stats.vias:,} vias, {stats.guides:,} guides, {_seconds(stats.seconds)} s")
+
+
 def _seconds(t: float) -> str:
     return f"{t:.2f}" if t < 10 else f"{t:.1f}"
 
@@ -161,8 +170,9 @@ def route(
     quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")] = False,
 ) -> None:
     """Route a design (a testcase name, or --lef and --def files) and write <design>.routed.def,
-    <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
-    when there are none, 1 when some remain."""
+    <design>.metrics.json and <design>.drc.rpt. Without a route guide, the built-in global router
+    makes one first. Opens are checked on the written DEF: exit status 0 when there are none, 1
+    when some remain."""
     check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
@@ -178,6 +188,13 @@ def route(
 
     console = stdout_console()
     mode = "off" if (as_json or quiet) else ("rich" if console.is_terminal else "lines")
+    if not design.has_guides:
+        from xroute_cli.groute import global_route
+
+        stats = global_route(design)
+        if mode != "off":
+            typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
+                       f"({global_route_summary(stats)})")
     if mode == "lines":
         typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {region_size}, "
                    f"up to {iterations} iterations, {threads} thread(s), policy {pol.name}")
