@@ -2,7 +2,12 @@
 // on the GCell grid, install the guides in it and optionally write them.
 // The GIL is released while routing.
 #include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
+
+#include "bindings/arrays.hpp"
+#include "groute/capacity.hpp"
+#include "grid/tracks.hpp"
 
 #include "db/database.hpp"
 #include "groute/global_router.hpp"
@@ -13,6 +18,36 @@ using namespace nb::literals;
 using namespace xroute;
 
 void bindGlobalRouter(nb::module_& m) {
+  m.def(
+      "gcell_capacity",
+      [](const Database& db) {
+        GrGrid grid;
+        {
+          nb::gil_scoped_release release;
+          grid = buildGrGrid(db.tech, db.design, buildTracks(db.tech, db.design));
+        }
+        nb::dict d;
+        d["xs"] = ownedInt32(std::vector<int32_t>(grid.gcells.xs.begin(), grid.gcells.xs.end()), 1);
+        d["ys"] = ownedInt32(std::vector<int32_t>(grid.gcells.ys.begin(), grid.gcells.ys.end()), 1);
+        nb::list layers, horizontal, capacity, tracks;
+        for (const GrLayer& gl : grid.layers) {
+          layers.append(db.tech.layer(gl.layer).name);
+          horizontal.append(gl.horizontal);
+          std::vector<int32_t> cap = gl.capacity, tr = gl.tracks;
+          capacity.append(ownedInt32(std::move(cap), static_cast<size_t>(grid.nx())));
+          tracks.append(ownedInt32(std::move(tr), static_cast<size_t>(grid.nx())));
+        }
+        d["layers"] = layers;
+        d["horizontal"] = horizontal;
+        d["capacity"] = capacity;
+        d["tracks"] = tracks;
+        return d;
+      },
+      "db"_a,
+      "The global router's GCell grid and capacities: xs, ys (GCell lines, DBU), layers (routing layer names), "
+      "horizontal (preferred direction per layer), capacity and tracks (per layer, int32[ny, nx]: at [y, x] the "
+      "edge from GCell (x, y) to its right neighbour on a horizontal layer, to its upper neighbour on a vertical "
+      "one; free tracks after blocking, and all tracks).");
   m.def(
       "global_route",
       [](Database& db, const std::string& out, int iterations, int capacity_percent, int min_layer, int slack) {
