@@ -89,6 +89,7 @@ GlobalRouteResult globalRoute(const Tech& tech, const Design& design, const Glob
   LayerAssignSettings las;
   las.minLayer = minLayer;
   las.viaCost = st.viaCost;
+  las.capacityPercent = st.capacityPercent;
   std::vector<int32_t> laOrder = order;
   std::stable_sort(laOrder.begin(), laOrder.end(),
                    [&](int32_t a, int32_t b) { return routes[a].size() < routes[b].size(); });

@@ -126,7 +126,9 @@ LayerAssignment assignLayers(const GrGrid& grid, const std::vector<GrNet>& nets,
         if (grid.layers[z].horizontal != s.horizontal) continue;
         int64_t full = 0;
         const GrLayer& gl = grid.layers[z];
-        for (int32_t c = s.a; c < s.b; c += step) full += usage[z][c] >= gl.capacity[c];
+        for (int32_t c = s.a; c < s.b; c += step) {
+          full += int64_t(usage[z][c]) * 100 >= int64_t(gl.capacity[c]) * st.capacityPercent;
+        }
         const int64_t cost =
             st.overflowCost * full + st.viaCost * (distToRange(z, lo[ia], hi[ia]) + distToRange(z, lo[ib], hi[ib]));
         if (cost < bestCost) {

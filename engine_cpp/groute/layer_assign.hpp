@@ -2,7 +2,8 @@
 // bends, branches and ends), and each segment goes to one layer of its
 // direction. Nets go in the given order; a net's segments go outward from
 // its first pin (breadth-first). A segment's layer minimises
-//   overflowCost x (edges where the layer is already full) + viaCost x (layers
+//   overflowCost x (edges where the layer is already full, at capacityPercent
+//   of its free tracks) + viaCost x (layers
 //   between it and what is already attached at its two ends),
 // ties to the lowest layer. Layers below `minLayer` carry no segment.
 #pragma once
@@ -25,6 +26,7 @@ struct LayerAssignSettings {
   int minLayer = 1;          // routing index
   int64_t viaCost = 2;       // cost units per layer crossed
   int64_t overflowCost = 50; // cost units per full edge
+  int capacityPercent = 100; // a layer edge counts as full at this share of its free tracks, percent
 };
 
 struct LayerAssignment {
