@@ -254,6 +254,9 @@ def test_bad_settings_are_refused(tmp_path: Path) -> None:
         global_route(design, capacity_percent=0)
     with pytest.raises(GlobalRouteArgumentError, match="slack"):
         global_route(design, slack=-1)
+    with pytest.raises(GlobalRouteArgumentError, match="congestion_cost"):
+        global_route(design, congestion_cost=-1.0)
+    assert not design.has_guides
 
 
 runner = CliRunner()

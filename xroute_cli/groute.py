@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from xroute_cli.design import Design
 
 DEFAULT_ITERATIONS = 30  # rip-up-and-reroute rounds at most (stops at zero overflow)
+DEFAULT_CONGESTION_COST = 0.0  # layer assignment: cost of a GCell edge at full use, in edge-length units
 
 
 class GlobalRouteArgumentError(XrouteError, ValueError):
@@ -57,6 +58,7 @@ def global_route(
     capacity_percent: int = 100,
     min_layer: int = 1,
     slack: int = 0,
+    congestion_cost: float = DEFAULT_CONGESTION_COST,
 ) -> GlobalRouteStats:
     """Global-routes ``design``, installs the guides in it and, with ``out``, writes them there."""
     for name, value, lo, hi in (
@@ -67,6 +69,8 @@ def global_route(
     ):
         if isinstance(value, bool) or not isinstance(value, int) or not lo <= value <= hi:
             raise GlobalRouteArgumentError(f"{name} must be an integer in {lo}..{hi}, got {value!r}")
+    if isinstance(congestion_cost, bool) or not isinstance(congestion_cost, (int, float)) or not congestion_cost >= 0:
+        raise GlobalRouteArgumentError(f"congestion_cost must be a number >= 0, got {congestion_cost!r}")
     raw = _engine().global_route(
         design.engine,
         out=os.fspath(out) if out is not None else "",
@@ -74,6 +78,7 @@ def global_route(
         capacity_percent=capacity_percent,
         min_layer=min_layer,
         slack=slack,
+        congestion_cost=float(congestion_cost),
     )
     stats = GlobalRouteStats(**{**raw, "gcells": tuple(raw["gcells"])})
     design.global_route_stats = stats

@@ -50,16 +50,19 @@ void bindGlobalRouter(nb::module_& m) {
       "one; free tracks after blocking, and all tracks).");
   m.def(
       "global_route",
-      [](Database& db, const std::string& out, int iterations, int capacity_percent, int min_layer, int slack) {
+      [](Database& db, const std::string& out, int iterations, int capacity_percent, int min_layer, int slack,
+         double congestion_cost) {
         if (iterations < 0 || iterations > 1000) throw nb::value_error("iterations must be in 0..1000");
         if (capacity_percent < 1 || capacity_percent > 100) throw nb::value_error("capacity_percent must be in 1..100");
         if (min_layer < 0) throw nb::value_error("min_layer must be >= 0");
         if (slack < 0) throw nb::value_error("slack must be >= 0");
+        if (!(congestion_cost >= 0)) throw nb::value_error("congestion_cost must be >= 0");
         GlobalRouteSettings s;
         s.iterations = iterations;
         s.capacityPercent = capacity_percent;
         s.minLayer = min_layer;
         s.slack = slack;
+        s.congestionCost = congestion_cost;
         GlobalRouteResult r;
         {
           nb::gil_scoped_release release;
@@ -85,11 +88,13 @@ void bindGlobalRouter(nb::module_& m) {
         return d;
       },
       "db"_a, "out"_a = "", "iterations"_a = 30, "capacity_percent"_a = 100, "min_layer"_a = 1, "slack"_a = 0,
+      "congestion_cost"_a = 0.0,
       "Global-routes every net of the database and replaces its guides with the result (any guides it had are "
       "dropped). out: also write them to this path in the ISPD guide format (atomically; '' = no file). "
       "iterations: rip-up-and-reroute rounds at most; capacity_percent: share of each GCell edge's free tracks "
       "the router may fill; min_layer: lowest routing-layer index carrying routes (pins get guides on their own "
-      "layer and the one above regardless); slack: GCells every guide is grown by. Returns statistics: gcells "
+      "layer and the one above regardless); slack: GCells every guide is grown by; congestion_cost: layer "
+      "assignment's cost of one GCell edge at full use (0: only full layers and vias count). Returns statistics: gcells "
       "(nx, ny), layers, nets, initial_overflow, overflow, overflow_edges, overflow_3d (tracks), wirelength_gcells, "
       "vias, guides, iterations, reroutes, seconds.");
 }

@@ -90,6 +90,7 @@ GlobalRouteResult globalRoute(const Tech& tech, const Design& design, const Glob
   las.minLayer = minLayer;
   las.viaCost = st.viaCost;
   las.capacityPercent = st.capacityPercent;
+  las.congestionCost = st.congestionCost;
   std::vector<int32_t> laOrder = order;
   std::stable_sort(laOrder.begin(), laOrder.end(),
                    [&](int32_t a, int32_t b) { return routes[a].size() < routes[b].size(); });

@@ -26,6 +26,7 @@ struct GlobalRouteSettings {
   double presentFactor = 1.0;   // cost per track of overflow in round 1 (x1.5 each round)
   double historyStep = 1.0;     // history added per track of overflow per round
   int64_t viaCost = 2;          // layer assignment: cost of one layer change (in edge units)
+  double congestionCost = 0;    // layer assignment: cost of one edge at full use (see layer_assign.hpp)
   int slack = 0;                // GCells each guide rectangle is grown by on every side
 };
 

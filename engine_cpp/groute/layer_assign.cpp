@@ -121,16 +121,18 @@ LayerAssignment assignLayers(const GrGrid& grid, const std::vector<GrNet>& nets,
       const int ia = t.find(s.a), ib = t.find(s.b);
       const int32_t step = s.horizontal ? 1 : nx;
       int bestZ = -1;
-      int64_t bestCost = std::numeric_limits<int64_t>::max();
+      double bestCost = std::numeric_limits<double>::max();
       for (int z = minLayer; z < nz; ++z) {
         if (grid.layers[z].horizontal != s.horizontal) continue;
         int64_t full = 0;
+        double used = 0;  // sum of usage / capacity over the segment's edges
         const GrLayer& gl = grid.layers[z];
         for (int32_t c = s.a; c < s.b; c += step) {
           full += int64_t(usage[z][c]) * 100 >= int64_t(gl.capacity[c]) * st.capacityPercent;
+          used += gl.capacity[c] > 0 ? std::min(1.0, double(usage[z][c]) / gl.capacity[c]) : 1.0;
         }
-        const int64_t cost =
-            st.overflowCost * full + st.viaCost * (distToRange(z, lo[ia], hi[ia]) + distToRange(z, lo[ib], hi[ib]));
+        const double cost = double(st.overflowCost * full) + st.congestionCost * used +
+                            double(st.viaCost * (distToRange(z, lo[ia], hi[ia]) + distToRange(z, lo[ib], hi[ib])));
         if (cost < bestCost) {
           bestCost = cost;
           bestZ = z;

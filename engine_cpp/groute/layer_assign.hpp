@@ -3,9 +3,12 @@
 // direction. Nets go in the given order; a net's segments go outward from
 // its first pin (breadth-first). A segment's layer minimises
 //   overflowCost x (edges where the layer is already full, at capacityPercent
-//   of its free tracks) + viaCost x (layers
-//   between it and what is already attached at its two ends),
-// ties to the lowest layer. Layers below `minLayer` carry no segment.
+//   of its free tracks) + congestionCost x (sum over its edges of usage /
+//   capacity) + viaCost x (layers between it and what is already attached at
+//   its two ends),
+// ties to the lowest layer: short segments stay low, long ones rise to
+// emptier layers when that saves more than the vias cost. Layers below
+// `minLayer` carry no segment.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +28,7 @@ struct GrSegment {
 struct LayerAssignSettings {
   int minLayer = 1;          // routing index
   int64_t viaCost = 2;       // cost units per layer crossed
+  double congestionCost = 0; // cost units per edge at full use (scaled by usage / capacity)
   int64_t overflowCost = 50; // cost units per full edge
   int capacityPercent = 100; // a layer edge counts as full at this share of its free tracks, percent
 };
