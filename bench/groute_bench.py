@@ -78,7 +78,7 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--compare", default="ispd18_test1")
     p.add_argument("--route", default="ispd19_test3")
-    p.add_argument("--capacity", type=int, default=100)
+    p.add_argument("--capacity", type=int, default=70)
     p.add_argument("--slack", type=int, default=0)
     a = p.parse_args()
     if a.compare:

@@ -172,13 +172,13 @@ def guide_rows(design: Any, net: str) -> list[tuple[str, int, int, int, int]]:
 def test_two_pin_net_detours_around_the_blocked_edges(tmp_path: Path) -> None:
     (tmp_path / "open").mkdir()
     open_design = drawn(tmp_path / "open", blocked=False)
-    stats = global_route(open_design)
+    stats = global_route(open_design, capacity_percent=100)  # the drawn capacities, all of them
     assert (stats.nets, stats.wirelength_gcells, stats.overflow) == (1, 4, 0)
     # Straight along row 2 on M3, pins on M1 with M2 above, via stacks up to M3 at both ends.
     assert ("M3", 0, 400, 1000, 600) in guide_rows(open_design, "a")
 
     design = drawn(tmp_path)
-    stats = global_route(design)
+    stats = global_route(design, capacity_percent=100)
     assert stats.initial_overflow == 2  # the straight pattern route crosses two full edges
     assert (stats.overflow, stats.overflow_3d, stats.wirelength_gcells) == (0, 0, 6)
     assert stats.iterations >= 1 and stats.reroutes >= 1

@@ -19,6 +19,7 @@ if TYPE_CHECKING:
     from xroute_cli.design import Design
 
 DEFAULT_ITERATIONS = 30  # rip-up-and-reroute rounds at most (stops at zero overflow)
+DEFAULT_CAPACITY_PERCENT = 70  # ispd18_test1 detailed-routed: 29 violations at 70, 51 at 100 (README of engine_cpp/groute)
 DEFAULT_CONGESTION_COST = 0.0  # layer assignment: cost of a GCell edge at full use, in edge-length units
 
 
@@ -55,7 +56,7 @@ def global_route(
     out: str | os.PathLike[str] | None = None,
     *,
     iterations: int = DEFAULT_ITERATIONS,
-    capacity_percent: int = 100,
+    capacity_percent: int = DEFAULT_CAPACITY_PERCENT,
     min_layer: int = 1,
     slack: int = 0,
     congestion_cost: float = DEFAULT_CONGESTION_COST,

@@ -20,7 +20,7 @@ namespace xroute {
 
 struct GlobalRouteSettings {
   int iterations = 30;          // rip-up-and-reroute rounds at most
-  int capacityPercent = 100;    // share of each edge's free tracks the router may fill, percent
+  int capacityPercent = 70;     // share of each edge's free tracks the router may fill, percent
   int minLayer = 1;             // lowest routing index carrying routes (0 = the pin layer M1 too)
   int margin = 10;              // maze search box: pins' bounding box grown by this many GCells
   double presentFactor = 1.0;   // cost per track of overflow in round 1 (x1.5 each round)

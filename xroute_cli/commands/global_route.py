@@ -14,7 +14,7 @@ from typing import Annotated
 import typer
 
 from xroute_cli.console import print_json
-from xroute_cli.groute import DEFAULT_ITERATIONS
+from xroute_cli.groute import DEFAULT_CAPACITY_PERCENT, DEFAULT_ITERATIONS
 
 
 def _split_inputs(inputs: list[str]) -> tuple[str | None, str | None, list[str]]:
@@ -42,7 +42,7 @@ def global_route(
     ] = DEFAULT_ITERATIONS,
     capacity: Annotated[
         int, typer.Option("--capacity", help="Percent of each GCell edge's free tracks the router may fill (1..100).")
-    ] = 100,
+    ] = DEFAULT_CAPACITY_PERCENT,
     slack: Annotated[int, typer.Option("--slack", help="GCells every guide rectangle is grown by.")] = 0,
     as_json: Annotated[bool, typer.Option("--json", help="Print the statistics as JSON on stdout, nothing else.")] = False,
 ) -> None:
