@@ -31,7 +31,8 @@ def _split_inputs(inputs: list[str]) -> tuple[str | None, str | None, list[str]]
 def global_route(
     inputs: Annotated[
         list[str],
-        typer.Argument(help="A testcase name, or a DEF file and its LEF files (in reading order).", show_default=False),
+        typer.Argument(help="A testcase name, or a DEF file and its LEF files (in reading order).", show_default=False,
+                       metavar="TESTCASE | DEF LEF..."),
     ],
     out: Annotated[
         Path | None,
