@@ -32,7 +32,7 @@ def global_route(
     inputs: Annotated[
         list[str],
         typer.Argument(help="A testcase name, or a DEF file and its LEF files (in reading order).", show_default=False,
-                       metavar="TESTCASE | DEF LEF..."),
+                       metavar="INPUTS"),
     ],
     out: Annotated[
         Path | None,
