@@ -325,3 +325,13 @@ class Region:
         """
         Writes the region's new routing into the design (other open regions of the session become stale).
         """
+
+def gcell_capacity(db: Database) -> dict:
+    """
+    The global router's GCell grid and capacities: xs, ys (GCell lines, DBU), layers (routing layer names), horizontal (preferred direction per layer), capacity and tracks (per layer, int32[ny, nx]: at [y, x] the edge from GCell (x, y) to its right neighbour on a horizontal layer, to its upper neighbour on a vertical one; free tracks after blocking, and all tracks).
+    """
+
+def global_route(db: Database, out: str = '', iterations: int = 30, capacity_percent: int = 70, min_layer: int = 1, slack: int = 0, congestion_cost: float = 0.0) -> dict:
+    """
+    Global-routes every net of the database and replaces its guides with the result (any guides it had are dropped). out: also write them to this path in the ISPD guide format (atomically; '' = no file). iterations: rip-up-and-reroute rounds at most; capacity_percent: share of each GCell edge's free tracks the router may fill; min_layer: lowest routing-layer index carrying routes (pins get guides on their own layer and the one above regardless); slack: GCells every guide is grown by; congestion_cost: layer assignment's cost of one GCell edge at full use (0: only full layers and vias count). Returns statistics: gcells (nx, ny), layers, nets, initial_overflow, overflow, overflow_edges, overflow_3d (tracks), wirelength_gcells, vias, guides, iterations, reroutes, seconds.
+    """

@@ -17,6 +17,7 @@ from typer.core import TyperGroup
 from xroute_cli.commands import (
     batch,
     evaluate,
+    global_route,
     info,
     make_region,
     make_testcase,
@@ -58,6 +59,7 @@ app.command(name="evaluate")(evaluate.evaluate)
 app.command(name="batch")(batch.batch)
 app.command(name="report")(report.report)
 app.command(name="plot-region")(plot_region.plot_region)
+app.command(name="global-route")(global_route.global_route)
 
 
 def main() -> None:

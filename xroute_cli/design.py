@@ -49,6 +49,8 @@ class Design:
         self.testcase = testcase
         self._layers: list[LayerInfo] | None = None
         self._net_names: list[str] | None = None
+        # Set by xroute_cli.groute.global_route when the guides come from the built-in global router.
+        self.global_route_stats: Any = None
 
     # -- identity -----------------------------------------------------------
     @property
@@ -204,6 +206,13 @@ class Design:
     @property
     def has_guides(self) -> bool:
         return len(self._db.guide_start) > 0
+
+    @property
+    def guide_source(self) -> str:
+        """Where the guides came from: "file", "built-in" (the global router) or "none"."""
+        if self.global_route_stats is not None:
+            return "built-in"
+        return "file" if self.has_guides else "none"
 
     @property
     def guide_start(self) -> np.ndarray:

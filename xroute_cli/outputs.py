@@ -148,6 +148,8 @@ def write_route_outputs(
         "design": design.name,
         "testcase": design.testcase,
         "inputs": {"lef": design.lef_paths, "def": design.def_path, "guide": design.guide_path},
+        "guide": design.guide_source,
+        "global_route": gr.to_dict() if (gr := design.global_route_stats) is not None else None,
         "outputs": {"def": str(def_path), "metrics": str(metrics_path), "drc_report": str(drc_path)},
         "settings": {
             "region_size": result.settings.region_size,

@@ -13,6 +13,7 @@ void bindVerify(nb::module_& m);
 void bindRouter(nb::module_& m);
 void bindPinAccess(nb::module_& m);
 void bindRegion(nb::module_& m);
+void bindGlobalRouter(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute_cli Python API).";
@@ -33,4 +34,5 @@ NB_MODULE(_engine, m) {
   bindRouter(m);
   bindPinAccess(m);
   bindRegion(m);
+  bindGlobalRouter(m);
 }

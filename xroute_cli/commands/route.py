@@ -40,6 +40,9 @@ from xroute_cli.progress import ProgressDisplay, output_mode
 from xroute_cli.router import RouteSettings
 
 if TYPE_CHECKING:
+    from rich.console import Console
+
+    from xroute_cli.groute import GlobalRouteStats
     from xroute_cli.outputs import RouteOutputs
 
 EXIT_OPENS = 1
@@ -58,6 +61,14 @@ def parse_schedule(text: str) -> tuple[tuple[int, int], ...]:
         except ValueError:
             raise RouteArgumentError(f"--schedule: '{item.strip()}' is not SIZE:OFFSET (two integers, GCells)") from None
     return tuple(steps)
+
+
+def global_route_summary(stats: GlobalRouteStats) -> str:
+    """One line of global-routing figures."""
+    nx, ny = stats.gcells
+    return (f"{nx} x {ny} GCells, {stats.nets} nets, overflow {stats.overflow} "
+            f"(after pattern routing {stats.initial_overflow}), {stats.wirelength_gcells:,} GCells of wire, "
+            f"{stats.vias:,} vias, {stats.guides:,} guides, {_seconds(stats.seconds)} s")
 
 
 def _seconds(t: float) -> str:
@@ -116,8 +127,9 @@ def route(
     """Route a design and write the routed DEF, metrics JSON and DRC report.
 
     The design is a testcase name, or --lef and --def files (nothing: the shipped demo); the
-    outputs are <design>.routed.def, <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
-    when there are none, 1 when some remain.
+    outputs are <design>.routed.def, <design>.metrics.json and <design>.drc.rpt. Without a route
+    guide, the built-in global router makes one first. Opens are checked on the written DEF: exit
+    status 0 when there are none, 1 when some remain.
 
     Settings come from --config (YAML, see configs/default.yaml) when given; flags override it.
     On a terminal a Rich progress bar shows the iteration, regions done and current violations;
@@ -155,6 +167,13 @@ def route(
 
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
+    if not design.has_guides:
+        from xroute_cli.groute import global_route
+
+        stats = global_route(design)
+        if mode in ("rich", "lines"):
+            typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
+                       f"({global_route_summary(stats)})")
     if mode == "lines":
         typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {rs.region_size}, "
                    f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
