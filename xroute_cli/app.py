@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import info, route, testcases
+from xroute_cli.commands import export, info, route, testcases, train
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -42,6 +42,8 @@ app = typer.Typer(
 app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
+app.command(name="train")(train.train)
+app.command(name="export")(export.export)
 
 
 def main() -> None:
