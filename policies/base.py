@@ -18,6 +18,11 @@ A policy is any object with a ``name`` and an ``order(region, features)`` method
 
 * the result is a permutation of ``range(n)``: the candidates' row indices, first routed first.
 
+A policy that sets ``needs_region = True`` (an ONNX model, a learning environment) also finds, in
+``region["engine_region"]``, the engine's Region being routed, lent for that one call: its live
+grid views (``grid()``), ``candidates``, ``unrouted()`` and ``route_net(i)``. It may route some
+nets itself; the returned order then applies to those still unrouted. The built-ins never ask.
+
 The built-ins :class:`HeuristicPolicy` and :class:`RandomPolicy` carry a ``builtin`` name, which
 tells the router to run the engine's own C++ implementation (no Python call per region); their
 ``order`` methods are Python versions for use outside the router. Any other policy is called

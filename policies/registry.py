@@ -2,7 +2,8 @@
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
 define ``order(region, features)`` (see :mod:`policies.base`); it may also set ``NAME`` (default:
-the file's stem). ONNX policies arrive with the learning milestone (issue 4).
+the file's stem). A ``.onnx`` file is an :class:`~policies.onnx_policy.OnnxPolicy` (onnxruntime
+loaded then, not before).
 """
 
 from __future__ import annotations
@@ -44,20 +45,20 @@ def load_policy_file(path: str | Path) -> CallablePolicy:
 
 def get_policy(spec: str, seed: int = 1) -> NetOrderPolicy:
     """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), or a ``.py``
-    file defining ``order(region, features)``. Raises :class:`PolicyError` (an ``XrouteError``)
-    for anything else, including ``.onnx`` files (not supported yet)."""
+    file defining ``order(region, features)``, or a ``.onnx`` net-order model. Raises
+    :class:`PolicyError` (an ``XrouteError``) for anything else or a file that cannot be used."""
     if spec == "heuristic":
         return HeuristicPolicy()
     if spec == "random":
         return RandomPolicy(seed)
     suffix = Path(spec).suffix.lower()
     if suffix == ".onnx":
-        raise PolicyError(
-            f"{spec}: ONNX policies are not supported yet; they arrive with the learning milestone (issue 4). "
-            "Use heuristic, random or a .py file defining order(region, features)"
-        )
+        from policies.onnx_policy import OnnxPolicy
+
+        return OnnxPolicy(spec)
     if suffix == ".py":
         return load_policy_file(spec)
     raise PolicyError(
-        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)} or a .py file defining order(region, features)"
+        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)}, a .py file defining order(region, features) "
+        "or a .onnx net-order model"
     )

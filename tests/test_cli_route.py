@@ -103,7 +103,7 @@ def test_route_bad_policy_is_a_one_line_error(runner: CliRunner, testcase, tmp_p
     assert result.exit_code == 2, result.output + result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ")
-    expected = {"missing.onnx": "issue 4", "model.onnx": "issue 4", "nonexistent.py": "policy file not found",
+    expected = {"missing.onnx": "ONNX model not found", "model.onnx": "not a readable ONNX model", "nonexistent.py": "policy file not found",
                 "greedy": "unknown policy 'greedy'"}[spec]
     assert expected in lines[0]
     assert "Traceback" not in result.output + result.stderr

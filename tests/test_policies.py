@@ -1,5 +1,5 @@
 """Net-order policies without the engine: the protocol, the built-ins' Python orders, the order
-check and the registry (names, .py files, .onnx refused)."""
+check and the registry (names, .py files, .onnx files: see test_onnx_policy.py)."""
 
 from __future__ import annotations
 
@@ -110,13 +110,6 @@ def test_registry_builtins() -> None:
     assert isinstance(r, RandomPolicy) and r.seed == 5
     with pytest.raises(PolicyError, match="unknown policy 'greedy'"):
         get_policy("greedy", 1)
-
-
-def test_registry_refuses_onnx_with_the_milestone(tmp_path: Path) -> None:
-    (tmp_path / "net.onnx").write_bytes(b"\0")
-    for path in (tmp_path / "net.onnx", tmp_path / "missing.ONNX"):  # present or not
-        with pytest.raises(PolicyError, match=r"ONNX policies are not supported yet.*issue 4"):
-            get_policy(str(path), 1)
 
 
 def test_registry_loads_a_python_file(tmp_path: Path) -> None:

@@ -239,9 +239,9 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, progress: object | None = None, costs: dict = {}) -> dict:
+def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.
     """
 
 ACCESS_UP: int = 1
@@ -281,6 +281,12 @@ class Region:
         """The region box (xlo, ylo, xhi, yhi) in DBU."""
 
     @property
+    def lent(self) -> bool:
+        """
+        True for a region the router lends to a policy (valid during that call; no commit).
+        """
+
+    @property
     def candidates(self) -> NDArray[numpy.int32]:
         """
         int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.
@@ -307,7 +313,7 @@ class Region:
 
     def grid(self) -> dict:
         """
-        Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags (1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point; 0 = no node), fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay valid while the Region lives and change as nets are routed.
+        Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags (1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point; 0 = no node), fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay valid while the Region lives and change as nets are routed (for a region lent to a policy: during that call only).
         """
 
     def node_type(self) -> NDArray[numpy.uint8]:

@@ -14,7 +14,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import export, info, route, testcases, train
+from xroute_cli.commands import export, info, make_region, route, testcases, train
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -44,6 +44,7 @@ app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
 app.command(name="train")(train.train)
 app.command(name="export")(export.export)
+app.command(name="make-region")(make_region.make_region_command)
 
 
 def main() -> None:

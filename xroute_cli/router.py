@@ -221,6 +221,9 @@ def route_design(
         kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
     else:
         kwargs["policy_fn"] = _policy_callback(pol)
+        # A policy that declares needs_region = True finds the region being routed (an
+        # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
+        kwargs["policy_needs_region"] = bool(getattr(pol, "needs_region", False))
     if progress is not None:
 
         def on_progress(report: dict[str, Any], done: int, total: int) -> None:

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "bindings/arrays.hpp"
+#include "bindings/region_handle.hpp"
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
 #include "flow/route_context.hpp"
@@ -23,31 +24,6 @@ using namespace nb::literals;
 using namespace xroute;
 
 namespace {
-
-struct RoutingSession {
-  Database* db = nullptr;
-  std::unique_ptr<RouteContext> ctx;
-  MazeCosts costs;
-  int32_t regions = 0;
-};
-
-struct RegionHandle {
-  RoutingSession* session = nullptr;
-  RegionTask task;
-  CrossingPlan plan;
-  std::unique_ptr<RegionRouter> router;
-  MazeWorkspace ws;
-  bool committed = false;
-
-  void checkOpen() const {
-    if (committed) throw std::runtime_error("this region was committed; open a new one");
-  }
-  int32_t candidate(int32_t i) const {
-    const int32_t n = static_cast<int32_t>(router->candidates().size());
-    if (i < 0 || i >= n) throw nb::index_error(("candidate index out of range 0.." + std::to_string(n - 1)).c_str());
-    return i;
-  }
-};
 
 // Views into the grid owned by the Region object `owner` (kept alive by them).
 template <class T>
@@ -62,7 +38,7 @@ nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
                   nb::rv_policy::reference);
 }
 
-nb::dict netResultDict(const Tech& tech, const RegionNetResult& r) {
+nb::dict netResultDict(const RegionNetResult& r) {
   int64_t wl = 0;
   for (const RouteWire& w : r.added.wires) wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
   nb::dict d;
@@ -102,7 +78,9 @@ void bindRegion(nb::module_& m) {
             {
               nb::gil_scoped_release release;
               h->task = makeStandaloneTask(*s.ctx, r, s.regions++, iteration, s.costs, h->plan);
-              h->router = std::make_unique<RegionRouter>(*s.ctx, h->task, &h->plan);
+              h->owned = std::make_unique<RegionRouter>(*s.ctx, h->task, &h->plan);
+              h->router = h->owned.get();
+              h->box = r;
               h->router->prepare();
             }
             return h;
@@ -115,25 +93,28 @@ void bindRegion(nb::module_& m) {
       .def_prop_ro(
           "box",
           [](const RegionHandle& h) {
-            const Rect& b = h.task.region.box;
+            const Rect& b = h.box;
             return nb::make_tuple(b.xlo, b.ylo, b.xhi, b.yhi);
           },
           "The region box (xlo, ylo, xhi, yhi) in DBU.")
       .def_prop_ro(
+          "lent", [](const RegionHandle& h) { return h.lent; },
+          "True for a region the router lends to a policy (valid during that call; no commit).")
+      .def_prop_ro(
           "candidates",
           [](const RegionHandle& h) {
-            return ownedInt32(featureRows(h.router->candidates()), kFeatureCount);
+            return ownedInt32(featureRows(h.get().candidates()), kFeatureCount);
           },
           nb::rv_policy::move, "int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.")
       .def(
-          "is_routed", [](const RegionHandle& h, int32_t i) { return h.router->isRouted(h.candidate(i)); }, "index"_a,
+          "is_routed", [](const RegionHandle& h, int32_t i) { return h.get().isRouted(h.candidate(i)); }, "index"_a,
           "Whether candidate i has been routed.")
       .def(
           "unrouted",
           [](const RegionHandle& h) {
             std::vector<int32_t> out;
-            for (int32_t i = 0; i < static_cast<int32_t>(h.router->candidates().size()); ++i) {
-              if (!h.router->isRouted(i)) out.push_back(i);
+            for (int32_t i = 0; i < static_cast<int32_t>(h.get().candidates().size()); ++i) {
+              if (!h.get().isRouted(i)) out.push_back(i);
             }
             return out;
           },
@@ -143,12 +124,12 @@ void bindRegion(nb::module_& m) {
           [](RegionHandle& h, int32_t i) {
             h.checkOpen();
             h.candidate(i);
-            if (h.router->isRouted(i)) throw nb::value_error(("candidate " + std::to_string(i) + " is already routed").c_str());
+            if (h.get().isRouted(i)) throw nb::value_error(("candidate " + std::to_string(i) + " is already routed").c_str());
             {
               nb::gil_scoped_release release;
-              h.router->routeNet(i, h.ws);
+              h.get().routeNet(i, h.ws);
             }
-            return netResultDict(h.session->db->tech, h.router->result(i));
+            return netResultDict(h.get().result(i));
           },
           "index"_a, "Routes candidate i now; returns its wirelength_dbu, vias and unreached terminals.")
       .def(
@@ -160,7 +141,7 @@ void bindRegion(nb::module_& m) {
             else if (policy == "random") p = makeRandomPolicy(seed);
             else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
             nb::gil_scoped_release release;
-            h.router->routeAll(*p, h.ws);
+            h.get().routeAll(*p, h.ws);
           },
           "policy"_a = "heuristic", "seed"_a = 1, "Routes every candidate not routed yet in a built-in policy's order.")
       .def(
@@ -168,8 +149,8 @@ void bindRegion(nb::module_& m) {
           [](const RegionHandle& h) {
             int64_t wl = 0, vias = 0;
             int routed = 0, unreached = 0;
-            for (int32_t i = 0; i < static_cast<int32_t>(h.router->candidates().size()); ++i) {
-              const RegionNetResult& r = h.router->result(i);
+            for (int32_t i = 0; i < static_cast<int32_t>(h.get().candidates().size()); ++i) {
+              const RegionNetResult& r = h.get().result(i);
               if (!r.routed) continue;
               ++routed;
               unreached += r.unreached;
@@ -180,7 +161,7 @@ void bindRegion(nb::module_& m) {
             std::vector<Marker> markers;
             {
               nb::gil_scoped_release release;
-              markers = h.router->check();
+              markers = h.get().check();
             }
             nb::dict byType;
             for (int t = 0; t < kMarkerTypes; ++t) byType[std::string(markerTypeName(static_cast<MarkerType>(t))).c_str()] = 0;
@@ -203,7 +184,7 @@ void bindRegion(nb::module_& m) {
           "grid",
           [](nb::handle self) {
             RegionHandle& h = nb::cast<RegionHandle&>(self);
-            RegionGrid& g = const_cast<RegionGrid&>(h.router->grid());
+            RegionGrid& g = const_cast<RegionGrid&>(h.get().grid());
             nb::dict d;
             d["xs"] = coordView(g.xs(), self);
             d["ys"] = coordView(g.ys(), self);
@@ -222,11 +203,12 @@ void bindRegion(nb::module_& m) {
           "(1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point; 0 = no node), "
           "fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a "
           "wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay "
-          "valid while the Region lives and change as nets are routed.")
+          "valid while the Region lives and change as nets are routed (for a region lent to a policy: during that "
+          "call only).")
       .def(
           "node_type",
           [](const RegionHandle& h) {
-            const RegionGrid& g = h.router->grid();
+            const RegionGrid& g = h.get().grid();
             auto* data = new std::vector<uint8_t>(g.size());
             for (size_t n = 0; n < g.size(); ++n) (*data)[n] = static_cast<uint8_t>(g.nodeType(static_cast<int32_t>(n)));
             nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<uint8_t>*>(p); });
@@ -238,7 +220,8 @@ void bindRegion(nb::module_& m) {
           "commit",
           [](RegionHandle& h) {
             h.checkOpen();
-            RegionResult res = h.router->finish();
+            if (h.lent) throw std::runtime_error("a region lent to a policy is committed by the router, not by the policy");
+            RegionResult res = h.get().finish();
             nb::gil_scoped_release release;
             RouteContext& ctx = *h.session->ctx;
             commitRegion(ctx.tech, ctx.design, h.task.region.box, res);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "bindings/arrays.hpp"
+#include "bindings/region_handle.hpp"
 #include "db/database.hpp"
 #include "flow/policy.hpp"
 #include "flow/router.hpp"
@@ -24,15 +25,27 @@ namespace {
 
 // A policy implemented by a Python callable:
 //   fn(region: dict, features: int32[n, 9]) -> sequence of n distinct ints.
+// With `needsRegion`, region["engine_region"] is the Region being routed (a
+// _engine.Region lent for this call: grid views, route_net...).
 class PythonPolicy final : public NetOrderPolicy {
  public:
-  explicit PythonPolicy(nb::object fn) : fn_(std::move(fn)) {}
+  PythonPolicy(nb::object fn, bool needsRegion) : fn_(std::move(fn)), needsRegion_(needsRegion) {}
   ~PythonPolicy() override {
     nb::gil_scoped_acquire gil;
     fn_.reset();
   }
 
   std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& c) override {
+    return call(nullptr, region, c);
+  }
+  std::vector<int32_t> orderRegion(RegionRouter& router, const RegionInfo& region,
+                                   const std::vector<NetCandidate>& c) override {
+    return call(needsRegion_ ? &router : nullptr, region, c);
+  }
+  std::string name() const override { return "python"; }
+
+ private:
+  std::vector<int32_t> call(RegionRouter* router, const RegionInfo& region, const std::vector<NetCandidate>& c) {
     std::lock_guard<std::mutex> lock(mutex_);
     nb::gil_scoped_acquire gil;
     IntArray features = ownedInt32(featureRows(c), kFeatureCount);
@@ -40,15 +53,28 @@ class PythonPolicy final : public NetOrderPolicy {
     info["iteration"] = region.iteration;
     info["region"] = region.regionId;
     info["box"] = nb::make_tuple(region.box.xlo, region.box.ylo, region.box.xhi, region.box.yhi);
+    RegionHandle* lent = nullptr;
+    if (router != nullptr) {
+      lent = new RegionHandle();
+      lent->router = router;
+      lent->box = region.box;
+      lent->lent = true;
+      info["engine_region"] = nb::cast(lent, nb::rv_policy::take_ownership);
+    }
+    struct Expire {  // the lent region is gone once the call returns (or raises)
+      RegionHandle* h;
+      ~Expire() {
+        if (h) h->router = nullptr;
+      }
+    } expire{lent};
     nb::object result = fn_(info, features);
     std::vector<int32_t> out;
     for (nb::handle h : result) out.push_back(nb::cast<int32_t>(h));
     return out;
   }
-  std::string name() const override { return "python"; }
 
- private:
   nb::object fn_;
+  bool needsRegion_ = false;
   std::mutex mutex_;
 };
 
@@ -81,12 +107,12 @@ void bindRouter(nb::module_& m) {
   m.def(
       "route",
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
-         nb::object policy_fn, nb::object progress, nb::dict costs) {
+         nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs) {
         if (region_size < 1) throw nb::value_error("region_size must be >= 1");
         if (iterations < 1 || iterations > 64) throw nb::value_error("iterations must be in 1..64");
         if (threads < 1) throw nb::value_error("threads must be >= 1");
         std::unique_ptr<NetOrderPolicy> p;
-        if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn);
+        if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region);
         else if (policy == "heuristic") p = makeHeuristicPolicy();
         else if (policy == "random") p = makeRandomPolicy(seed);
         else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
@@ -132,9 +158,11 @@ void bindRouter(nb::module_& m) {
         return result;
       },
       "db"_a, "region_size"_a = 5, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
-      "policy_fn"_a = nb::none(), "progress"_a = nb::none(), "costs"_a = nb::dict(),
+      "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(), "costs"_a = nb::dict(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
-      "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order. progress(report, "
+      "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with "
+      "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
+      "route nets with it; the order applies to the rest). progress(report, "
       "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
       "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
       "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.");

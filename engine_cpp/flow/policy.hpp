@@ -12,6 +12,8 @@
 
 namespace xroute {
 
+class RegionRouter;
+
 struct RegionInfo {
   int32_t iteration = 0;
   int32_t regionId = 0;
@@ -40,6 +42,14 @@ class NetOrderPolicy {
   virtual ~NetOrderPolicy() = default;
   // A permutation of 0..candidates.size()-1 (indices into `candidates`).
   virtual std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& candidates) = 0;
+  // The same, for a policy that needs the whole region (its grid): `router` is the region being
+  // routed and `candidates` its unrouted ones. Such a policy may also route nets itself through
+  // `router`; the returned order then applies to those still unrouted. Default: order().
+  virtual std::vector<int32_t> orderRegion(RegionRouter& router, const RegionInfo& region,
+                                           const std::vector<NetCandidate>& candidates) {
+    (void)router;
+    return order(region, candidates);
+  }
   virtual std::string name() const = 0;
 };
 

@@ -478,12 +478,14 @@ void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
   }
   if (pending.empty()) return;
   RegionInfo info{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
-  const std::vector<int32_t> order = policy.order(info, cands);
+  const std::vector<int32_t> order = policy.orderRegion(*this, info, cands);
   if (!isPermutation(order, cands.size())) {
     throw std::invalid_argument("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
                                 std::to_string(cands.size()) + " candidates");
   }
-  for (int32_t k : order) routeNet(pending[k], ws);
+  for (int32_t k : order) {
+    if (!isRouted(pending[k])) routeNet(pending[k], ws);  // the policy may have routed some itself
+  }
 }
 
 const RegionNetResult& RegionRouter::result(int32_t candidate) const { return impl_->nets[candidate].result; }

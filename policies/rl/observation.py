@@ -167,19 +167,32 @@ def obstacle_grid(grid: dict[str, np.ndarray], unrouted_nets: np.ndarray, routed
 
 
 def observe_arrays(grid: dict[str, np.ndarray], rows: np.ndarray, mask: np.ndarray,
-                   box: tuple[int, int, int, int]) -> RegionObservation:
+                   box: tuple[int, int, int, int], select: np.ndarray | None = None,
+                   nets_out: np.ndarray | None = None, with_nets: bool = True) -> RegionObservation:
     """The observation from a region's grid views (:meth:`Region.grid`), candidate rows, unrouted
-    mask and box: what :func:`observe` does, usable on hand-made arrays in tests."""
+    mask and box: what :func:`observe` does, usable on hand-made arrays in tests. ``select``
+    (candidate indices) keeps only those rows, in that order (the obstacle grid and the overlap
+    features still count every candidate). ``nets_out``: a zeroed float32 array of at least
+    ``(len(rows), 7, 3, 64, 64)`` to fill instead of a new one (the returned ``nets`` is a view of it);
+    ``with_nets=False`` skips them (``nets`` is then empty: for a caller that keeps them, as they
+    depend only on the terminals)."""
     rows = np.asarray(rows, dtype=np.int32).reshape(-1, 9)
     mask = np.asarray(mask, dtype=bool)
+    all_ids = rows[:, _NET].astype(np.int32)
+    obstacle = align(obstacle_grid(grid, all_ids[mask], all_ids[~mask]))
+    features = net_features(rows, mask, box)
+    if select is not None:
+        select = np.asarray(select, dtype=np.int64)
+        rows, mask, features = rows[select], mask[select], features[select]
     n = len(rows)
     net_ids = rows[:, _NET].astype(np.int32)
-    obstacle = align(obstacle_grid(grid, net_ids[mask], net_ids[~mask]))
 
-    nets = np.zeros((n, NET_CHANNELS) + ALIGNED_SHAPE, dtype=np.float32)
+    nets = np.zeros((n, NET_CHANNELS) + ALIGNED_SHAPE, dtype=np.float32) if nets_out is None else nets_out[:n]
     access_net = grid["access_net"]
     dims = access_net.shape
-    if n and access_net.size:
+    if not with_nets:
+        nets = np.zeros((0, NET_CHANNELS) + ALIGNED_SHAPE, dtype=np.float32)
+    elif n and access_net.size:
         # Candidate index of each net id (-1 for nets that are not candidates).
         top = int(max(int(net_ids.max()), int(access_net.max()))) + 1
         cand_of = np.full(top + 1, -1, dtype=np.int64)
@@ -200,7 +213,7 @@ def observe_arrays(grid: dict[str, np.ndarray], rows: np.ndarray, mask: np.ndarr
     return RegionObservation(
         obstacle=obstacle,
         nets=nets,
-        net_features=net_features(rows, mask, box),
+        net_features=features,
         mask=mask.copy(),
         net_ids=net_ids,
     )

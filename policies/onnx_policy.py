@@ -1,0 +1,147 @@
+"""``OnnxPolicy(path)``: a net-order policy whose scores come from an ONNX model (onnxruntime).
+
+The model scores every candidate net of a region in one call, on the region's state when it
+opens (:func:`policies.rl.observation.observe`); nets are routed by descending score, ties in the
+heuristic order. Signature (written by ``xroute export``, checked on load)::
+
+    inputs   obstacle      float32 [1, 3, 64, 64]
+             nets          float32 [N, 7, 3, 64, 64]    N: dynamic ("candidates")
+             net_features  float32 [N, S]               S = len(NET_FEATURES)
+             mask          bool    [N]
+    output   scores        float32 [N]                  masked rows -1e9; higher = routed earlier
+    metadata xroute_model = net-order, xroute_algorithm = ppo | dqn,
+             xroute_net_features = ",".join(NET_FEATURES)
+
+A model with other inputs, outputs, shapes or metadata is refused with a :class:`PolicyError`
+naming the file and this signature. onnxruntime is imported when a model is loaded (the ``rl``
+extra), never when this module is.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from policies.base import PolicyError, heuristic_order
+from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+
+ALGORITHMS: tuple[str, ...] = ("ppo", "dqn")
+
+# name -> (onnxruntime type, shape with None for the candidate axis)
+INPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {
+    "obstacle": ("tensor(float)", (1,) + ALIGNED_SHAPE),
+    "nets": ("tensor(float)", (None, NET_CHANNELS) + ALIGNED_SHAPE),
+    "net_features": ("tensor(float)", (None, len(NET_FEATURES))),
+    "mask": ("tensor(bool)", (None,)),
+}
+OUTPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {"scores": ("tensor(float)", (None,))}
+
+
+def _dims(shape: tuple[int | None, ...]) -> str:
+    return "[" + ",".join("N" if d is None else str(d) for d in shape) + "]"
+
+
+EXPECTED_SIGNATURE = (
+    "inputs " + ", ".join(f"{n} {t[7:-1].replace('float', 'float32')}{_dims(s)}" for n, (t, s) in INPUTS.items())
+    + "; output " + ", ".join(f"{n} float32{_dims(s)}" for n, (_, s) in OUTPUTS.items())
+    + "; metadata xroute_model=net-order, xroute_algorithm=ppo|dqn, xroute_net_features="
+    + ",".join(NET_FEATURES)
+)
+"""The model signature an ONNX net-order policy must have, as printed in errors."""
+
+
+def _check_args(kind: str, got: Sequence[Any], expected: dict[str, tuple[str, tuple[int | None, ...]]]) -> str | None:
+    """What is wrong with the model's inputs or outputs, or None."""
+    names = [a.name for a in got]
+    if sorted(names) != sorted(expected):
+        return f"its {kind} are {', '.join(names) or 'none'}"
+    for arg in got:
+        typ, shape = expected[arg.name]
+        if arg.type != typ:
+            return f"{kind[:-1]} '{arg.name}' is {arg.type}"
+        dims = tuple(arg.shape or ())
+        if len(dims) != len(shape):
+            return f"{kind[:-1]} '{arg.name}' has shape {list(dims)}"
+        for d, e in zip(dims, shape):
+            if e is None and isinstance(d, int):  # a fixed candidate axis: must be dynamic
+                return f"{kind[:-1]} '{arg.name}' has a fixed candidate axis {d} (must be dynamic)"
+            if e is not None and isinstance(d, int) and d != e:
+                return f"{kind[:-1]} '{arg.name}' has shape {list(dims)}"
+    return None
+
+
+class OnnxPolicy:
+    """Orders a region's nets by an ONNX model's scores (see the module docstring)."""
+
+    builtin = None
+    needs_region = True  # the router lends it the region (grid views) in region["engine_region"]
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self.name = self.path.name
+        if not self.path.is_file():
+            raise PolicyError(f"ONNX model not found: {self.path}")
+        try:
+            import onnxruntime
+        except ImportError as exc:
+            raise PolicyError(f"{self.path}: ONNX policies need onnxruntime: pip install 'xroute[rl]'") from exc
+        options = onnxruntime.SessionOptions()
+        options.intra_op_num_threads = 1
+        options.inter_op_num_threads = 1
+        options.log_severity_level = 3
+        try:
+            self.session = onnxruntime.InferenceSession(str(self.path), options, providers=["CPUExecutionProvider"])
+        except Exception as exc:  # noqa: BLE001 - any load failure is a bad model file
+            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+            raise PolicyError(f"{self.path}: not a readable ONNX model ({first}); expected {EXPECTED_SIGNATURE}") from exc
+        problem = (_check_args("inputs", self.session.get_inputs(), INPUTS)
+                   or _check_args("outputs", self.session.get_outputs(), OUTPUTS)
+                   or self._check_metadata())
+        if problem:
+            raise PolicyError(f"{self.path}: not an xroute net-order model: {problem}; expected {EXPECTED_SIGNATURE}")
+
+    def _check_metadata(self) -> str | None:
+        meta = self.session.get_modelmeta().custom_metadata_map
+        if meta.get("xroute_model") != "net-order":
+            return f"metadata xroute_model is {meta.get('xroute_model')!r}"
+        self.algorithm = meta.get("xroute_algorithm", "")
+        if self.algorithm not in ALGORITHMS:
+            return f"metadata xroute_algorithm is {self.algorithm!r}"
+        if meta.get("xroute_net_features") != ",".join(NET_FEATURES):
+            return f"metadata xroute_net_features is {meta.get('xroute_net_features')!r}"
+        return None
+
+    def scores(self, obstacle: np.ndarray, nets: np.ndarray, net_features: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """float32[N]: the model's scores of N candidates (one call)."""
+        out = self.session.run(["scores"], {
+            "obstacle": np.ascontiguousarray(obstacle, dtype=np.float32).reshape((1,) + ALIGNED_SHAPE),
+            "nets": np.ascontiguousarray(nets, dtype=np.float32),
+            "net_features": np.ascontiguousarray(net_features, dtype=np.float32),
+            "mask": np.ascontiguousarray(mask, dtype=bool),
+        })[0]
+        return np.asarray(out, dtype=np.float32).reshape(-1)
+
+    def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
+        """The unrouted candidates (rows of ``features``) by descending score, ties in heuristic order."""
+        n = len(features)
+        if n == 0:
+            return []
+        engine_region = region.get("engine_region")
+        if engine_region is None:
+            raise PolicyError(f"ONNX policy {self.name} needs the region's grid (region['engine_region']); "
+                              "route with xroute_cli.router.route_design, which lends it")
+        mask = unrouted_mask(engine_region)
+        pending = np.flatnonzero(mask)  # the rows of `features`, in order
+        obs = observe_arrays(engine_region.grid(), engine_region.candidates, mask, tuple(engine_region.box),
+                             select=pending)
+        s = self.scores(obs.obstacle, obs.nets, obs.net_features, obs.mask)
+        if s.shape != (n,):
+            raise PolicyError(f"ONNX policy {self.name} returned {s.shape} scores for {n} candidate nets")
+        rank = np.empty(n, dtype=np.int64)
+        rank[heuristic_order(features)] = np.arange(n)
+        return np.lexsort((rank, -s.astype(np.float64)))
+
+    def __repr__(self) -> str:
+        return f"OnnxPolicy({str(self.path)!r})"

@@ -1,0 +1,162 @@
+"""What every net-ordering environment shares: spaces, the cost and reward, and one region stepped
+net by net (:class:`RegionStepper`).
+
+Spaces (M = ``max_candidates``, S = ``len(NET_FEATURES)``; see :mod:`policies.rl.observation`)::
+
+    observation = Dict(obstacle:     Box(0, 1, (3, 64, 64), float32),
+                       nets:         Box(0, 1, (M, 7, 3, 64, 64), float32),
+                       net_features: Box(-inf, inf, (M, S), float32),
+                       action_mask:  MultiBinary(M))
+    action      = Discrete(M)   # the row of the next net to route
+
+Rows: when the region has N <= M candidates, row i is candidate i (rows of routed candidates and
+rows past N are masked out; rows past N are zero). When N > M, the rows are the M unrouted
+candidates first in the heuristic order, chosen again at every step. An action on a masked row
+routes the first unmasked row instead (``info["invalid_action"] = True``).
+
+Reward of a step: ``cost(s) - cost(s')`` with ``cost = wirelength_um * 0.5 + vias * 4 +
+violations * 500`` (:class:`CostWeights`) over the region's new routing and its design-rule
+markers (``Region.metrics()``: violations inside the region box, the new routing against
+everything around it; a full check of the box after every step). ``reward_fn(before, after)`` on
+the two metrics dicts replaces it; ``info`` carries ``metrics`` and ``cost`` for wrappers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+from gymnasium import spaces
+
+from policies.base import heuristic_order
+from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+
+DEFAULT_MAX_CANDIDATES = 64
+
+RewardFn = Callable[[dict[str, Any], dict[str, Any]], float]
+
+
+@dataclass(frozen=True)
+class CostWeights:
+    """Weights of the paper's cost: per micron of wire, per via, per design-rule violation."""
+
+    wirelength_um: float = 0.5
+    via: float = 4.0
+    violation: float = 500.0
+
+    def cost(self, metrics: dict[str, Any], dbu_per_micron: int) -> float:
+        """The cost of a region's metrics (``Region.metrics()``; wirelength in DBU)."""
+        wl_um = float(metrics["wirelength_dbu"]) / max(1, int(dbu_per_micron))
+        return self.wirelength_um * wl_um + self.via * float(metrics["vias"]) + self.violation * float(
+            metrics["violations"])
+
+
+def observation_space(max_candidates: int) -> spaces.Dict:
+    """The Dict observation space of every xroute env (see the module docstring)."""
+    m = int(max_candidates)
+    return spaces.Dict({
+        "obstacle": spaces.Box(0.0, 1.0, ALIGNED_SHAPE, np.float32),
+        "nets": spaces.Box(0.0, 1.0, (m, NET_CHANNELS) + ALIGNED_SHAPE, np.float32),
+        "net_features": spaces.Box(-np.inf, np.inf, (m, len(NET_FEATURES)), np.float32),
+        "action_mask": spaces.MultiBinary(m),
+    })
+
+
+def empty_observation(max_candidates: int) -> dict[str, np.ndarray]:
+    """An all-zero observation (every row masked): what an env shows once there is nothing left."""
+    m = int(max_candidates)
+    return {
+        "obstacle": np.zeros(ALIGNED_SHAPE, np.float32),
+        "nets": np.zeros((m, NET_CHANNELS) + ALIGNED_SHAPE, np.float32),
+        "net_features": np.zeros((m, len(NET_FEATURES)), np.float32),
+        "action_mask": np.zeros(m, np.int8),
+    }
+
+
+def check_max_candidates(value: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"max_candidates must be a positive integer, got {value!r}")
+    return int(value)
+
+
+class RegionStepper:
+    """One engine Region routed one net per step, with observations, costs and rewards."""
+
+    def __init__(self, region: Any, dbu_per_micron: int, max_candidates: int, weights: CostWeights,
+                 reward_fn: RewardFn | None = None) -> None:
+        self.region = region
+        self.dbu = int(dbu_per_micron)
+        self.m = int(max_candidates)
+        self.weights = weights
+        self.reward_fn = reward_fn
+        self.rows = np.asarray(region.candidates, dtype=np.int32)
+        self.heuristic = heuristic_order(self.rows)
+        self.metrics = region.metrics()
+        self.cost = weights.cost(self.metrics, self.dbu)
+        self.slots = np.zeros(0, dtype=np.int64)
+        self.order: list[int] = []  # candidate indices in the order routed
+        # The net channels depend only on the terminals, fixed for the region: built once per row set.
+        self._nets: np.ndarray | None = None
+        self._nets_slots: np.ndarray | None = None
+
+    @property
+    def done(self) -> bool:
+        return len(self.region.unrouted()) == 0
+
+    def _choose_slots(self, mask: np.ndarray) -> np.ndarray:
+        n = len(self.rows)
+        if n <= self.m:
+            return np.arange(n, dtype=np.int64)
+        pending = self.heuristic[mask[self.heuristic]]
+        return np.asarray(pending[: self.m], dtype=np.int64)
+
+    def observation(self) -> dict[str, np.ndarray]:
+        """The padded observation dict of the region now (and fixes the rows the next action means)."""
+        mask = unrouted_mask(self.region)
+        self.slots = self._choose_slots(mask)
+        out = empty_observation(self.m)
+        reuse = self._nets is not None and np.array_equal(self._nets_slots, self.slots)
+        obs = observe_arrays(self.region.grid(), self.rows, mask, tuple(self.region.box), select=self.slots,
+                             nets_out=None if reuse else out["nets"], with_nets=not reuse)
+        k = len(self.slots)
+        if reuse:
+            out["nets"][:k] = self._nets[:k]  # a new array every step (gymnasium's rule), same content
+        else:
+            self._nets, self._nets_slots = out["nets"], self.slots.copy()
+        out["obstacle"] = obs.obstacle
+        out["net_features"][:k] = obs.net_features
+        out["action_mask"][:k] = obs.mask
+        return out
+
+    def action_mask(self) -> np.ndarray:
+        """bool[M]: the legal rows of the last observation."""
+        out = np.zeros(self.m, dtype=bool)
+        if len(self.slots):
+            routed = np.array([self.region.is_routed(int(c)) for c in self.slots], dtype=bool)
+            out[: len(self.slots)] = ~routed
+        return out
+
+    def step(self, action: int) -> tuple[float, dict[str, Any]]:
+        """Routes the net of row ``action``; returns the reward and an info dict."""
+        legal = self.action_mask()
+        if not legal.any():
+            raise RuntimeError("this region has no unrouted candidate left; reset the environment")
+        a = int(action)
+        invalid = not (0 <= a < self.m and legal[a])
+        if invalid:
+            a = int(np.flatnonzero(legal)[0])
+        cand = int(self.slots[a])
+        result = self.region.route_net(cand)
+        self.order.append(cand)
+        before = self.metrics
+        self.metrics = self.region.metrics()
+        cost = self.weights.cost(self.metrics, self.dbu)
+        if self.reward_fn is not None:
+            reward = float(self.reward_fn(before, self.metrics))
+        else:
+            reward = self.cost - cost
+        self.cost = cost
+        info = {"net": int(result["net"]), "candidate": cand, "invalid_action": invalid,
+                "metrics": self.metrics, "cost": cost, "unreached": int(result["unreached"])}
+        return float(reward), info

@@ -1,0 +1,205 @@
+"""``xroute/NetOrderingEval-v0``: net ordering, evaluation mode. One episode routes a whole testcase.
+
+``reset()`` loads ``testcase_name`` afresh and starts the router's own flow (as ``xroute route``:
+regions of ``region_size`` GCells, up to ``iteration_count`` iterations, rip-up and reroute of the
+nets in design-rule markers, early stop at zero violations) in a background thread, with a policy
+that lends every region to this env (``needs_region = True``, see :mod:`policies.base`). Each
+step routes one net of the region being routed (``action`` = its row, see
+:mod:`policies.rl.envs.core` for the spaces and the reward); when the region's last net is routed
+the router commits it and moves on, and the next observation is the next region's. The episode
+terminates when the router is done; the final ``info`` holds ``result`` (the
+:class:`~xroute_cli.router.RouteResult`) and, with ``out_dir``, ``outputs``: the routed DEF,
+metrics JSON and DRC report written by :func:`xroute_cli.outputs.write_route_outputs`, exactly as
+``xroute route`` writes them.
+
+The flow is deterministic (one routing thread), so same actions, same episode; ``reset(seed=)``
+only seeds ``self.np_random`` (the env draws nothing from it).
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from policies.rl.envs.core import (
+    DEFAULT_MAX_CANDIDATES,
+    CostWeights,
+    RegionStepper,
+    RewardFn,
+    check_max_candidates,
+    empty_observation,
+    observation_space,
+)
+
+
+class _Aborted(Exception):
+    """Raised inside the router's policy call when the env drops an unfinished episode."""
+
+
+class _LendingPolicy:
+    """The router's policy during an episode: hands each region to the env and waits until the env
+    has routed all of its nets."""
+
+    name = "rl-agent"
+    needs_region = True
+
+    def __init__(self, events: queue.Queue, resume: queue.Queue) -> None:
+        self.events = events
+        self.resume = resume
+
+    def order(self, region: dict[str, Any], features: np.ndarray) -> list[int]:
+        info = {k: v for k, v in region.items() if k != "engine_region"}
+        self.events.put(("region", region["engine_region"], info))
+        if self.resume.get() == "abort":
+            raise _Aborted()
+        return list(range(len(features)))  # every net is routed already; nothing is left to order
+
+
+class NetOrderingEvaluationEnv(gym.Env):
+    """The whole routing flow of a testcase with the agent ordering every region (see the module
+    docstring). observation_space / action_space as in :mod:`policies.rl.envs.core`."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(
+        self,
+        testcase_name: str = "ispd18_test1",
+        region_size: int = 5,
+        iteration_count: int = 10,
+        *,
+        max_candidates: int = DEFAULT_MAX_CANDIDATES,
+        weights: CostWeights = CostWeights(),
+        reward_fn: RewardFn | None = None,
+        out_dir: str | None = None,
+    ) -> None:
+        from xroute_cli.router import RouteSettings
+
+        RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
+        self.testcase_name = testcase_name
+        self.region_size = region_size
+        self.iteration_count = iteration_count
+        self.max_candidates = check_max_candidates(max_candidates)
+        self.weights = weights
+        self.reward_fn = reward_fn
+        self.out_dir = out_dir
+        self.observation_space = observation_space(self.max_candidates)
+        self.action_space = gym.spaces.Discrete(self.max_candidates)
+        self.design: Any = None
+        self._thread: threading.Thread | None = None
+        self._events: queue.Queue = queue.Queue()
+        self._resume: queue.Queue = queue.Queue()
+        self._stepper: RegionStepper | None = None
+        self._region_info: dict[str, Any] = {}
+        self._finished = True
+        self.regions_done = 0
+
+    # -- the routing thread -------------------------------------------------
+    def _start(self) -> None:
+        from xroute_cli import load_design
+        from xroute_cli.router import route_design
+
+        self.design = load_design(self.testcase_name)
+        self._events, self._resume = queue.Queue(), queue.Queue()
+        policy = _LendingPolicy(self._events, self._resume)
+        design, events = self.design, self._events
+
+        def run() -> None:
+            try:
+                result = route_design(design, region_size=self.region_size, iterations=self.iteration_count,
+                                      threads=1, policy=policy)
+                events.put(("done", result, None))
+            except BaseException as exc:  # noqa: BLE001 - handed to the env's thread
+                events.put(("error", exc, None))
+
+        self._thread = threading.Thread(target=run, name="xroute-eval-env", daemon=True)
+        self._thread.start()
+        self._finished = False
+        self.regions_done = 0
+
+    def _stop(self) -> None:
+        """Aborts an unfinished episode and waits for the routing thread to end."""
+        if self._thread is None:
+            return
+        if not self._finished:
+            self._resume.put("abort")
+            while True:
+                kind, _, _ = self._events.get()
+                if kind in ("done", "error"):
+                    break
+                self._resume.put("abort")
+        self._thread.join()
+        self._thread = None
+        self._stepper = None
+        self._finished = True
+
+    def _next_event(self) -> dict[str, Any]:
+        """Waits for the router's next region (returns {}) or its end (returns the final info)."""
+        kind, payload, info = self._events.get()
+        if kind == "region":
+            self._stepper = RegionStepper(payload, self.design.dbu_per_micron, self.max_candidates, self.weights,
+                                          self.reward_fn)
+            self._region_info = info
+            return {}
+        self._finished = True
+        self._thread.join()
+        self._thread = None
+        self._stepper = None
+        if kind == "error":
+            raise payload
+        out: dict[str, Any] = {"result": payload}
+        if self.out_dir is not None:
+            from xroute_cli.outputs import write_route_outputs
+
+            out["outputs"] = write_route_outputs(self.design, payload, self.out_dir)
+        return out
+
+    # -- gymnasium API --------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        self._stop()
+        self._start()
+        final = self._next_event()
+        if self._stepper is None:  # nothing to route at all
+            return empty_observation(self.max_candidates), final
+        return self._stepper.observation(), self._info()
+
+    def _info(self) -> dict[str, Any]:
+        s = self._stepper
+        return {"iteration": self._region_info.get("iteration"), "region": self._region_info.get("region"),
+                "box": self._region_info.get("box"), "candidates": len(s.rows), "regions_done": self.regions_done,
+                "cost": s.cost, "metrics": s.metrics}
+
+    def step(self, action: int):
+        if self._stepper is None:
+            raise RuntimeError("the episode is over (or never started): call reset()")
+        reward, info = self._stepper.step(action)
+        if not self._stepper.done:
+            info.update(self._info())
+            return self._stepper.observation(), reward, False, False, info
+        self.regions_done += 1
+        self._resume.put("continue")
+        final = self._next_event()
+        if self._stepper is None:
+            info.update(final)
+            return empty_observation(self.max_candidates), reward, True, False, info
+        info.update(self._info())
+        return self._stepper.observation(), reward, False, False, info
+
+    def action_masks(self) -> np.ndarray:
+        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
+        if self._stepper is None:
+            return np.zeros(self.max_candidates, dtype=bool)
+        return self._stepper.action_mask()
+
+    def close(self) -> None:
+        self._stop()
+
+
+def ordering_evaluation_env(testcase_name: str = "ispd18_test1", region_size: int = 5, iteration_count: int = 10,
+                            **kwargs: Any) -> NetOrderingEvaluationEnv:
+    """The paper's evaluation-mode env (see :class:`NetOrderingEvaluationEnv`)."""
+    return NetOrderingEvaluationEnv(testcase_name, region_size, iteration_count, **kwargs)

@@ -1,0 +1,198 @@
+"""``xroute/NetOrdering-v0``: net ordering, training mode. Each region of a testcase is an episode.
+
+The env walks the regions of ``testcase_name`` (``region_size`` x ``region_size`` GCells, row by
+row from the lower-left, as the router's first iteration cuts them; regions with no candidate net
+are skipped). Each region is replayed ``region_loop`` times from the same state (only the last
+replay is committed into the design, so later regions see it as routed neighbours); after the last
+region the walk starts again on a freshly loaded design, ``testcase_loop`` passes in all
+(:attr:`finished` turns True after them; the env keeps going if asked). ``region_location``
+(GCell column, row of a region's lower-left) restricts the walk to that one region, which is then
+never committed: every episode starts from the same state.
+
+Spaces and reward: see :mod:`policies.rl.envs.core`. One step routes one net; the episode
+terminates when every candidate of the region is routed.
+
+Seeding: ``reset(seed=s)`` restarts the walk from the first region on a fresh design (with
+``region_order="random"``, a permutation of the regions drawn from ``self.np_random``);
+``reset()`` moves on to the next episode. Same seed and actions, same observations and rewards.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from policies.rl.envs.core import (
+    DEFAULT_MAX_CANDIDATES,
+    CostWeights,
+    RegionStepper,
+    RewardFn,
+    check_max_candidates,
+    observation_space,
+)
+
+
+def region_boxes(xs: np.ndarray, ys: np.ndarray, size: int) -> list[tuple[tuple[int, int], tuple[int, int, int, int]]]:
+    """((gcell column, row), box in DBU) of every region of ``size`` GCells, row by row (the
+    router's first-iteration partition, offset 0)."""
+    nx, ny = len(xs) - 1, len(ys) - 1
+    out = []
+    for gy in range(0, ny, size):
+        for gx in range(0, nx, size):
+            box = (int(xs[gx]), int(ys[gy]), int(xs[min(gx + size, nx)]), int(ys[min(gy + size, ny)]))
+            out.append(((gx, gy), box))
+    return out
+
+
+class NetOrderingTrainingEnv(gym.Env):
+    """Net ordering on the regions of a testcase, one region per episode (see the module docstring).
+
+    observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
+    action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
+    """
+
+    metadata = {"render_modes": []}
+
+    def __init__(
+        self,
+        testcase_name: str = "ispd18_test1",
+        region_size: int = 1,
+        testcase_loop: int = 1,
+        region_location: tuple[int, int] | None = None,
+        region_loop: int = 1,
+        *,
+        max_candidates: int = DEFAULT_MAX_CANDIDATES,
+        weights: CostWeights = CostWeights(),
+        reward_fn: RewardFn | None = None,
+        region_order: str = "sequential",
+    ) -> None:
+        for name, value in (("region_size", region_size), ("testcase_loop", testcase_loop), ("region_loop", region_loop)):
+            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+                raise ValueError(f"{name} must be a positive integer, got {value!r}")
+        if region_order not in ("sequential", "random"):
+            raise ValueError(f"region_order must be 'sequential' or 'random', got {region_order!r}")
+        self.testcase_name = testcase_name
+        self.region_size = region_size
+        self.testcase_loop = testcase_loop
+        self.region_location = None if region_location is None else (int(region_location[0]), int(region_location[1]))
+        self.region_loop = region_loop
+        self.max_candidates = check_max_candidates(max_candidates)
+        self.weights = weights
+        self.reward_fn = reward_fn
+        self.region_order = region_order
+        self.observation_space = observation_space(self.max_candidates)
+        self.action_space = gym.spaces.Discrete(self.max_candidates)
+        self.passes_done = 0
+        self._design: Any = None
+        self._session: Any = None
+        self._dirty = True  # the design holds committed regions (or none is loaded)
+        self._walk: list[tuple[tuple[int, int], tuple[int, int, int, int]]] = []
+        self._next = 0  # position in _walk of the next region
+        self._replay = 0  # replays of the current region done
+        self._stepper: RegionStepper | None = None
+        self._box: tuple[int, int, int, int] | None = None
+        self._location: tuple[int, int] | None = None
+
+    @property
+    def finished(self) -> bool:
+        """True once ``testcase_loop`` passes over the testcase are done."""
+        return self.passes_done >= self.testcase_loop
+
+    def _fresh_design(self) -> None:
+        from xroute_cli import _engine, load_design
+
+        if self._dirty or self._design is None:
+            self._session = None
+            self._design = load_design(self.testcase_name)
+            self._session = _engine.RoutingSession(self._design.engine)
+            self._dirty = False
+        xs, ys = self._session.gcell_lines
+        walk = region_boxes(np.asarray(xs), np.asarray(ys), self.region_size)
+        if self.region_location is not None:
+            walk = [w for w in walk if w[0] == self.region_location]
+            if not walk:
+                raise ValueError(f"region_location {self.region_location} is not the lower-left GCell of a "
+                                 f"{self.region_size}x{self.region_size} region of {self.testcase_name}")
+        if self.region_order == "random":
+            walk = [walk[i] for i in self.np_random.permutation(len(walk))]
+        self._walk = walk
+        self._next = 0
+        self._replay = 0
+
+    def _open_next(self) -> None:
+        """Replays the current region, or commits it and opens the next one with a candidate net."""
+        current = self._stepper
+        if current is not None and self._replay < self.region_loop:
+            self._replay += 1  # the unfinished copy is dropped, never committed
+            self._stepper = self._stepper_for(self._session.open_region(self._box))
+            return
+        if current is not None and len(self._walk) > 1:  # a lone region (region_location) is never committed
+            current.region.route_rest("heuristic")  # an episode cut short still leaves a routed region
+            current.region.commit()
+            self._dirty = True
+        skipped = 0
+        while True:
+            if self._next >= len(self._walk):
+                self.passes_done += 1
+                self._fresh_design()
+            location, box = self._walk[self._next]
+            self._next += 1
+            region = self._session.open_region(box)
+            if len(region.candidates):
+                break
+            skipped += 1
+            if skipped > len(self._walk):
+                raise RuntimeError(f"no region of {self.testcase_name} has a net to route")
+        self._stepper = self._stepper_for(region)
+        self._box, self._location, self._replay = box, location, 1
+
+    def _stepper_for(self, region: Any) -> RegionStepper:
+        return RegionStepper(region, self._design.dbu_per_micron, self.max_candidates, self.weights, self.reward_fn)
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        if seed is not None or self._session is None:
+            self._dirty = True  # a seeded reset starts from a freshly loaded design
+            self._stepper = None
+            self.passes_done = 0
+            self._fresh_design()
+        self._open_next()
+        return self._stepper.observation(), self._info()
+
+    def _info(self) -> dict[str, Any]:
+        s = self._stepper
+        return {"region_location": self._location, "box": self._box, "candidates": len(s.rows),
+                "replay": self._replay, "pass": self.passes_done, "cost": s.cost, "metrics": s.metrics}
+
+    def step(self, action: int):
+        if self._stepper is None:
+            raise RuntimeError("call reset() first")
+        reward, info = self._stepper.step(action)
+        terminated = self._stepper.done
+        info.update(self._info())
+        return self._stepper.observation(), reward, terminated, False, info
+
+    def action_masks(self) -> np.ndarray:
+        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
+        if self._stepper is None:
+            return np.zeros(self.max_candidates, dtype=bool)
+        return self._stepper.action_mask()
+
+    @property
+    def region(self) -> Any:
+        """The engine Region of the current episode."""
+        return None if self._stepper is None else self._stepper.region
+
+    def close(self) -> None:
+        self._stepper = None
+        self._session = None
+        self._design = None
+
+
+def ordering_training_env(testcase_name: str = "ispd18_test1", region_size: int = 1, testcase_loop: int = 1,
+                          region_location: tuple[int, int] | None = None, region_loop: int = 1,
+                          **kwargs: Any) -> NetOrderingTrainingEnv:
+    """The paper's training-mode env (see :class:`NetOrderingTrainingEnv`)."""
+    return NetOrderingTrainingEnv(testcase_name, region_size, testcase_loop, region_location, region_loop, **kwargs)

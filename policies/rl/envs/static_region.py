@@ -1,0 +1,86 @@
+"""``xroute/StaticRegion-v0``: net ordering on one static region written by ``xroute make-region``.
+
+``region_dir`` holds region.lef / region.def / region.guide / region.yaml (see
+:mod:`testcases.regions`). Every episode routes the same region from scratch: the whole die of the
+clipped design (the region box plus the components it keeps), with its boundary pins as terminals.
+Nothing is committed, so every episode starts from the same state.
+
+Spaces and reward: see :mod:`policies.rl.envs.core`. ``reset(seed=)`` seeds ``self.np_random``;
+the env draws nothing from it (same actions, same episode).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from policies.rl.envs.core import (
+    DEFAULT_MAX_CANDIDATES,
+    CostWeights,
+    RegionStepper,
+    RewardFn,
+    check_max_candidates,
+    observation_space,
+)
+
+
+class StaticRegionEnv(gym.Env):
+    """One static region, one episode per reset (see the module docstring).
+
+    observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
+    action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
+    """
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, region_dir: str, *, max_candidates: int = DEFAULT_MAX_CANDIDATES,
+                 weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None) -> None:
+        from testcases.regions import load_region
+        from xroute_cli import _engine
+
+        self.region_dir = str(region_dir)
+        self.max_candidates = check_max_candidates(max_candidates)
+        self.weights = weights
+        self.reward_fn = reward_fn
+        self.design, self.meta = load_region(self.region_dir)
+        self.box = tuple(self.meta["die"])
+        self._session = _engine.RoutingSession(self.design.engine)
+        self.observation_space = observation_space(self.max_candidates)
+        self.action_space = gym.spaces.Discrete(self.max_candidates)
+        self._stepper: RegionStepper | None = None
+
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        region = self._session.open_region(self.box)
+        self._stepper = RegionStepper(region, self.design.dbu_per_micron, self.max_candidates, self.weights,
+                                      self.reward_fn)
+        return self._stepper.observation(), self._info()
+
+    def _info(self) -> dict[str, Any]:
+        s = self._stepper
+        return {"box": self.box, "candidates": len(s.rows), "cost": s.cost, "metrics": s.metrics}
+
+    def step(self, action: int):
+        if self._stepper is None:
+            raise RuntimeError("call reset() first")
+        reward, info = self._stepper.step(action)
+        info.update(self._info())
+        return self._stepper.observation(), reward, self._stepper.done, False, info
+
+    def action_masks(self) -> np.ndarray:
+        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
+        if self._stepper is None:
+            return np.zeros(self.max_candidates, dtype=bool)
+        return self._stepper.action_mask()
+
+    @property
+    def region(self) -> Any:
+        """The engine Region of the current episode."""
+        return None if self._stepper is None else self._stepper.region
+
+
+def static_region_env(region_dir: str, **kwargs: Any) -> StaticRegionEnv:
+    """The paper's static-region env (see :class:`StaticRegionEnv`)."""
+    return StaticRegionEnv(region_dir, **kwargs)
