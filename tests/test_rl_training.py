@@ -133,3 +133,34 @@ def test_cli_errors_are_one_line(tmp_path: Path) -> None:
     assert res.exit_code == 2 and f"{bad}:2:" in res.output
     res = runner.invoke(app, ["train", "ppo", "--testcase", "no_such_case", "--episodes", "1", "--out", str(tmp_path)])
     assert res.exit_code == 2 and "no_such_case" in res.output
+
+
+def test_cli_train_on_sample_regions_then_export_then_route_with_the_onnx_policy(tmp_path: Path) -> None:
+    """The whole chain on real data: `xroute train` (3 regions of ispd18_sample), `xroute export`,
+    and the exported model ordering every region of a route through OnnxPolicy."""
+    from conftest import require_testcase
+
+    require_testcase("ispd18_sample")
+    from policies.onnx_policy import OnnxPolicy
+    from xroute_cli import load_design
+    from xroute_cli.router import route_design
+
+    runner = CliRunner()
+    res = runner.invoke(app, ["train", "dqn", "--testcase", "ispd18_sample", "--episodes", "3", "--region-size", "2",
+                              "--out", str(tmp_path / "run"), "--seed", "2", "--json"])
+    assert res.exit_code == 0, res.output
+    report = json.loads(res.output)
+    rows = report["episodes"]
+    assert [r["episode"] for r in rows] == [1, 2, 3] and all(r["steps"] >= 1 for r in rows)
+    assert report["summary"]["steps"] == sum(r["steps"] for r in rows)
+    for r in rows:  # the env's cost: 0.5 per um of wire, 4 per via, 500 per DRV (ispd18_sample: 2000 DBU/um)
+        assert r["wirelength_dbu"] > 0 and r["cost"] >= 0.5 * r["wirelength_dbu"] / 2000 + 4 * r["vias"] - 1e-6
+    ckpt = tmp_path / "run" / "dqn-final.pt"
+    res = runner.invoke(app, ["export", str(ckpt), "--out", str(tmp_path / "m.onnx")])
+    assert res.exit_code == 0, res.output
+    policy = OnnxPolicy(tmp_path / "m.onnx")
+    assert policy.algorithm == "dqn"
+    design = load_design("ispd18_sample")
+    result = route_design(design, region_size=2, iterations=1, policy=policy)
+    assert result.policy == "m.onnx" and result.iterations[0].regions > 1
+    assert design.engine.check_connectivity()["open_nets"] == 0
