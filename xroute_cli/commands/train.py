@@ -39,17 +39,23 @@ def parse_location(text: str | None) -> tuple[int, int] | None:
 
 
 def training_env_factory(testcase: str, region_size: int, location: tuple[int, int] | None, order: str,
-                         max_candidates: int) -> Any:
-    """A function making the training env (``xroute/NetOrdering-v0``) for these options."""
+                         max_candidates: int, region_loop: int = 1, hold_out_every: int = 0,
+                         min_candidates: int = 1) -> Any:
+    """A function making the training env (``xroute/NetOrdering-v0``) for these options, wrapped in
+    a :class:`~policies.rl.region_filter.RegionFilter` when regions are held out or skipped."""
 
     def make() -> Any:
         import gymnasium
 
         import policies.rl  # noqa: F401 - registers the env IDs
+        from policies.rl.region_filter import RegionFilter
 
-        return gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,
-                              region_size=region_size, testcase_loop=1_000_000, region_location=location,
-                              max_candidates=max_candidates, region_order=order).unwrapped
+        env = gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,
+                             region_size=region_size, testcase_loop=1_000_000, region_location=location,
+                             region_loop=region_loop, max_candidates=max_candidates, region_order=order).unwrapped
+        if hold_out_every > 0 or min_candidates > 1:
+            return RegionFilter(env, hold_out_every, min_candidates)
+        return env
 
     return make
 
@@ -72,6 +78,9 @@ def train(
     region_size: Annotated[int, typer.Option("--region-size", min=1, help="Region size in GCells.")] = 1,
     region_location: Annotated[str | None, typer.Option("--region-location", help="Train on one region: X,Y of its lower-left GCell.", show_default=False)] = None,
     region_order: Annotated[str, typer.Option("--region-order", help="Walk of the regions: sequential or random.")] = "sequential",
+    region_loop: Annotated[int, typer.Option("--region-loop", min=1, help="Episodes per region (replays from the same state).")] = 1,
+    hold_out_every: Annotated[int, typer.Option("--hold-out-every", min=0, help="Hold out regions whose lower-left GCell x and y are both K//2 mod K (0: none).")] = 0,
+    min_candidates: Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")] = 1,
     json_out: Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")] = False,
 ) -> None:
     """Train a PPO or DQN net-order policy on a testcase's regions; write checkpoints and a metrics log."""
@@ -88,7 +97,8 @@ def train(
     cfg = load_config(algorithm, config)
     find_testcase(testcase)  # unknown testcase: one-line error before any work
     out_dir = out or Path("runs") / f"train-{algorithm}-{testcase}"
-    make_env = training_env_factory(testcase, region_size, location, region_order, cfg.max_candidates)
+    make_env = training_env_factory(testcase, region_size, location, region_order, cfg.max_candidates, region_loop,
+                                    hold_out_every, min_candidates)
     console = stdout_console()
     if json_out:
         result = run_training(algorithm, make_env, episodes, cfg, out_dir, seed)
