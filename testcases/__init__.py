@@ -8,9 +8,11 @@ from testcases.known import (
     StaticRegion,
     known_testcase,
 )
-from testcases.registry import ENV_VAR, FoundTestcase, find_testcase, locate_all, search_path
+from testcases.registry import DEMO, EMBEDDED_ROOT, ENV_VAR, FoundTestcase, find_testcase, locate_all, search_path
 
 __all__ = [
+    "DEMO",
+    "EMBEDDED_ROOT",
     "ENV_VAR",
     "KNOWN_BY_NAME",
     "KNOWN_TESTCASES",

@@ -3,7 +3,9 @@
 A testcase folder ``<root>/<name>/`` holds ``<name>.input.lef`` and ``<name>.input.def``
 and, optionally, ``<name>.input.guide`` (the contest's naming), or the plain
 ``<name>.lef`` / ``<name>.def`` / ``<name>.guide``. Files are read as they are: no
-compressed (.gz) variants. The roots, in order, are given by :func:`search_path`.
+compressed (.gz) variants. The roots, in order, are given by :func:`search_path`; after
+them, the testcases shipped inside the package (:data:`EMBEDDED_ROOT`: ``demo``, made by
+``testcases.generator``), so a folder named ``demo`` on the search path wins over the shipped one.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ from xroute_cli.errors import TestcaseNotFound
 
 ENV_VAR = "XROUTE_TESTCASES"
 SHARED_RELATIVE = Path("..") / "shared" / "testcases"  # relative to the project root
+EMBEDDED_ROOT = Path(__file__).resolve().parent / "data"  # testcases shipped in the package
+DEMO = "demo"  # the shipped testcase routed by `xroute route` without arguments
 
 # File name patterns, tried in this order: (lef, def, guide).
 _PATTERNS = (
@@ -96,12 +100,13 @@ def not_found_message(name: str, roots: list[Path]) -> str:
 def find_testcase(name: str) -> FoundTestcase:
     """The first folder ``<root>/<name>`` on the search path that holds the testcase's LEF and DEF.
 
-    Names the registry does not list are found the same way. Raises
-    :class:`~xroute_cli.errors.TestcaseNotFound` naming the folders searched.
+    Names the registry does not list are found the same way; the testcases shipped in the
+    package (``demo``) come last. Raises :class:`~xroute_cli.errors.TestcaseNotFound` naming
+    the folders searched.
     """
     roots = search_path()
     if name and "/" not in name and os.sep not in name and name not in (".", ".."):
-        for root in roots:
+        for root in [*roots, EMBEDDED_ROOT]:
             found = _match(root / name, name)
             if found is not None:
                 return found

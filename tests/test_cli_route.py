@@ -43,7 +43,8 @@ def test_route_json_parses_and_matches_the_file(runner: CliRunner, testcase, tmp
     assert result.exit_code == 0, result.output + result.stderr
     data = json.loads(result.stdout)
     assert data == json.loads((tmp_path / "ispd19_sample4.metrics.json").read_text())
-    assert data["settings"] == {"region_size": 4, "iterations": 3, "threads": 2, "seed": 1, "policy": "heuristic"}
+    assert data["settings"] == {"region_size": 4, "iterations": 3, "threads": 2, "seed": 1, "schedule": None,
+                                "policy": "heuristic"}
     assert 1 <= len(data["iterations"]) <= 3
     assert data["final"]["open_nets"] == 0 and data["final"]["nets"] == 22
 
@@ -65,6 +66,17 @@ def test_route_default_output_folder_and_progress_lines(runner: CliRunner, testc
                           "policy heuristic\niteration 0: ")
     assert "open nets" in out and "wirelength (µm)" in out
     assert out.strip().splitlines()[-1].startswith("ispd18_sample2: routed: 16 nets, 0 open")
+
+
+def test_route_schedule_option(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase("ispd19_sample4")
+    result = runner.invoke(app, ["route", "ispd19_sample4", "--out", str(tmp_path), "--json", "--iterations", "3",
+                                 "--schedule", "2:0,3:1"])
+    assert result.exit_code == 0, result.output + result.stderr
+    data = json.loads(result.stdout)
+    assert data["settings"]["schedule"] == [[2, 0], [3, 1]]
+    steps = [(it["region_size"], it["offset"]) for it in data["iterations"]]
+    assert steps == [(2, 0), (3, 1), (2, 0)][: len(steps)]
 
 
 def test_route_with_lef_def_files(runner: CliRunner, testcase, tmp_path: Path) -> None:
@@ -116,6 +128,8 @@ def test_route_bad_policy_is_a_one_line_error(runner: CliRunner, testcase, tmp_p
         (["--region-size", "0"], "error: region size must be at least 1 GCell, got 0"),
         (["--iterations", "65"], "error: iterations must be between 1 and 64, got 65"),
         (["--threads", "0"], "error: threads must be at least 1, got 0"),
+        (["--schedule", "5:0,x"], "error: --schedule: 'x' is not SIZE:OFFSET (two integers, GCells)"),
+        (["--schedule", "5:5"], "error: schedule step 0: offset must be in 0..4 GCells, got 5"),
     ],
 )
 def test_route_bad_settings(runner: CliRunner, tmp_path: Path, args: list[str], message: str) -> None:
@@ -135,7 +149,7 @@ def test_route_output_folder_that_is_a_file(runner: CliRunner, testcase, tmp_pat
 def test_route_unknown_testcase_and_usage_errors(runner: CliRunner, tmp_path: Path) -> None:
     result = runner.invoke(app, ["route", "no_such_testcase_xyz", "--out", str(tmp_path)])
     assert result.exit_code == 2 and result.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")
-    result = runner.invoke(app, ["route"])
+    result = runner.invoke(app, ["route", "--guide", str(tmp_path / "a.guide")])  # no argument at all routes the demo
     assert result.exit_code == 2 and "give a testcase name" in result.output + result.stderr
 
 
@@ -146,7 +160,7 @@ def test_route_exit_1_when_the_written_def_has_opens(runner: CliRunner, testcase
     import xroute_cli.router as router
 
     def no_routing(design, **kw):
-        fake = router.IterationReport(iteration=0, offset=0, regions=0, net_routes=0, unreached=0,
+        fake = router.IterationReport(iteration=0, region_size=5, offset=0, regions=0, net_routes=0, unreached=0,
                                       wirelength_dbu=0, wirelength_um=0.0, vias=0,
                                       violations_by_type={t: 0 for t in router.VIOLATION_TYPES})
         return router.RouteResult(iterations=(fake,), policy="none", settings=router.RouteSettings(), seconds=0.0,

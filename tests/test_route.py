@@ -72,10 +72,11 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     data = json.loads(outputs.metrics_path.read_text())
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
-    assert data["settings"] == {"region_size": 5, "iterations": 10, "threads": 1, "seed": 1, "policy": "heuristic"}
+    assert data["settings"] == {"region_size": 5, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
+                                "policy": "heuristic"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
-        assert set(it) == {"iteration", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
+        assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
                            "wirelength_um", "vias", "violations", "violations_by_type", "seconds"}
         assert list(it["violations_by_type"]) == list(VIOLATION_TYPES)
         assert it["violations"] == sum(it["violations_by_type"].values())
@@ -114,6 +115,28 @@ def test_random_seeds_change_the_routing() -> None:
     assert len(set(defs.values())) >= 2
     assert route_def("ispd18_sample", policy="random", seed=2) == defs[2]  # same seed, same DEF
     assert route_def("ispd18_sample", policy=RandomPolicy(2)) == defs[2]  # the object's seed is the engine's
+
+
+def test_schedule_sets_each_iterations_partition() -> None:
+    design = fresh("ispd19_sample4")
+    result = route_design(design, iterations=4, schedule=[(3, 0), (2, 1)], progress=None)
+    its = [(r.region_size, r.offset) for r in result.iterations]
+    assert its == [(3, 0), (2, 1), (3, 0), (2, 1)][: len(its)]
+    default = route_design(fresh("ispd19_sample4"), region_size=6, iterations=4)
+    assert [(r.region_size, r.offset) for r in default.iterations] == [(6, 0), (6, 2), (6, 4), (6, 0)][
+        : len(default.iterations)]
+
+
+def test_schedule_changes_the_routing_and_is_deterministic() -> None:
+    a = route_def("ispd19_sample4", schedule=[(1, 0)])
+    assert a == route_def("ispd19_sample4", schedule=[(1, 0)])
+    assert a != route_def("ispd19_sample4")
+
+
+@pytest.mark.parametrize("schedule", [[], [(0, 0)], [(3, 3)], [(3, -1)], [(3,)], [(2.5, 0)]])
+def test_bad_schedules_are_refused(schedule: Any) -> None:
+    with pytest.raises(RouteArgumentError, match="schedule"):
+        route_design(fresh("ispd18_sample"), schedule=schedule)
 
 
 @pytest.mark.parametrize("name", ["ispd18_sample2", "ispd19_sample4"])

@@ -239,9 +239,9 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}) -> dict:
+def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
     """
 
 ACCESS_UP: int = 1

@@ -14,7 +14,19 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import export, info, make_region, route, testcases, train
+from xroute_cli.commands import (
+    batch,
+    evaluate,
+    export,
+    info,
+    make_region,
+    make_testcase,
+    plot_region,
+    report,
+    route,
+    testcases,
+    train,
+)
 from xroute_cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
@@ -45,6 +57,11 @@ app.command(name="route")(route.route)
 app.command(name="train")(train.train)
 app.command(name="export")(export.export)
 app.command(name="make-region")(make_region.make_region_command)
+app.command(name="make-testcase")(make_testcase.make_testcase)
+app.command(name="evaluate")(evaluate.evaluate)
+app.command(name="batch")(batch.batch)
+app.command(name="report")(report.report)
+app.command(name="plot-region")(plot_region.plot_region)
 
 
 def main() -> None:

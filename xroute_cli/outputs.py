@@ -36,10 +36,15 @@ def peak_rss_mb() -> float:
 def atomic_write_text(path: Path, text: str) -> None:
     """Writes ``text`` to ``path`` through a temporary file in the same folder and ``os.replace``
     (the file gets the usual permissions: 0666 less the umask)."""
+    atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def atomic_write_bytes(path: Path, data: bytes) -> None:
+    """Writes ``data`` to ``path`` atomically (see :func:`atomic_write_text`)."""
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
     try:
-        with open(tmp, "x", encoding="utf-8") as f:
-            f.write(text)
+        with open(tmp, "xb") as f:
+            f.write(data)
             f.flush()
             os.fsync(f.fileno())
         os.replace(tmp, path)
@@ -49,6 +54,39 @@ def atomic_write_text(path: Path, text: str) -> None:
         except OSError:
             pass
         raise
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def clean_stale_temporaries(folder: Path) -> list[Path]:
+    """Removes the temporary files that a killed run left in ``folder`` (``.NAME.PID.XXXX.tmp``
+    from :func:`atomic_write_text`, ``NAME.tmp.PID`` from the engine's DEF writer) when their
+    process is gone; returns the removed paths."""
+    removed: list[Path] = []
+    if not folder.is_dir():
+        return removed
+    for p in folder.iterdir():
+        parts = p.name.split(".")
+        pid = None
+        if p.name.startswith(".") and p.name.endswith(".tmp") and len(parts) >= 5 and parts[-3].isdigit():
+            pid = int(parts[-3])  # .NAME.PID.HEX.tmp
+        elif len(parts) >= 3 and parts[-2] == "tmp" and parts[-1].isdigit():
+            pid = int(parts[-1])  # NAME.tmp.PID
+        if pid is not None and pid != os.getpid() and not _pid_alive(pid) and p.is_file():
+            try:
+                p.unlink()
+                removed.append(p)
+            except OSError:
+                pass
+    return removed
 
 
 @dataclass(frozen=True)
@@ -116,6 +154,7 @@ def write_route_outputs(
             "iterations": result.settings.iterations,
             "threads": result.settings.threads,
             "seed": result.settings.seed,
+            "schedule": [list(step) for step in result.settings.schedule] if result.settings.schedule else None,
             "policy": result.policy,
         },
         "policy": result.policy,
@@ -139,6 +178,8 @@ def write_route_outputs(
             "floating_pieces": int(conn["floating_pieces"]),
             "iterations_run": len(result.iterations),
             "route_seconds": result.seconds,
+            "policy_seconds": result.policy_seconds,  # in a Python policy's order(); null for built-ins
+            "policy_calls": result.policy_calls,
             "runtime_seconds": runtime,
             "peak_rss_mb": round(peak_rss_mb(), 1),
             "wirelength_by_layer": {str(k): int(v) for k, v in measured["wirelength_by_layer"].items()},

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from policies.base import HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy, check_order
 from policies.registry import get_policy
@@ -52,8 +52,24 @@ class RouteSettings:
     iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..64)
     threads: int = 1  # worker threads for the regions of one colour
     seed: int = 1  # seed of the random policy
+    # per-iteration (region_size, offset) in GCells, cycled over the iterations; None: region_size
+    # every iteration with the offset shifted by a third of a region (0, C/3, 2C/3, 0, ...)
+    schedule: tuple[tuple[int, int], ...] | None = None
 
     def __post_init__(self) -> None:
+        if self.schedule is not None:
+            steps = tuple(tuple(step) for step in self.schedule)
+            object.__setattr__(self, "schedule", steps)
+            if not steps:
+                raise RouteArgumentError("schedule must have at least one (region_size, offset) step")
+            for i, step in enumerate(steps):
+                if len(step) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in step):
+                    raise RouteArgumentError(f"schedule step {i} must be two integers (region_size, offset), got {step!r}")
+                size, offset = step
+                if size < 1:
+                    raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
+                if not 0 <= offset < size:
+                    raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
         for name in ("region_size", "iterations", "threads", "seed"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
@@ -73,6 +89,7 @@ class IterationReport:
     """What one iteration did and the state after it (lengths in DBU unless named _um)."""
 
     iteration: int
+    region_size: int  # region side of this iteration, GCells
     offset: int  # region offset of this iteration, GCells
     regions: int  # regions with work
     net_routes: int  # (net, region) pairs routed
@@ -88,6 +105,7 @@ class IterationReport:
     def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
         return cls(
             iteration=int(d["iteration"]),
+            region_size=int(d["region_size"]),
             offset=int(d["offset"]),
             regions=int(d["regions"]),
             net_routes=int(d["net_routes"]),
@@ -103,6 +121,7 @@ class IterationReport:
     def to_dict(self) -> dict[str, Any]:
         return {
             "iteration": self.iteration,
+            "region_size": self.region_size,
             "offset": self.offset,
             "regions": self.regions,
             "net_routes": self.net_routes,
@@ -137,6 +156,8 @@ class RouteResult:
     settings: RouteSettings
     seconds: float  # wall time of the whole run
     violations_by_type: dict[str, int]  # after the last iteration
+    policy_seconds: float | None = None  # wall time inside a Python policy's order(); None for built-ins (C++)
+    policy_calls: int = 0  # calls of a Python policy's order() (one per region with candidates)
 
     @property
     def final(self) -> IterationReport:
@@ -179,14 +200,22 @@ def _builtin(policy: NetOrderPolicy) -> str | None:
     return None
 
 
-def _policy_callback(policy: NetOrderPolicy) -> Callable[[dict[str, Any], Any], list[int]]:
-    """The engine's policy_fn for a Python policy: calls ``policy.order`` and checks its result."""
-    name = policy.name
+class _PolicyCallback:
+    """The engine's policy_fn for a Python policy: calls ``policy.order``, checks its result and
+    adds up the time spent in it (the check included)."""
 
-    def policy_fn(region: dict[str, Any], features: Any) -> list[int]:
-        return check_order(policy.order(region, features), len(features), name)
+    def __init__(self, policy: NetOrderPolicy) -> None:
+        self.policy = policy
+        self.seconds = 0.0  # wall time in order() and the check
+        self.calls = 0
 
-    return policy_fn
+    def __call__(self, region: dict[str, Any], features: Any) -> list[int]:
+        start = time.perf_counter()
+        try:
+            return check_order(self.policy.order(region, features), len(features), self.policy.name)
+        finally:
+            self.seconds += time.perf_counter() - start
+            self.calls += 1
 
 
 def route_design(
@@ -197,6 +226,7 @@ def route_design(
     threads: int = 1,
     policy: str | NetOrderPolicy = "heuristic",
     seed: int = 1,
+    schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
@@ -209,18 +239,30 @@ def route_design(
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.
+
+    ``schedule``: per-iteration ``(region_size, offset)`` pairs in GCells, cycled over the
+    iterations (iteration ``i`` uses step ``i % len(schedule)``); it overrides ``region_size``.
+    Default: ``region_size`` in every iteration, the offset shifted by a third of a region.
     """
-    settings = RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)
+    settings = RouteSettings(
+        region_size=region_size,
+        iterations=iterations,
+        threads=threads,
+        seed=seed,
+        schedule=tuple(tuple(step) for step in schedule) if schedule is not None else None,
+    )
     pol = resolve_policy(policy, seed)
     builtin = _builtin(pol)
     kwargs: dict[str, Any] = {}
+    callback: _PolicyCallback | None = None
     if builtin == "heuristic":
         kwargs["policy"] = "heuristic"
     elif builtin == "random":
         kwargs["policy"] = "random"
         kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
     else:
-        kwargs["policy_fn"] = _policy_callback(pol)
+        callback = _PolicyCallback(pol)
+        kwargs["policy_fn"] = callback
         # A policy that declares needs_region = True finds the region being routed (an
         # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
         kwargs["policy_needs_region"] = bool(getattr(pol, "needs_region", False))
@@ -240,6 +282,7 @@ def route_design(
             region_size=settings.region_size,
             iterations=settings.iterations,
             threads=settings.threads,
+            schedule=list(settings.schedule) if settings.schedule is not None else None,
             **kwargs,
         )
     except ValueError as exc:
@@ -256,4 +299,6 @@ def route_design(
         settings=settings,
         seconds=seconds,
         violations_by_type=dict(reports[-1].violations_by_type) if reports else {},
+        policy_seconds=callback.seconds if callback is not None else None,
+        policy_calls=callback.calls if callback is not None else 0,
     )

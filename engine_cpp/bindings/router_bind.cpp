@@ -4,6 +4,8 @@
 // (once per region batch).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -81,6 +83,7 @@ class PythonPolicy final : public NetOrderPolicy {
 nb::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   nb::dict d;
   d["iteration"] = r.iteration;
+  d["region_size"] = r.regionSize;
   d["offset"] = r.offset;
   d["regions"] = r.regions;
   d["net_routes"] = r.netRoutes;
@@ -107,7 +110,8 @@ void bindRouter(nb::module_& m) {
   m.def(
       "route",
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
-         nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs) {
+         nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs,
+         const std::optional<std::vector<std::pair<int, int>>>& schedule) {
         if (region_size < 1) throw nb::value_error("region_size must be >= 1");
         if (iterations < 1 || iterations > 64) throw nb::value_error("iterations must be in 1..64");
         if (threads < 1) throw nb::value_error("threads must be >= 1");
@@ -120,6 +124,13 @@ void bindRouter(nb::module_& m) {
         s.regionSize = region_size;
         s.iterations = iterations;
         s.threads = threads;
+        if (schedule) {
+          for (const auto& [size, offset] : *schedule) {
+            if (size < 1) throw nb::value_error("schedule: region size must be >= 1");
+            if (offset < 0 || offset >= size) throw nb::value_error("schedule: offset must be in 0..region_size-1");
+            s.schedule.push_back(ScheduleStep{size, offset});
+          }
+        }
         for (auto [k, v] : costs) {
           const std::string key = nb::cast<std::string>(k);
           const int64_t val = nb::cast<int64_t>(v);
@@ -159,11 +170,14 @@ void bindRouter(nb::module_& m) {
       },
       "db"_a, "region_size"_a = 5, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
       "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(), "costs"_a = nb::dict(),
+      "schedule"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
       "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with "
       "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
       "route nets with it; the order applies to the rest). progress(report, "
       "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
       "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
-      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). Returns {'iterations': [report, ...]}.");
+      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). schedule: per-iteration "
+      "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
+      "Returns {'iterations': [report, ...]}.");
 }

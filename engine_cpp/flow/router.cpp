@@ -29,11 +29,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-int offsetFor(const RouterSettings& s, int iteration) {
-  if (!s.offsets.empty()) return s.offsets[iteration % s.offsets.size()];
+// The partition of `iteration`: the schedule's step (cycled), or the default
+// region size shifted by a third of a region each iteration.
+ScheduleStep stepFor(const RouterSettings& s, int iteration) {
+  if (!s.schedule.empty()) {
+    ScheduleStep step = s.schedule[iteration % s.schedule.size()];
+    step.regionSize = std::max(1, step.regionSize);
+    step.offset = ((step.offset % step.regionSize) + step.regionSize) % step.regionSize;
+    return step;
+  }
   const int c = std::max(1, s.regionSize);
-  static const int kPattern[] = {0, 1, 2};  // in thirds of a region
-  return (kPattern[iteration % 3] * c) / 3;
+  return ScheduleStep{c, ((iteration % 3) * c) / 3};
 }
 
 class Flow {
@@ -50,7 +56,9 @@ class Flow {
       const auto t0 = Clock::now();
       IterationReport rep;
       rep.iteration = it;
-      rep.offset = offsetFor(s_, it);
+      const ScheduleStep step = stepFor(s_, it);
+      rep.regionSize = step.regionSize;
+      rep.offset = step.offset;
       runIteration(it, rep);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), drcOptions());
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
@@ -145,9 +153,9 @@ class Flow {
   }
 
   void runIteration(int it, IterationReport& rep) {
-    const std::vector<Region> regions = partitionRegions(ctx_.gcells, s_.regionSize, rep.offset);
+    const std::vector<Region> regions = partitionRegions(ctx_.gcells, rep.regionSize, rep.offset);
     CrossingPlan plan;
-    if (it == 0) plan = planCrossings(ctx_, regions, s_.regionSize, rep.offset);
+    if (it == 0) plan = planCrossings(ctx_, regions, rep.regionSize, rep.offset);
     for (int color = 0; color < 4; ++color) {
       std::vector<RegionTask> tasks;
       for (const Region& r : regions) {

@@ -18,11 +18,18 @@
 
 namespace xroute {
 
+// One iteration's region partition: regions of regionSize x regionSize GCells
+// whose grid starts `offset` GCells before the first GCell.
+struct ScheduleStep {
+  int regionSize = 5;              // GCells per region side (C)
+  int offset = 0;                  // GCells, 0 <= offset < regionSize
+};
+
 struct RouterSettings {
   int regionSize = 5;              // GCells per region side (C); 5 measured best on ispd18_test1
   int iterations = 10;             // iterations 0..iterations-1 at most (1..64)
   int threads = 1;                 // worker threads for regions of one colour
-  std::vector<int> offsets;        // region offset in GCells per iteration (cycled); empty = 0, C/2, C-1, ...
+  std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...
   MazeCosts costs;                 // maze costs of iteration 0
   int64_t usePenaltyStep = 4000;   // added to costs.usePenalty at each later iteration
   int64_t markerPenalty = 10000;   // cost units per node near a marker of the last iteration
@@ -34,6 +41,7 @@ inline constexpr int kMarkerTypes = 8;
 
 struct IterationReport {
   int iteration = 0;
+  int regionSize = 0;              // GCells per region side in this iteration
   int offset = 0;                  // GCells
   int regions = 0;                 // regions with work
   int netRoutes = 0;               // (net, region) pairs routed

@@ -8,11 +8,10 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING
 
 import typer
 from rich.markup import escape
-from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from xroute_cli.console import (
@@ -25,80 +24,40 @@ from xroute_cli.console import (
     print_json,
     stdout_console,
 )
-from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteProgress, RouteSettings
+from xroute_cli.options import (
+    ConfigOption,
+    IterationsOption,
+    JsonOption,
+    OutOption,
+    PolicyOption,
+    QuietOption,
+    RegionSizeOption,
+    ScheduleOption,
+    SeedOption,
+    ThreadsOption,
+)
+from xroute_cli.progress import ProgressDisplay, output_mode
+from xroute_cli.router import RouteSettings
 
 if TYPE_CHECKING:
-    from rich.console import Console
-
     from xroute_cli.outputs import RouteOutputs
 
 EXIT_OPENS = 1
 MAX_OPENS_PRINTED = 20
 
 
-def _by_type(counts: dict[str, int]) -> str:
-    parts = [f"{k} {v}" for k, v in counts.items() if v]
-    return ", ".join(parts) if parts else "none"
+def parse_schedule(text: str) -> tuple[tuple[int, int], ...]:
+    """``'5:0,5:2'`` -> ``((5, 0), (5, 2))``; a malformed step raises RouteArgumentError."""
+    from xroute_cli.router import RouteArgumentError
 
-
-def iteration_line(progress: RouteProgress) -> str:
-    """One plain line for a finished iteration."""
-    r = progress.report
-    return (
-        f"iteration {r.iteration}: {r.regions} regions, {r.net_routes} net routes, "
-        f"WL {r.wirelength_um:,.1f} um, {r.vias:,} vias, {r.violations} violations "
-        f"({_by_type(r.violations_by_type)}), {r.seconds:.2f} s"
-    )
-
-
-class ProgressDisplay:
-    """Shows routing progress: a Rich progress bar on a terminal, plain lines otherwise, or nothing."""
-
-    def __init__(self, console: Console, mode: str, iterations: int) -> None:
-        self.console = console
-        self.iterations = iterations
-        self.mode = mode  # "rich", "lines" or "off"
-        self.last_violations: int | None = None
-        self.progress: Progress | None = None
-        self.task: Any = None
-
-    def __enter__(self) -> ProgressDisplay:
-        if self.mode == "rich":
-            self.progress = Progress(
-                SpinnerColumn(),
-                TextColumn("[bold]{task.description}"),
-                BarColumn(),
-                TextColumn("regions {task.completed:.0f}/{task.total:.0f}"),
-                TextColumn("{task.fields[status]}"),
-                TimeElapsedColumn(),
-                console=self.console,
-            )
-            self.progress.__enter__()
-            self.task = self.progress.add_task(f"iteration 0 (limit {self.iterations})", total=1, status="")
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        if self.progress is not None:
-            self.progress.__exit__(*exc)
-
-    def __call__(self, event: RouteProgress) -> None:
-        r = event.report
-        if event.iteration_done:
-            self.last_violations = r.violations
-            if self.mode == "lines":
-                typer.echo(iteration_line(event))
-            elif self.progress is not None:
-                self.progress.console.print(escape(iteration_line(event)))
-        if self.progress is not None:
-            viol = "-" if self.last_violations is None else f"{self.last_violations}"
-            wl = f"WL {r.wirelength_um:,.0f} um" if event.iteration_done else ""
-            self.progress.update(
-                self.task,
-                description=f"iteration {r.iteration} (limit {event.iterations})",
-                completed=event.regions_done,
-                total=max(event.regions_total, 1),
-                status=f"violations {viol}  {wl}".rstrip(),
-            )
+    steps = []
+    for item in text.split(","):
+        size, sep, offset = item.strip().partition(":")
+        try:
+            steps.append((int(size), int(offset) if sep else 0))
+        except ValueError:
+            raise RouteArgumentError(f"--schedule: '{item.strip()}' is not SIZE:OFFSET (two integers, GCells)") from None
+    return tuple(steps)
 
 
 def _seconds(t: float) -> str:
@@ -143,53 +102,70 @@ def route(
     lef: LefOption = None,
     def_: DefOption = None,
     guide: GuideOption = None,
-    out: Annotated[
-        Path | None,
-        typer.Option("--out", help="Output folder (created if needed). Default: ./out/<design>.", show_default=False),
-    ] = None,
-    region_size: Annotated[int, typer.Option("--region-size", help="Region side in GCells.")] = DEFAULT_REGION_SIZE,
-    iterations: Annotated[
-        int, typer.Option("--iterations", help=f"Iteration limit (1..{MAX_ITERATIONS}); stops early at 0 violations.")
-    ] = DEFAULT_ITERATIONS,
-    threads: Annotated[int, typer.Option("--threads", help="Worker threads (the result does not depend on it).")] = 1,
-    policy: Annotated[
-        str,
-        typer.Option("--policy", help="Net-order policy: heuristic, random, or a .py file defining order(region, features)."),
-    ] = "heuristic",
-    seed: Annotated[int, typer.Option("--seed", help="Seed of the random policy.")] = 1,
-    as_json: Annotated[bool, typer.Option("--json", help="Print the metrics JSON on stdout, nothing else.")] = False,
-    quiet: Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")] = False,
+    config: ConfigOption = None,
+    out: OutOption = None,
+    region_size: RegionSizeOption = None,
+    iterations: IterationsOption = None,
+    threads: ThreadsOption = None,
+    policy: PolicyOption = None,
+    seed: SeedOption = None,
+    schedule: ScheduleOption = None,
+    as_json: JsonOption = False,
+    quiet: QuietOption = False,
 ) -> None:
-    """Route a design (a testcase name, or --lef and --def files) and write <design>.routed.def,
-    <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
-    when there are none, 1 when some remain."""
+    """Route a design and write the routed DEF, metrics JSON and DRC report.
+
+    The design is a testcase name, or --lef and --def files (nothing: the shipped demo); the
+    outputs are <design>.routed.def, <design>.metrics.json and <design>.drc.rpt. Opens are checked on the written DEF: exit status 0
+    when there are none, 1 when some remain.
+
+    Settings come from --config (YAML, see configs/default.yaml) when given; flags override it.
+    On a terminal a Rich progress bar shows the iteration, regions done and current violations;
+    when stdout is not a terminal (or CI=true) one plain line per iteration is printed instead.
+    """
+    from xroute_cli.config import load_config, run_settings
+
+    cfg = load_config(config)  # validated before anything else
+    if testcase is None and not lef and def_ is None:
+        testcase = cfg.testcase.testcase_name
+    if testcase is None and not lef and def_ is None and guide is None:
+        from testcases import DEMO
+
+        testcase = DEMO
     check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
     from policies.registry import get_policy
-    from xroute_cli.outputs import write_route_outputs
+    from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
     from xroute_cli.router import route_design
 
-    RouteSettings(region_size=region_size, iterations=iterations, threads=threads, seed=seed)  # fail before loading
-    pol = get_policy(policy, seed)
+    steps = parse_schedule(schedule) if schedule is not None else None
+    rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
+                      schedule=steps)
+    RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed,
+                  schedule=rs.schedule or None)  # fail before loading
+    kwargs = rs.route_kwargs()
+    pol = get_policy(rs.policy, rs.seed)
     design = load_design_args(testcase, lef, def_, guide)
+    if out is None and cfg.output.out_dir is not None:
+        out = Path(cfg.output.out_dir)
     out_dir = out if out is not None else Path("out") / design.name
     out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
+    clean_stale_temporaries(out_dir)  # left by a run that was killed while writing
 
     console = stdout_console()
-    mode = "off" if (as_json or quiet) else ("rich" if console.is_terminal else "lines")
+    mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
     if mode == "lines":
-        typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {region_size}, "
-                   f"up to {iterations} iterations, {threads} thread(s), policy {pol.name}")
-    with ProgressDisplay(console, mode, iterations) as display:
+        typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {rs.region_size}, "
+                   f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
+    with ProgressDisplay(console, mode, rs.iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
-        result = route_design(design, region_size=region_size, iterations=iterations, threads=threads,
-                              policy=pol, seed=seed, progress=display)
+        result = route_design(design, policy=pol, progress=display, **kwargs)
     outputs = write_route_outputs(design, result, out_dir, started=started)
 
-    if as_json:
+    if mode == "json":
         print_json(outputs.metrics)
-    elif quiet:
+    elif mode == "quiet":
         typer.echo(final_line(outputs, out_dir))
     else:
         console.print(summary_table(outputs))

@@ -1,0 +1,84 @@
+"""``xroute report``: a self-contained HTML page, checked in headless Chromium (screenshot and DOM)."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from png import distinct_colours
+from xroute_cli.app import app
+
+CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
+
+
+def chromium() -> str:
+    """The headless browser; skips when absent, except in CI (CI=true), where .ci/run installs it."""
+    for name in CHROMIUM_NAMES:
+        path = shutil.which(name)
+        if path:
+            return path
+    if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+        pytest.fail("chromium is missing in CI (.ci/run installs the Debian package 'chromium')")
+    pytest.skip("chromium not installed (apt-get install chromium)")
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    try:
+        return CliRunner(mix_stderr=False)
+    except TypeError:
+        return CliRunner()
+
+
+@pytest.fixture
+def two_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:
+    testcase("ispd19_sample4")
+    for policy in ("heuristic", "random"):
+        result = runner.invoke(app, ["route", "ispd19_sample4", "--iterations", "3", "--policy", policy, "--quiet",
+                                     "--out", str(tmp_path / "runs" / policy)])
+        assert result.exit_code == 0, result.stderr
+    return tmp_path / "runs"
+
+
+def test_report_html_is_self_contained(runner: CliRunner, two_runs: Path, tmp_path: Path) -> None:
+    out = tmp_path / "report.html"
+    result = runner.invoke(app, ["report", str(two_runs), "--out", str(out)])
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout == f"report: 2 run(s) -> {out}\n"
+    html = out.read_text()
+    assert html.count('<tr class="run">') == 2
+    assert not re.search(r"""(src|href)\s*=\s*["']?(https?:)?//""", html)  # nothing fetched
+    assert "<link" not in html and "<script src" not in html and "@import" not in html
+    assert html.count("<svg") == 3  # WL, vias, DRVs for the one design
+    assert "ispd19_sample4: trends over iterations" in html
+    # the DRV columns by type that are non-zero in a run, and the paper's cost
+    assert "<th>CutShort</th>" in html and "<th>cost</th>" in html
+
+
+def test_report_renders_in_headless_chromium(runner: CliRunner, two_runs: Path, tmp_path: Path) -> None:
+    browser = chromium()
+    out = tmp_path / "report.html"
+    assert runner.invoke(app, ["report", str(two_runs), "--out", str(out)]).exit_code == 0
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1280,1000"]
+    shot = tmp_path / "shot.png"
+    subprocess.run([browser, *flags, f"--screenshot={shot}", out.as_uri()], check=True, capture_output=True, timeout=120)
+    assert distinct_colours(shot) > 20  # text, table and coloured lines: not a blank page
+    dom = subprocess.run([browser, *flags, "--dump-dom", out.as_uri()], check=True, capture_output=True, text=True,
+                         timeout=120).stdout
+    rows = re.findall(r'<tr class="run">(.*?)</tr>', dom, flags=re.S)
+    assert len(rows) == 2
+    assert sorted(re.findall(r"<td>(heuristic|random)</td>", dom)) == ["heuristic"] * 2 + ["random"] * 2  # run, policy
+    assert dom.count("<polyline") == 6  # 3 charts x 2 runs
+
+
+def test_report_of_a_folder_without_runs_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
+    result = runner.invoke(app, ["report", str(tmp_path), "--out", str(tmp_path / "r.html")])
+    assert result.exit_code == 2
+    assert result.stderr == f"error: {tmp_path}: no *.metrics.json (route, evaluate or batch output) found\n"
+    assert not (tmp_path / "r.html").exists()

@@ -1,0 +1,221 @@
+"""``xroute batch`` without the terminal: plan the jobs of a matrix, run them, resume.
+
+Layout of the output folder ``OUT``::
+
+    OUT/jobs/<job id>/            one folder per finished job: <design>.routed.def, .metrics.json,
+                                  .drc.rpt and job.json (the job's record)
+    OUT/jobs/.<job id>.tmp-<pid>  a job being run (renamed into place when complete)
+    OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute_cli.batch_summary`)
+
+A job writes everything into its temporary folder and renames it to ``jobs/<job id>`` as its
+last step, so an interrupted batch leaves no partial job folder (stale temporary folders are
+removed by the next run). A job whose folder holds a ``job.json`` with status ``done`` and the
+same fingerprint (testcase, settings, policy file content) is skipped.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from xroute_cli.batch_config import BatchConfig
+from xroute_cli.config import CostSection, RunSettings, run_settings
+from xroute_cli.runs import policy_label
+
+JOB_RECORD = "job.json"
+JOB_FORMAT = 1
+
+
+@dataclass(frozen=True)
+class Job:
+    """One cell of the matrix."""
+
+    id: str  # testcase__policy__settings (names folders)
+    testcase: str
+    policy_label: str  # the policy's short name in ids and tables
+    settings_name: str
+    run: RunSettings
+    cost: CostSection
+
+    def fingerprint(self) -> str:
+        """What decides the job's result: testcase, settings, and the policy file's content."""
+        h = hashlib.sha1(json.dumps([self.testcase, self.run.to_dict()], sort_keys=True).encode())
+        p = Path(self.run.policy)
+        if p.is_file():
+            h.update(p.read_bytes())
+        return h.hexdigest()[:16]
+
+
+def plan_jobs(cfg: BatchConfig) -> list[Job]:
+    """The jobs of the matrix, testcase-major, in the file's order."""
+    b = cfg.batch
+    entries = b.settings or ()
+    jobs: list[Job] = []
+    for testcase in b.testcases:
+        for policy in b.policies:
+            label = policy_label(policy)
+            for entry in entries or (None,):
+                base = run_settings(
+                    cfg.base,
+                    region_size=entry.region_size if entry else None,
+                    iterations=entry.iteration_count if entry else None,
+                    threads=entry.thread_count if entry else None,
+                    policy=policy,
+                    seed=entry.seed if entry else None,
+                )
+                if entry is not None and entry.iteration_schedule is not None:
+                    base = RunSettings(**{**base.__dict__,
+                                          "schedule": tuple((e.region_size, e.offset) for e in entry.iteration_schedule)})
+                name = entry.name if entry else "default"
+                jobs.append(Job(f"{testcase}__{label}__{name}", testcase, label, name, base, cfg.base.cost))
+    ids = [j.id for j in jobs]
+    dupes = sorted({i for i in ids if ids.count(i) > 1})
+    if dupes:
+        from xroute_cli.config_schema import ConfigError
+
+        raise ConfigError(f"two jobs would share the id {dupes[0]} (policies with the same file name?)", cfg.path, 0)
+    return jobs
+
+
+
+def job_dir(out_root: Path, job: Job) -> Path:
+    return out_root / "jobs" / job.id
+
+
+def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
+    """The record of a finished job with the same fingerprint, or None."""
+    path = job_dir(out_root, job) / JOB_RECORD
+    try:
+        record = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if record.get("status") == "done" and record.get("fingerprint") == job.fingerprint():
+        return record
+    return None
+
+
+def clean_stale_job_folders(out_root: Path) -> list[Path]:
+    """Removes temporary job folders whose process is gone (an interrupted batch)."""
+    from xroute_cli.outputs import _pid_alive
+
+    removed = []
+    jobs = out_root / "jobs"
+    if not jobs.is_dir():
+        return removed
+    for p in jobs.iterdir():
+        pid_text = p.name.rpartition(".tmp-")[2]
+        if p.name.startswith(".") and ".tmp-" in p.name and pid_text.isdigit():
+            if int(pid_text) != os.getpid() and not _pid_alive(int(pid_text)):
+                shutil.rmtree(p, ignore_errors=True)
+                removed.append(p)
+    return removed
+
+
+def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
+    """Runs one job in this process and returns its record (status done, or error with the message).
+
+    ``events``: a queue receiving progress tuples ``(job id, iteration, regions done, regions total,
+    violations or None, iteration done, line)``; None for no progress.
+    """
+    from xroute_cli.console import error_line
+    from xroute_cli.errors import XrouteError
+    from xroute_cli.outputs import atomic_write_text
+    from xroute_cli.progress import iteration_line
+    from xroute_cli.runs import route_testcase, run_summary
+
+    root = Path(out_root)
+    final = job_dir(root, job)
+    tmp = root / "jobs" / f".{job.id}.tmp-{os.getpid()}"
+    shutil.rmtree(tmp, ignore_errors=True)
+    tmp.mkdir(parents=True)
+    record: dict[str, Any] = {
+        "format": JOB_FORMAT,
+        "id": job.id,
+        "testcase": job.testcase,
+        "policy": job.policy_label,
+        "policy_spec": job.run.policy,
+        "settings_name": job.settings_name,
+        "settings": job.run.to_dict(),
+        "fingerprint": job.fingerprint(),
+        "run_dir": str(final),
+    }
+
+    def progress(ev: Any) -> None:
+        if events is not None:
+            r = ev.report
+            events.put((job.id, r.iteration, ev.regions_done, ev.regions_total,
+                        r.violations if ev.iteration_done else None, ev.iteration_done,
+                        iteration_line(ev) if ev.iteration_done else ""))
+
+    started = time.perf_counter()
+    try:
+        outputs = route_testcase(job.testcase, job.run, tmp, progress=progress)
+        metrics = dict(outputs.metrics)  # name the final folder, not the temporary one
+        metrics["outputs"] = {k: str(final / Path(v).name) for k, v in metrics["outputs"].items()}
+        atomic_write_text(outputs.metrics_path, json.dumps(metrics, indent=2) + "\n")
+        record.update(status="done", seconds=time.perf_counter() - started, summary=run_summary(outputs, job.cost))
+        record["summary"]["out_dir"] = str(final)
+        record["summary"]["metrics"] = str(final / outputs.metrics_path.name)
+        atomic_write_text(tmp / JOB_RECORD, json.dumps(record, indent=2) + "\n")
+        if final.exists():
+            shutil.rmtree(final)  # an outdated result (other fingerprint)
+        os.replace(tmp, final)
+    except (XrouteError, OSError) as exc:
+        shutil.rmtree(tmp, ignore_errors=True)
+        record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return record
+
+
+@dataclass
+class BatchProgress:
+    """Callbacks of :func:`run_local` (the command layer shows them)."""
+
+    on_start: Callable[[Job], None] = lambda job: None
+    on_event: Callable[[tuple], None] = lambda ev: None
+    on_done: Callable[[Job, dict[str, Any]], None] = lambda job, rec: None
+
+
+def run_local(jobs: list[Job], out_root: Path, workers: int, progress: BatchProgress) -> dict[str, dict[str, Any]]:
+    """Runs ``jobs`` in ``workers`` processes; returns their records by job id.
+
+    Progress events come back through a manager queue, drained here while waiting.
+    """
+    import multiprocessing as mp
+    import queue as queue_mod
+
+    records: dict[str, dict[str, Any]] = {}
+    if not jobs:
+        return records
+    ctx = mp.get_context("spawn")  # no fork of a process that may hold threads
+    with ctx.Manager() as manager, ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        events = manager.Queue()
+        pending = {}
+        for job in jobs:
+            pending[pool.submit(run_job, job, str(out_root), events)] = job
+        started: set[str] = set()
+        while pending:
+            done, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+            while True:
+                try:
+                    ev = events.get_nowait()
+                except queue_mod.Empty:
+                    break
+                if ev[0] not in started:
+                    started.add(ev[0])
+                    progress.on_start(next(j for j in jobs if j.id == ev[0]))
+                progress.on_event(ev)
+            for fut in done:
+                job = pending.pop(fut)
+                records[job.id] = fut.result()
+                progress.on_done(job, records[job.id])
+    return records

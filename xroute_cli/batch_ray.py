@@ -1,0 +1,50 @@
+"""The Ray backend of ``xroute batch`` (optional extra ``ray``: ``pip install 'xroute[ray]'``).
+
+Each job runs as a Ray task (one CPU each) with :func:`xroute_cli.batch.run_job`; the workers
+must see the same testcases and output folder (a shared file system on a cluster). Connects
+to ``address`` (``ray://host:10001`` or ``host:6379``) or, with None, starts a local Ray instance
+for the run and shuts it down afterwards.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from xroute_cli.batch import BatchProgress, Job, run_job
+from xroute_cli.errors import XrouteError
+
+
+def run_ray(jobs: list[Job], out_root: Path, workers: int, progress: BatchProgress,
+            address: str | None) -> dict[str, dict[str, Any]]:
+    try:
+        import ray
+    except ImportError as exc:
+        raise XrouteError("the ray backend needs Ray: pip install 'xroute[ray]'") from exc
+    records: dict[str, dict[str, Any]] = {}
+    if not jobs:
+        return records
+    started_here = not ray.is_initialized()
+    if started_here:
+        try:
+            if address:
+                ray.init(address=address, log_to_driver=False)
+            else:
+                ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
+        except Exception as exc:  # noqa: BLE001 - connection problems are user errors
+            raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
+    try:
+        task = ray.remote(num_cpus=1)(run_job)
+        refs = {task.remote(job, str(out_root.resolve())): job for job in jobs}
+        for job in jobs:
+            progress.on_start(job)
+        while refs:
+            done, _ = ray.wait(list(refs), num_returns=1)
+            for ref in done:
+                job = refs.pop(ref)
+                records[job.id] = ray.get(ref)
+                progress.on_done(job, records[job.id])
+    finally:
+        if started_here:
+            ray.shutdown()
+    return records

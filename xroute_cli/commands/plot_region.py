@@ -1,0 +1,63 @@
+"""``xroute plot-region``: a PNG picture of the routing in a box (layers coloured, pins, DRC markers)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from xroute_cli.console import GuideOption, LefOption
+
+
+def plot_region(
+    source: Annotated[Path, typer.Argument(help="A route output folder (routed DEF, metrics JSON, DRC report), "
+                                                "or a DEF file (with --lef).", show_default=False)],
+    box: Annotated[str | None, typer.Option("--box", help="Region in DBU: xlo,ylo,xhi,yhi.", show_default=False)] = None,
+    gcell: Annotated[str | None, typer.Option("--gcell", help="Lower-left GCell of the region: X,Y (with --size).",
+                                              show_default=False)] = None,
+    size: Annotated[int, typer.Option("--size", help="Region side in GCells (with --gcell).", min=1)] = 1,
+    lef: LefOption = None,
+    guide: GuideOption = None,
+    drc: Annotated[Path | None, typer.Option("--drc", help="DRC report whose markers to draw "
+                                             "Default: the run folder's <design>.drc.rpt.", show_default=False)] = None,
+    out: Annotated[Path, typer.Option("--out", help="PNG file to write.")] = Path("region.png"),
+) -> None:
+    """Draw a region's routing as a PNG picture.
+
+    Wires, vias and patches coloured by layer, pins
+    hatched, design-rule markers in red, with a legend. Give the region as --box xlo,ylo,xhi,yhi
+    (DBU) or as --gcell X,Y --size C (GCells of the router's grid: the DEF's GCELLGRID, else the
+    guides' most common size). Needs matplotlib
+    (pip install 'xroute[plot]').
+
+    Example: xroute plot-region out/ispd18_test1 --gcell 35,43 --size 1 --out region1.png
+    """
+    from xroute_cli.design import load_design
+    from xroute_cli.outputs import atomic_write_bytes
+    from xroute_cli.plot_region import describe, gcell_box, parse_ints, read_drc_report, render_png, run_dir_inputs
+
+    if (box is None) == (gcell is None):
+        raise typer.BadParameter("give either --box xlo,ylo,xhi,yhi or --gcell X,Y", param_hint="--box/--gcell")
+    if source.is_dir():
+        lef_paths, def_path, found_guide, found_drc = run_dir_inputs(source)
+        drc = drc or found_drc
+        guide_path = str(guide) if guide else found_guide
+    else:
+        if not lef:
+            raise typer.BadParameter("a DEF file needs --lef", param_hint="--lef")
+        lef_paths, def_path, guide_path = [str(p) for p in lef], source, str(guide) if guide else None
+    if box is not None:
+        region = parse_ints(box, 4, "--box")
+        if region[0] >= region[2] or region[1] >= region[3]:
+            raise typer.BadParameter("xlo < xhi and ylo < yhi are needed", param_hint="--box")
+    design = load_design(lef=lef_paths, def_=def_path, guide=guide_path)
+    if gcell is not None:
+        gx, gy = parse_ints(gcell, 2, "--gcell")
+        region = gcell_box(design, gx, gy, size)
+    markers = read_drc_report(drc) if drc is not None else []
+    png = render_png(design, region, markers, f"{design.name} {describe(region)}")
+    if out.parent != Path(""):
+        out.parent.mkdir(parents=True, exist_ok=True)
+    atomic_write_bytes(out, png)
+    typer.echo(f"plot-region: {design.name} {describe(region)} -> {out}")

@@ -1,0 +1,250 @@
+"""xroute's settings as YAML: ``load_config("configs/default.yaml")`` -> :class:`XrouteConfig`.
+
+One section per concern (``testcase``, ``region``, ``router``, ``policy``, ``cost``, ``output``),
+each a frozen dataclass whose fields carry the XRoute paper's parameter names
+(``testcase_name``, ``testcase_loop``, ``region_size``, ``region_location``, ``region_loop``,
+``iteration_count``, ``thread_count``, ``net_loop``) and the cost weights (0.5 per µm of
+wirelength, 4 per via, 500 per design-rule violation). ``configs/default.yaml`` documents every
+key with its unit and default. The file is validated once, when loaded; any problem raises
+:class:`~xroute_cli.config_schema.ConfigError` with the file, the line and the dotted key.
+
+Paths *read* from a config (policy files, baseline files) are relative to the config file's
+folder; output folders are relative to the current directory.
+
+Other commands compose these sections with their own into a dataclass and load it with
+:func:`xroute_cli.config_schema.load_sections` (passing :data:`CHECKS`), e.g.::
+
+    @dataclass(frozen=True)
+    class TrainConfig:
+        testcase: TestcaseSection = TestcaseSection()
+        region: RegionSection = RegionSection()
+        ppo: PpoSection = PpoSection()          # their own section
+
+    cfg = load_sections(TrainConfig, "configs/train_ppo.yaml", CHECKS)
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+from xroute_cli.config_schema import ConfigError, Context, load_sections, setting
+from xroute_cli.errors import XrouteError
+from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
+
+__all__ = [
+    "CHECKS",
+    "ConfigError",
+    "CostSection",
+    "OutputSection",
+    "PolicySection",
+    "RegionSection",
+    "RouterSection",
+    "RunSettings",
+    "ScheduleEntry",
+    "TestcaseSection",
+    "XrouteConfig",
+    "load_config",
+    "run_settings",
+]
+
+
+# -- checks run on values (name -> function), shared with other commands' configs -------------------
+def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
+    from testcases.registry import find_testcase
+    from xroute_cli.errors import TestcaseNotFound
+
+    try:
+        find_testcase(value)
+    except TestcaseNotFound:
+        return value, f"testcase '{value}' not found on the search path (see `xroute testcases`)"
+    return value, None
+
+
+def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
+    """A built-in policy name stays as it is; anything else is a policy file, which must be
+    readable (relative to the config file's folder). Its format is checked when it is loaded."""
+    from policies.registry import BUILTIN_POLICIES
+
+    if value in BUILTIN_POLICIES:
+        return value, None
+    path = ctx.resolve(value)
+    if not path.suffix and os.sep not in value and "/" not in value and not path.exists():
+        names = ", ".join(BUILTIN_POLICIES)
+        return value, f"unknown policy '{value}': use {names}, or the path of a policy file (.py, .onnx)"
+    if path.exists() and not path.is_file():
+        return value, f"policy file {path} is not a file"
+    if not path.is_file():
+        return value, f"policy file not found: {path}"
+    try:
+        with open(path, "rb") as f:
+            f.read(1)
+    except OSError as exc:
+        return value, f"policy file {path} is not readable: {exc.strerror or exc}"
+    return str(path), None
+
+
+def check_input_file(value: str, ctx: Context) -> tuple[Any, str | None]:
+    path = ctx.resolve(value)
+    if not path.is_file():
+        return value, f"file not found: {path}"
+    if not os.access(path, os.R_OK):
+        return value, f"file is not readable: {path}"
+    return str(path), None
+
+
+CHECKS = {"testcase": check_testcase, "policy": check_policy, "input_file": check_input_file}
+
+
+# -- sections ----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class TestcaseSection:
+    """Which design (XRoute: testcase_name, testcase_loop)."""
+
+    __test__ = False  # not a pytest test class
+    testcase_name: str | None = setting(None, check="testcase", help="testcase on the search path")
+    testcase_loop: int = setting(1, min=1, help="passes over the testcase's regions (training environments)")
+
+
+@dataclass(frozen=True)
+class RegionSection:
+    """How the design is cut into regions (XRoute: region_size, region_location, region_loop)."""
+
+    region_size: int = setting(DEFAULT_REGION_SIZE, min=1, max=1000, unit="GCells")
+    region_location: tuple[int, int] | None = setting(None, items={"min": 0}, unit="GCell index (x, y)")
+    region_loop: int = setting(1, min=1, help="episodes per region (training environments)")
+
+    def __post_init__(self) -> None:
+        if self.region_location is not None and min(self.region_location) < 0:
+            raise ValueError(f"region_location must be GCell indices >= 0, got {list(self.region_location)}")
+
+
+@dataclass(frozen=True)
+class ScheduleEntry:
+    """One iteration of an iteration schedule: its region size and region offset."""
+
+    region_size: int = setting(min=1, max=1000, unit="GCells")
+    offset: int = setting(0, min=0, unit="GCells")
+
+    def __post_init__(self) -> None:
+        if self.region_size is not None and self.offset is not None and self.offset >= self.region_size:
+            raise ValueError(f"offset {self.offset} must be smaller than region_size {self.region_size}")
+
+
+@dataclass(frozen=True)
+class RouterSection:
+    """The routing flow (XRoute: iteration_count, thread_count, net_loop)."""
+
+    iteration_count: int = setting(DEFAULT_ITERATIONS, min=1, max=MAX_ITERATIONS)
+    thread_count: int = setting(1, min=1, max=1024)
+    net_loop: int = setting(1, min=1, help="orderings of each region's nets per visit (training environments)")
+    iteration_schedule: tuple[ScheduleEntry, ...] = ()  # empty: region_size with the default offsets
+
+
+@dataclass(frozen=True)
+class PolicySection:
+    """The net-order policy."""
+
+    policy: str = setting("heuristic", check="policy")
+    seed: int = setting(1, min=0, max=2**64 - 1)
+
+
+@dataclass(frozen=True)
+class CostSection:
+    """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs."""
+
+    wirelength_weight: float = setting(0.5, min=0.0, unit="per µm")
+    via_weight: float = setting(4.0, min=0.0, unit="per via")
+    drv_weight: float = setting(500.0, min=0.0, unit="per violation")
+
+    def cost(self, wirelength_um: float, vias: int, violations: int) -> float:
+        return self.wirelength_weight * wirelength_um + self.via_weight * vias + self.drv_weight * violations
+
+
+@dataclass(frozen=True)
+class OutputSection:
+    """Where results go and how progress is shown."""
+
+    out_dir: str | None = None  # default ./out/<design>
+    mode: Literal["auto", "rich", "lines", "quiet", "json"] = "auto"
+
+
+@dataclass(frozen=True)
+class XrouteConfig:
+    """The whole configuration (every section optional; defaults as in configs/default.yaml)."""
+
+    testcase: TestcaseSection = TestcaseSection()
+    region: RegionSection = RegionSection()
+    router: RouterSection = RouterSection()
+    policy: PolicySection = PolicySection()
+    cost: CostSection = CostSection()
+    output: OutputSection = OutputSection()
+
+
+def load_config(path: str | os.PathLike[str] | None) -> XrouteConfig:
+    """The validated config in ``path`` (None: all defaults). Raises ConfigError."""
+    if path is None:
+        return XrouteConfig()
+    return load_sections(XrouteConfig, path, CHECKS)
+
+
+# -- the settings of one routing run: config values, overridden by command-line flags -----------------
+@dataclass(frozen=True)
+class RunSettings:
+    """What one routing run uses (after the command-line flags override the config)."""
+
+    region_size: int  # GCells
+    iterations: int
+    threads: int
+    policy: str  # a name or a policy file path
+    seed: int
+    schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
+    net_loop: int = 1
+
+    def route_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of :func:`xroute_cli.router.route_design` (without the policy)."""
+        from xroute_cli.router import RouteSettings
+
+        kwargs: dict[str, Any] = {"region_size": self.region_size, "iterations": self.iterations,
+                                  "threads": self.threads, "seed": self.seed,
+                                  "schedule": list(self.schedule) if self.schedule else None}
+        RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
+                      seed=self.seed, schedule=self.schedule or None)  # RouteArgumentError when invalid
+        if self.net_loop != 1:
+            raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
+                              "once per visit; net_loop > 1 applies to the training environments only")
+        return kwargs
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
+                "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in self.schedule],
+                "net_loop": self.net_loop}
+
+
+def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iterations: int | None = None,
+                 threads: int | None = None, policy: str | None = None, seed: int | None = None,
+                 schedule: tuple[tuple[int, int], ...] | None = None) -> RunSettings:
+    """The run's settings: each flag that was given (not None) overrides the config value."""
+    if schedule is None:
+        schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
+    return RunSettings(
+        region_size=region_size if region_size is not None else cfg.region.region_size,
+        iterations=iterations if iterations is not None else cfg.router.iteration_count,
+        threads=threads if threads is not None else cfg.router.thread_count,
+        policy=policy if policy is not None else cfg.policy.policy,
+        seed=seed if seed is not None else cfg.policy.seed,
+        schedule=tuple(schedule),
+        net_loop=cfg.router.net_loop,
+    )
+
+
+def config_path_option_help() -> str:
+    return "YAML config (see configs/default.yaml); command-line flags override its values."
+
+
+def default_config_path() -> Path | None:
+    """configs/default.yaml of a source checkout (None for an installed package)."""
+    p = Path(__file__).resolve().parent.parent / "configs" / "default.yaml"
+    return p if p.is_file() else None

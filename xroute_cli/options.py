@@ -1,0 +1,53 @@
+"""Command-line options shared by the routing commands (route, evaluate, batch).
+
+Routing flags default to None, meaning "not given": the value then comes from ``--config``
+(see :mod:`xroute_cli.config`), and from the defaults in configs/default.yaml without one.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
+
+ConfigOption = Annotated[
+    Path | None,
+    typer.Option("--config", "-c", help="YAML config (see configs/default.yaml); flags given here override its values.",
+                 show_default=False),
+]
+OutOption = Annotated[
+    Path | None,
+    typer.Option("--out", help="Output folder (created if needed). Default: ./out/<design>.", show_default=False),
+]
+RegionSizeOption = Annotated[
+    int | None,
+    typer.Option("--region-size", help=f"Region side in GCells. Default: {DEFAULT_REGION_SIZE}.", show_default=False),
+]
+IterationsOption = Annotated[
+    int | None,
+    typer.Option("--iterations",
+                 help=f"Iteration limit (1..{MAX_ITERATIONS}); stops early at 0 violations. Default: {DEFAULT_ITERATIONS}.",
+                 show_default=False),
+]
+ThreadsOption = Annotated[
+    int | None,
+    typer.Option("--threads", help="Worker threads (the result does not depend on it). Default: 1.", show_default=False),
+]
+PolicyOption = Annotated[
+    str | None,
+    typer.Option("--policy",
+                 help="Net-order policy: heuristic, random, or a policy file (.py defining order(region, features)). "
+                      "Default: heuristic.", show_default=False),
+]
+SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]
+JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]
+QuietOption = Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")]
+ScheduleOption = Annotated[
+    str | None,
+    typer.Option("--schedule", help="Per-iteration region size and offset in GCells, cycled: e.g. '5:0,5:2,7:3' "
+                 "(overrides --region-size and the config's iteration_schedule). Default: --region-size with "
+                 "offsets 0, C/3, 2C/3.", show_default=False),
+]

@@ -1,0 +1,124 @@
+"""The self-contained HTML report of routing runs (``xroute report``): inline CSS and SVG only.
+
+A run is a ``*.metrics.json`` written by route, evaluate or batch; :func:`find_runs` collects
+them under the given folders. The page has a summary table (WL, vias, DRVs by type, opens,
+runtime, the paper's cost) and, per design, trend charts of WL / vias / DRVs over the
+iterations with one line per run (policy).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from html import escape
+from pathlib import Path
+from typing import Any
+
+from xroute_cli.config import CostSection
+from xroute_cli.errors import InputError
+from xroute_cli.svg_chart import line_chart
+
+MAX_DEPTH = 4  # folder levels searched below each RUN_DIR
+
+
+@dataclass(frozen=True)
+class Run:
+    name: str  # shown in tables and legends
+    path: Path  # the metrics JSON
+    metrics: dict[str, Any]
+
+
+def find_runs(folders: list[Path]) -> list[Run]:
+    """Every metrics JSON in or below ``folders`` (or the files themselves), in path order."""
+    files: list[Path] = []
+    for folder in folders:
+        if folder.is_file():
+            files.append(folder)
+            continue
+        if not folder.is_dir():
+            raise InputError("run folder not found", str(folder), 0)
+        found = sorted(p for p in folder.rglob("*.metrics.json")
+                       if len(p.relative_to(folder).parts) <= MAX_DEPTH + 1 and not any(
+                           part.startswith(".") for part in p.relative_to(folder).parts))
+        if not found:
+            raise InputError("no *.metrics.json (route, evaluate or batch output) found", str(folder), 0)
+        files += found
+    runs = []
+    for f in files:
+        try:
+            metrics = json.loads(f.read_text(encoding="utf-8"))
+            metrics["final"], metrics["iterations"]  # noqa: B018 - the fields the report needs
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            raise InputError(f"not a metrics JSON written by xroute ({type(exc).__name__}: {exc})", str(f), 0) from exc
+        runs.append(Run(name=_run_name(f), path=f, metrics=metrics))
+    return runs
+
+
+def _run_name(path: Path) -> str:
+    folder = path.parent.name
+    return folder if folder else path.stem
+
+
+CSS = """
+body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:24px;color:#222;background:#fff}
+h1{font-size:22px;margin:0 0 4px} h2{font-size:18px;margin:28px 0 8px} .sub{color:#666;margin:0 0 16px}
+table{border-collapse:collapse;font-size:13px} th,td{border:1px solid #d0d0d0;padding:4px 8px}
+th{background:#f0f3f7;text-align:left} td.n{text-align:right;font-variant-numeric:tabular-nums}
+tr:nth-child(even) td{background:#fafbfc} .charts{display:flex;flex-wrap:wrap;gap:12px}
+.chart-title{font-size:13px;font-weight:600} .tick{font-size:10px;fill:#555} .axis{font-size:11px;fill:#333}
+.legend{font-size:11px;fill:#222} .bad{color:#b00020;font-weight:600}
+"""
+
+
+def render(runs: list[Run], cost: CostSection, title: str = "xroute report") -> str:
+    """The whole HTML page."""
+    types = [t for t in _types(runs) if any(r.metrics["final"]["violations_by_type"].get(t) for r in runs)]
+    head = ["run", "design", "policy", "region size", "iterations", "WL (µm)", "vias", "DRVs", *types, "opens",
+            "runtime (s)", "cost"]
+    rows = []
+    for r in runs:
+        f, s = r.metrics["final"], r.metrics.get("settings", {})
+        c = cost.cost(f["wirelength_um"], f["vias"], f["violations"])
+        cells = [
+            f"<td>{escape(r.name)}</td>", f"<td>{escape(str(r.metrics.get('design', '')))}</td>",
+            f"<td>{escape(str(r.metrics.get('policy', '')))}</td>",
+            f'<td class="n">{s.get("region_size", "")}</td>',
+            f'<td class="n">{f.get("iterations_run", len(r.metrics["iterations"]))}</td>',
+            f'<td class="n">{f["wirelength_um"]:,.1f}</td>', f'<td class="n">{f["vias"]:,}</td>',
+            f'<td class="n">{f["violations"]:,}</td>',
+            *[f'<td class="n">{f["violations_by_type"].get(t, 0):,}</td>' for t in types],
+            f'<td class="n{" bad" if f.get("open_nets") else ""}">{f.get("open_nets", 0)}</td>',
+            f'<td class="n">{f.get("runtime_seconds", f.get("route_seconds", 0.0)):.2f}</td>',
+            f'<td class="n">{c:,.1f}</td>',
+        ]
+        rows.append(f'<tr class="run">{"".join(cells)}</tr>')
+    table = ("<table id=\"runs\"><thead><tr>" + "".join(f"<th>{escape(h)}</th>" for h in head)
+             + "</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>")
+
+    sections = []
+    designs = sorted({str(r.metrics.get("design", "")) for r in runs})
+    for design in designs:
+        mine = [r for r in runs if str(r.metrics.get("design", "")) == design]
+        charts = []
+        for key, label, unit in (("wirelength_um", "Wirelength", "µm"), ("vias", "Vias", "count"),
+                                 ("violations", "DRVs", "count")):
+            series = [(f"{r.name} ({r.metrics.get('policy', '')})", [float(it[key]) for it in r.metrics["iterations"]])
+                      for r in mine]
+            charts.append(line_chart(f"{label} by iteration", series, unit))
+        sections.append(f"<h2>{escape(design)}: trends over iterations</h2>\n<div class=\"charts\">{''.join(charts)}</div>")
+
+    sub = (f"{len(runs)} run(s); figures of the written DEF; cost = {cost.wirelength_weight:g}·WL(µm) + "
+           f"{cost.via_weight:g}·vias + {cost.drv_weight:g}·DRVs")
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>{escape(title)}</title><style>{CSS}</style></head><body>\n"
+            f"<h1>{escape(title)}</h1><p class=\"sub\">{escape(sub)}</p>\n<h2>Runs</h2>\n{table}\n"
+            + "\n".join(sections) + "\n</body></html>\n")
+
+
+def _types(runs: list[Run]) -> list[str]:
+    seen: list[str] = []
+    for r in runs:
+        for t in r.metrics["final"]["violations_by_type"]:
+            if t not in seen:
+                seen.append(t)
+    return seen

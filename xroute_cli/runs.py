@@ -1,0 +1,87 @@
+"""One routing run from settings to written outputs, shared by evaluate and batch.
+
+The library never prints: progress goes to the optional callback.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable
+
+if TYPE_CHECKING:
+    from xroute_cli.config import CostSection, RunSettings
+    from xroute_cli.outputs import RouteOutputs
+    from xroute_cli.router import RouteProgress
+
+
+def route_testcase(testcase: str, settings: RunSettings, out_dir: str | Path,
+                   progress: Callable[[RouteProgress], None] | None = None) -> RouteOutputs:
+    """Loads ``testcase``, routes it with ``settings`` and writes the checked outputs into ``out_dir``."""
+    from policies.registry import get_policy
+    from xroute_cli.design import load_design
+    from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
+    from xroute_cli.router import route_design
+
+    started = time.perf_counter()
+    kwargs = settings.route_kwargs()
+    policy = get_policy(settings.policy, settings.seed)
+    design = load_design(testcase)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    clean_stale_temporaries(out)
+    result = route_design(design, policy=policy, progress=progress, **kwargs)
+    return write_route_outputs(design, result, out, started=started)
+
+
+def run_summary(outputs: RouteOutputs, cost: CostSection) -> dict[str, Any]:
+    """The figures of a run for tables and JSON: per iteration (router's view) and final (checked DEF),
+    each with the paper's cost."""
+    m = outputs.metrics
+    f = m["final"]
+    iterations = [
+        {
+            "iteration": it["iteration"],
+            "region_size": it.get("region_size"),
+            "offset": it.get("offset"),
+            "wirelength_um": it["wirelength_um"],
+            "vias": it["vias"],
+            "violations": it["violations"],
+            "violations_by_type": it["violations_by_type"],
+            "seconds": it["seconds"],
+            "cost": cost.cost(it["wirelength_um"], it["vias"], it["violations"]),
+        }
+        for it in m["iterations"]
+    ]
+    policy_seconds = f.get("policy_seconds")
+    route_seconds = f["route_seconds"]
+    return {
+        "policy": m["policy"],
+        "out_dir": str(outputs.metrics_path.parent),
+        "metrics": str(outputs.metrics_path),
+        "iterations": iterations,
+        "final": {
+            "wirelength_um": f["wirelength_um"],
+            "vias": f["vias"],
+            "violations": f["violations"],
+            "violations_by_type": f["violations_by_type"],
+            "open_nets": f["open_nets"],
+            "route_seconds": route_seconds,
+            "runtime_seconds": f["runtime_seconds"],
+            "policy_seconds": policy_seconds,
+            "policy_share": (policy_seconds / route_seconds) if policy_seconds is not None and route_seconds > 0 else None,
+            "cost": cost.cost(f["wirelength_um"], f["vias"], f["violations"]),
+        },
+    }
+
+
+def safe_name(text: str) -> str:
+    """A file-name-safe version of a policy or job name."""
+    keep = "".join(c if c.isalnum() or c in "-_." else "-" for c in Path(text).name)
+    return keep.strip(".-") or "run"
+
+
+def policy_label(spec: str) -> str:
+    """A policy's short name for folders and tables: a built-in's name, a policy file's stem."""
+    p = Path(spec)
+    return safe_name(p.stem if p.suffix else spec)
