@@ -91,7 +91,8 @@ def _check(cfg: CommonConfig) -> str | None:
     return None
 
 
-def config_from_dict(algorithm: str, values: dict[str, Any], path: str = "", lines: dict[str, int] | None = None) -> CommonConfig:
+def config_from_dict(algorithm: str, values: dict[str, Any], path: str = "",
+                     lines: dict[str, int] | None = None) -> CommonConfig:
     """Settings of ``algorithm`` with ``values`` over the defaults (checked; errors name ``path``:line)."""
     lines = lines or {}
     cls = CONFIG_CLASSES[algorithm]

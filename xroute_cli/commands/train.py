@@ -68,20 +68,39 @@ def _require_torch() -> None:
         raise TrainError(f"training needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
 
 
+AlgorithmArg = Annotated[str, typer.Argument(help="ppo or dqn.", show_default=False)]
+TestcaseOpt = Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")]
+EpisodesOpt = Annotated[int, typer.Option("--episodes", min=1, help="Episodes (regions) to train on.")]
+ConfigOpt = Annotated[Path | None, typer.Option(
+    "--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)]
+OutOpt = Annotated[Path | None, typer.Option(
+    "--out", help="Output folder (default: runs/train-<algorithm>-<testcase>).", show_default=False)]
+SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Seed of torch, the env and exploration.")]
+SizeOpt = Annotated[int, typer.Option("--region-size", min=1, help="Region size in GCells.")]
+LocationOpt = Annotated[str | None, typer.Option(
+    "--region-location", help="Train on one region: X,Y of its lower-left GCell.", show_default=False)]
+OrderOpt = Annotated[str, typer.Option("--region-order", help="Walk of the regions: sequential or random.")]
+LoopOpt = Annotated[int, typer.Option("--region-loop", min=1, help="Episodes per region (replays from one state).")]
+HoldOutOpt = Annotated[int, typer.Option(
+    "--hold-out-every", min=0, help="Hold out regions whose lower-left GCell x and y are both K//2 mod K (0: none).")]
+MinCandOpt = Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")]
+
+
 def train(
-    algorithm: Annotated[str, typer.Argument(help="ppo or dqn.", show_default=False)],
-    testcase: Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")],
-    episodes: Annotated[int, typer.Option("--episodes", min=1, help="Episodes (regions) to train on.")],
-    config: Annotated[Path | None, typer.Option("--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)] = None,
-    out: Annotated[Path | None, typer.Option("--out", help="Output folder [default: runs/train-<algorithm>-<testcase>].", show_default=False)] = None,
-    seed: Annotated[int, typer.Option("--seed", min=0, help="Seed of torch, the env and exploration.")] = 1,
-    region_size: Annotated[int, typer.Option("--region-size", min=1, help="Region size in GCells.")] = 1,
-    region_location: Annotated[str | None, typer.Option("--region-location", help="Train on one region: X,Y of its lower-left GCell.", show_default=False)] = None,
-    region_order: Annotated[str, typer.Option("--region-order", help="Walk of the regions: sequential or random.")] = "sequential",
-    region_loop: Annotated[int, typer.Option("--region-loop", min=1, help="Episodes per region (replays from the same state).")] = 1,
-    hold_out_every: Annotated[int, typer.Option("--hold-out-every", min=0, help="Hold out regions whose lower-left GCell x and y are both K//2 mod K (0: none).")] = 0,
-    min_candidates: Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")] = 1,
-    json_out: Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")] = False,
+    algorithm: AlgorithmArg,
+    testcase: TestcaseOpt,
+    episodes: EpisodesOpt,
+    config: ConfigOpt = None,
+    out: OutOpt = None,
+    seed: SeedOpt = 1,
+    region_size: SizeOpt = 1,
+    region_location: LocationOpt = None,
+    region_order: OrderOpt = "sequential",
+    region_loop: LoopOpt = 1,
+    hold_out_every: HoldOutOpt = 0,
+    min_candidates: MinCandOpt = 1,
+    json_out: JsonOpt = False,
 ) -> None:
     """Train a PPO or DQN net-order policy on a testcase's regions; write checkpoints and a metrics log."""
     if algorithm not in ALGORITHMS:
@@ -108,7 +127,8 @@ def train(
             task = progress.add_task("episodes", total=episodes, status="")
 
             def on_episode(row: dict[str, Any]) -> None:
-                progress.update(task, advance=1, status=f"steps {row['total_steps']}  last cost {row['cost'] or 0:,.1f}")
+                status = f"steps {row['total_steps']}  last cost {row['cost'] or 0:,.1f}"
+                progress.update(task, advance=1, status=status)
 
             result = run_training(algorithm, make_env, episodes, cfg, out_dir, seed, on_episode)
     costs = [r["cost"] or 0.0 for r in result.episodes]
