@@ -17,6 +17,7 @@ from typer.core import TyperGroup
 from xroute_cli.commands import (
     batch,
     evaluate,
+    export,
     global_route,
     info,
     make_region,
@@ -25,6 +26,7 @@ from xroute_cli.commands import (
     report,
     route,
     testcases,
+    train,
 )
 from xroute_cli.console import USER_ERRORS, print_error
 
@@ -53,6 +55,8 @@ app = typer.Typer(
 app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
+app.command(name="train")(train.train)
+app.command(name="export")(export.export)
 app.command(name="make-region")(make_region.make_region_command)
 app.command(name="make-testcase")(make_testcase.make_testcase)
 app.command(name="evaluate")(evaluate.evaluate)

@@ -1,0 +1,144 @@
+"""``xroute train ppo|dqn``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
+
+Writes into ``--out`` (default ``runs/train-<algorithm>-<testcase>``): ``metrics.jsonl`` (one line
+per episode = region) and checkpoints ``<algorithm>-epNNNNN.pt`` / ``<algorithm>-final.pt``, which
+``xroute export`` turns into an ONNX model. Exit status 2 for user errors (unknown testcase, bad
+config file, torch not installed).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+from xroute_cli.console import print_json, stdout_console
+from xroute_cli.errors import XrouteError
+
+ALGORITHMS = ("ppo", "dqn")
+
+
+class TrainError(XrouteError):
+    """Training cannot start (missing extra, bad option)."""
+
+
+def parse_location(text: str | None) -> tuple[int, int] | None:
+    """``"X,Y"`` (GCell column, row) -> (X, Y)."""
+    if text is None:
+        return None
+    parts = text.split(",")
+    try:
+        x, y = (int(p) for p in parts)
+    except ValueError:
+        raise typer.BadParameter(f"expected X,Y (two GCell indices), got {text!r}", param_hint="--region-location")
+    if x < 0 or y < 0:
+        raise typer.BadParameter(f"GCell indices must be >= 0, got {text!r}", param_hint="--region-location")
+    return x, y
+
+
+def training_env_factory(testcase: str, region_size: int, location: tuple[int, int] | None, order: str,
+                         max_candidates: int, region_loop: int = 1, hold_out_every: int = 0,
+                         min_candidates: int = 1) -> Any:
+    """A function making the training env (``xroute/NetOrdering-v0``) for these options, wrapped in
+    a :class:`~policies.rl.region_filter.RegionFilter` when regions are held out or skipped."""
+
+    def make() -> Any:
+        import gymnasium
+
+        import policies.rl  # noqa: F401 - registers the env IDs
+        from policies.rl.region_filter import RegionFilter
+
+        env = gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,
+                             region_size=region_size, testcase_loop=1_000_000, region_location=location,
+                             region_loop=region_loop, max_candidates=max_candidates, region_order=order).unwrapped
+        if hold_out_every > 0 or min_candidates > 1:
+            return RegionFilter(env, hold_out_every, min_candidates)
+        return env
+
+    return make
+
+
+def _require_torch() -> None:
+    try:
+        import gymnasium  # noqa: F401
+        import torch  # noqa: F401
+    except ImportError as exc:
+        raise TrainError(f"training needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
+
+
+AlgorithmArg = Annotated[str, typer.Argument(help="ppo or dqn.", show_default=False)]
+TestcaseOpt = Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")]
+EpisodesOpt = Annotated[int, typer.Option("--episodes", min=1, help="Episodes (regions) to train on.")]
+ConfigOpt = Annotated[Path | None, typer.Option(
+    "--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)]
+OutOpt = Annotated[Path | None, typer.Option(
+    "--out", help="Output folder (default: runs/train-<algorithm>-<testcase>).", show_default=False)]
+SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Seed of torch, the env and exploration.")]
+SizeOpt = Annotated[int, typer.Option("--region-size", min=1, help="Region size in GCells.")]
+LocationOpt = Annotated[str | None, typer.Option(
+    "--region-location", help="Train on one region: X,Y of its lower-left GCell.", show_default=False)]
+OrderOpt = Annotated[str, typer.Option("--region-order", help="Walk of the regions: sequential or random.")]
+LoopOpt = Annotated[int, typer.Option("--region-loop", min=1, help="Episodes per region (replays from one state).")]
+HoldOutOpt = Annotated[int, typer.Option(
+    "--hold-out-every", min=0, help="Hold out regions whose lower-left GCell x and y are both K//2 mod K (0: none).")]
+MinCandOpt = Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")]
+
+
+def train(
+    algorithm: AlgorithmArg,
+    testcase: TestcaseOpt,
+    episodes: EpisodesOpt,
+    config: ConfigOpt = None,
+    out: OutOpt = None,
+    seed: SeedOpt = 1,
+    region_size: SizeOpt = 1,
+    region_location: LocationOpt = None,
+    region_order: OrderOpt = "sequential",
+    region_loop: LoopOpt = 1,
+    hold_out_every: HoldOutOpt = 0,
+    min_candidates: MinCandOpt = 1,
+    json_out: JsonOpt = False,
+) -> None:
+    """Train a PPO or DQN net-order policy on a testcase's regions; write checkpoints and a metrics log."""
+    if algorithm not in ALGORITHMS:
+        raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo or dqn", param_hint="ALGORITHM")
+    if region_order not in ("sequential", "random"):
+        raise typer.BadParameter(f"use sequential or random, got {region_order!r}", param_hint="--region-order")
+    location = parse_location(region_location)
+    _require_torch()
+    from policies.rl.train import train as run_training
+    from policies.rl.train_config import load_config
+    from testcases import find_testcase
+
+    cfg = load_config(algorithm, config)
+    find_testcase(testcase)  # unknown testcase: one-line error before any work
+    out_dir = out or Path("runs") / f"train-{algorithm}-{testcase}"
+    make_env = training_env_factory(testcase, region_size, location, region_order, cfg.max_candidates, region_loop,
+                                    hold_out_every, min_candidates)
+    console = stdout_console()
+    if json_out:
+        result = run_training(algorithm, make_env, episodes, cfg, out_dir, seed)
+    else:
+        with Progress(TextColumn("[bold]train " + algorithm), BarColumn(), MofNCompleteColumn(),
+                      TextColumn("{task.fields[status]}"), TimeElapsedColumn(), console=console) as progress:
+            task = progress.add_task("episodes", total=episodes, status="")
+
+            def on_episode(row: dict[str, Any]) -> None:
+                status = f"steps {row['total_steps']}  last cost {row['cost'] or 0:,.1f}"
+                progress.update(task, advance=1, status=status)
+
+            result = run_training(algorithm, make_env, episodes, cfg, out_dir, seed, on_episode)
+    costs = [r["cost"] or 0.0 for r in result.episodes]
+    summary = {"algorithm": algorithm, "testcase": testcase, "episodes": episodes,
+               "steps": result.episodes[-1]["total_steps"] if result.episodes else 0,
+               "seconds": round(result.seconds, 2), "mean_cost": sum(costs) / max(1, len(costs)),
+               "metrics_log": str(result.out_dir / "metrics.jsonl"), "checkpoint": str(result.final_checkpoint)}
+    if json_out:
+        print_json({"summary": summary, "episodes": result.episodes})
+        return
+    console.print(f"trained {algorithm} on {testcase}: {episodes} episodes, {summary['steps']} steps, "
+                  f"{summary['seconds']:.1f} s, mean region cost {summary['mean_cost']:,.1f}")
+    console.print(f"checkpoint {summary['checkpoint']}  log {summary['metrics_log']}", highlight=False)
