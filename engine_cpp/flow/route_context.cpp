@@ -15,12 +15,13 @@ void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& 
   for (const RoutePatch& p : routing.patches) out.push_back({p.layer, p.rect});
 }
 
-RouteContext::RouteContext(const Tech& t, Design& d, int threads) : tech(t), design(d) {
+RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPointsPerPin) : tech(t), design(d) {
   tracks = buildTracks(tech, design);
   vias = chooseVias(tech, tracks);
   rules = makeFootprintRules(tech, tracks, vias);
   PinAccessSettings pas;
   pas.threads = std::max(1, threads);
+  pas.maxPointsPerPin = std::max(1, accessPointsPerPin);
   access = computePinAccess(tech, design, tracks, pas);
   gcells = makeGCellGrid(design, tracks);
 

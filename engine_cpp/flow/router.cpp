@@ -45,7 +45,7 @@ ScheduleStep stepFor(const RouterSettings& s, int iteration) {
 class Flow {
  public:
   Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress)
-      : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), ctx_(tech, design, s.threads) {}
+      : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
 
   RouteOutcome run() {
     for (Net& n : design_.nets) n.routing = NetRouting{};

@@ -14,6 +14,7 @@
 #include "db/design.hpp"
 #include "drc/drc.hpp"
 #include "flow/policy.hpp"
+#include "flow/route_context.hpp"
 #include "route/maze.hpp"
 
 namespace xroute {
@@ -32,8 +33,9 @@ struct RouterSettings {
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...
   MazeCosts costs;                 // maze costs of iteration 0
   int64_t usePenaltyStep = 4000;   // added to costs.usePenalty at each later iteration
-  int64_t markerPenalty = 10000;   // cost units per node near a marker of the last iteration
-  int64_t historyPenalty = 3000;   // cost units per node near any earlier marker
+  int accessPointsPerPin = kAccessPointsPerPin;  // access points kept per pin
+  int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
+  int64_t historyPenalty = 1000;   // cost units per node near any earlier marker
   bool stopAtZero = true;          // stop when an iteration ends without markers
 };
 
