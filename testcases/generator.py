@@ -1,6 +1,6 @@
 """Generated testcases: ``make_testcase(cells, seed, out_dir)`` writes a technology LEF, a placed DEF and guides.
 
-The folder's name is the testcase (and DEF design) name: ``out_dir/<name>.input.{lef,def,guide}``
+The folder's name is the testcase (and DEF design) name: ``out_dir/<name>.{lef,def,guide}``
 with ``<name> = out_dir.name``, so a folder under a search-path root is found by that name. The
 same (cells, seed, name) gives byte-identical files. The pieces:
 
@@ -126,7 +126,7 @@ def make_testcase(cells: int, seed: int, out_dir: str | Path) -> Path:
         "guide": write_guides(_guides(nl, net_names)),
     }
     for ext, text in files.items():
-        path = folder / f"{name}.input.{ext}"
+        path = folder / f"{name}.{ext}"
         tmp = path.with_suffix(path.suffix + ".tmp")
         tmp.write_text(text)
         tmp.replace(path)

@@ -28,13 +28,13 @@ def runner() -> CliRunner:
 
 
 def _files(folder: Path) -> dict[str, bytes]:
-    return {ext: (folder / f"{folder.name}.input.{ext}").read_bytes() for ext in EXTS}
+    return {ext: (folder / f"{folder.name}.{ext}").read_bytes() for ext in EXTS}
 
 
 def _load(folder: Path):
     from xroute_cli.design import load_design
 
-    f = {ext: str(folder / f"{folder.name}.input.{ext}") for ext in EXTS}
+    f = {ext: str(folder / f"{folder.name}.{ext}") for ext in EXTS}
     return load_design(lef=[f["lef"]], def_=f["def"], guide=f["guide"])
 
 
@@ -63,7 +63,7 @@ def test_generated_design_is_legal_and_guided(tmp_path: Path) -> None:
     # Placement: on the site grid, inside the die, no overlap within a row.
     rows: dict[int, list[tuple[int, int]]] = {}
     logic = 0
-    for line in (folder / "g300.input.def").read_text().splitlines():
+    for line in (folder / "g300.def").read_text().splitlines():
         if " + PLACED " in line and line.startswith("- ") and "NET" not in line:
             words = line.split()
             cell, x, y = CELL_BY_NAME[words[2]], int(words[6]), int(words[7])
@@ -130,7 +130,7 @@ def test_make_testcase_usage_errors(runner: CliRunner, tmp_path: Path, args: lis
 
 
 def test_generator_cell_mix(tmp_path: Path) -> None:
-    text = (make_testcase(500, 11, tmp_path / "g") / "g.input.def").read_text()
+    text = (make_testcase(500, 11, tmp_path / "g") / "g.def").read_text()
     used = Counter(line.split()[2] for line in text.splitlines() if line.startswith("- ") and "PLACED" in line
                    and "NET" not in line)
     assert {"INV_X1", "NAND2_X1", "NOR2_X1", "DFF_X1", "BUF_X1", "FILL_X1"} <= set(used)

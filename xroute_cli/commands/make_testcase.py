@@ -1,6 +1,7 @@
 """``xroute make-testcase``: generate a testcase (``--cells N --seed S``) or tile a real one (``--tile NAME --by RxC``).
 
-The output folder's name is the testcase's name: ``--out DIR`` writes ``DIR/<DIR name>.input.{lef,def,guide}``.
+The output folder's name is the testcase's name: ``--out DIR`` writes ``DIR/<DIR name>.{lef,def,guide}``
+(generated) or ``DIR/<DIR name>.input.{lef,def,guide}`` (tiled, the contest naming of the original).
 Default folders: ``./gen<N>_s<S>`` and ``./<NAME>_<R>x<C>``. The written files are loaded back once to
 check them and to print their counts.
 """
@@ -33,8 +34,8 @@ def make_testcase(
 ) -> None:
     """Write a testcase: a generated one (--cells N [--seed S]: our own 45 nm-like technology LEF, a placed
     DEF, guides) or R x C renamed copies of a real one (--tile NAME --by RxC). Route it with
-    `xroute route --lef DIR/X.input.lef --def DIR/X.input.def --guide DIR/X.input.guide`, or by name
-    with DIR's parent folder in XROUTE_TESTCASES."""
+    `xroute route --lef DIR/X.lef --def DIR/X.def --guide DIR/X.guide` (tiled: X.input.lef, ...), or by
+    name with DIR's parent folder in XROUTE_TESTCASES."""
     if (cells is None) == (tile is None):
         raise typer.BadParameter("give exactly one of --cells N or --tile TESTCASE", param_hint="--cells/--tile")
 
@@ -50,7 +51,8 @@ def make_testcase(
         rows, cols = parse_by(by)
         folder = tile_testcase(tile, rows, cols, out if out is not None else Path(f"{tile}_{rows}x{cols}"))
     name = folder.resolve().name
-    files = {ext: folder / f"{name}.input.{ext}" for ext in ("lef", "def", "guide")}
+    infix = "" if cells is not None else ".input"
+    files = {ext: folder / f"{name}{infix}.{ext}" for ext in ("lef", "def", "guide")}
     guide = files["guide"] if files["guide"].is_file() else None
     design = load_design(lef=[str(files["lef"])], def_=str(files["def"]), guide=str(guide) if guide else None)
     counts = design.counts()
