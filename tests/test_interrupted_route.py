@@ -17,8 +17,11 @@ REPO = Path(__file__).resolve().parent.parent
 DESIGN = "ispd19_sample4"
 
 
-def start_route(out: Path) -> subprocess.Popen:
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p), "CI": "true"}
+def start_route(out: Path, testcases_root: Path) -> subprocess.Popen:
+    # The child runs in a temporary folder: name the testcases' root (an installed package has no
+    # checkout beside which to look for ../shared/testcases).
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p), "CI": "true",
+           "XROUTE_TESTCASES": str(testcases_root)}
     return subprocess.Popen([sys.executable, "-m", "xroute_cli", "route", DESIGN, "--iterations", "1", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=out.parent)
 
@@ -37,11 +40,11 @@ def assert_complete_or_absent(out: Path) -> None:
 
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT])
 def test_killed_route_leaves_whole_files_and_rerun_completes(testcase, tmp_path: Path, sig: int) -> None:
-    testcase(DESIGN)
+    root = testcase(DESIGN).folder.parent
     out = tmp_path / "out"
     # Kill at several moments after the only iteration ends: while the outputs are written and checked.
     for delay in (0.0, 0.05, 0.1, 0.15):
-        proc = start_route(out)
+        proc = start_route(out, root)
         assert proc.stdout is not None
         for line in proc.stdout:
             if line.startswith("iteration 0:"):
@@ -52,7 +55,7 @@ def test_killed_route_leaves_whole_files_and_rerun_completes(testcase, tmp_path:
         assert_complete_or_absent(out)
         if sig == signal.SIGINT:  # Ctrl-C: the atomic writers remove their temporary files themselves
             assert not [p.name for p in out.iterdir() if ".tmp" in p.name]
-    proc = start_route(out)
+    proc = start_route(out, root)
     stdout, stderr = proc.communicate(timeout=120)
     assert proc.returncode == 0, stderr
     assert sorted(p.name for p in out.iterdir()) == sorted(f"{DESIGN}{s}" for s in (".drc.rpt", ".metrics.json", ".routed.def"))

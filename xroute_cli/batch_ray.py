@@ -8,11 +8,33 @@ for the run and shuts it down afterwards.
 
 from __future__ import annotations
 
+import pickle
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
-from xroute_cli.batch import BatchProgress, Job, run_job
+import xroute_cli
+from xroute_cli.batch import BatchProgress, Job
 from xroute_cli.errors import XrouteError
+
+
+def _job_runner(package_root: str | None) -> Callable[[bytes, str], dict[str, Any]]:
+    """The Ray task body. A nested function, so Ray ships it by value: the worker imports nothing of
+    xroute before it runs. With ``package_root`` (a local instance) the worker first puts the folder
+    this driver imported xroute from at the front of ``sys.path``: local workers start in the
+    driver's working directory, which may be a source checkout whose package has no compiled
+    engine. The job travels pickled for the same reason (unpickling imports its classes)."""
+
+    def run(job_bytes: bytes, out_root: str) -> dict[str, Any]:
+        import pickle as _pickle
+        import sys
+
+        if package_root is not None and (not sys.path or sys.path[0] != package_root):
+            sys.path.insert(0, package_root)
+        from xroute_cli.batch import run_job
+
+        return run_job(_pickle.loads(job_bytes), out_root)
+
+    return run
 
 
 def run_ray(jobs: list[Job], out_root: Path, workers: int, progress: BatchProgress,
@@ -34,8 +56,10 @@ def run_ray(jobs: list[Job], out_root: Path, workers: int, progress: BatchProgre
         except Exception as exc:  # noqa: BLE001 - connection problems are user errors
             raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
     try:
-        task = ray.remote(num_cpus=1)(run_job)
-        refs = {task.remote(job, str(out_root.resolve())): job for job in jobs}
+        # On a cluster the workers use their own installed xroute; locally, the driver's.
+        package_root = None if address else str(Path(xroute_cli.__file__).resolve().parent.parent)
+        task = ray.remote(num_cpus=1)(_job_runner(package_root))
+        refs = {task.remote(pickle.dumps(job), str(out_root.resolve())): job for job in jobs}
         for job in jobs:
             progress.on_start(job)
         while refs:
