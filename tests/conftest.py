@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 import pytest
+from typer.testing import CliRunner
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 
@@ -91,3 +92,17 @@ def loaded_design() -> Callable[..., Any]:
         return cache[key]
 
     return load
+
+
+def make_runner() -> CliRunner:
+    """A CliRunner whose ``result.stderr`` is separate from ``result.stdout`` on every Click version."""
+    try:
+        return CliRunner(mix_stderr=False)  # Click < 8.2 mixes stderr into stdout by default
+    except TypeError:
+        return CliRunner()  # Click >= 8.2: result.stderr is always separate
+
+
+@pytest.fixture
+def runner() -> CliRunner:
+    """See :func:`make_runner`."""
+    return make_runner()

@@ -22,13 +22,6 @@ from xroute_cli.errors import TestcaseNotFound as NotFound
 WIDE = {"COLUMNS": "200"}  # tables wide enough that no cell wraps, whatever the caller's terminal
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)  # Click < 8.2 mixes stderr into stdout by default
-    except TypeError:
-        return CliRunner()  # Click >= 8.2: result.stderr is always separate
-
 
 def _line(output: str, label: str) -> str:
     """The table row whose first cell is ``label``."""

@@ -8,21 +8,14 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from typer.testing import CliRunner
 
-from conftest import require_testcase
+from conftest import make_runner, require_testcase
 from xroute_cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
 SMOKE = REPO / "configs" / "ci-smoke.yaml"
 SMOKE_JOBS = [f"{t}__{p}__rs5" for t in ("ispd18_sample", "ispd18_sample2", "ispd19_sample4") for p in ("heuristic", "random")]
 
-
-def make_runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
 
 
 def smoke_variant(tmp_path: Path, **replace: str) -> Path:

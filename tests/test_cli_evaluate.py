@@ -14,13 +14,6 @@ REPO = Path(__file__).resolve().parent.parent
 PY_POLICY = REPO / "bench" / "python_heuristic_policy.py"
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
-
 
 def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, tmp_path: Path) -> None:
     testcase("ispd19_sample4")

@@ -21,13 +21,6 @@ def need_matplotlib() -> None:
         pytest.skip("matplotlib not installed (pip install 'xroute[plot]')")
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
-
 
 @pytest.fixture
 def routed(runner: CliRunner, testcase, tmp_path: Path) -> Path:

@@ -28,13 +28,6 @@ def chromium() -> str:
     pytest.skip("chromium not installed (apt-get install chromium)")
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
-
 
 @pytest.fixture
 def two_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:

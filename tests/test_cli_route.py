@@ -12,13 +12,6 @@ from typer.testing import CliRunner
 from xroute_cli.app import app
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)  # Click < 8.2 mixes stderr into stdout by default
-    except TypeError:
-        return CliRunner()  # Click >= 8.2: result.stderr is always separate
-
 
 def outputs(folder: Path, design: str) -> list[Path]:
     return [folder / f"{design}.routed.def", folder / f"{design}.metrics.json", folder / f"{design}.drc.rpt"]

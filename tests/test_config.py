@@ -19,13 +19,6 @@ REPO = Path(__file__).resolve().parent.parent
 CONFIGS = REPO / "configs"
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
-
 
 def write(tmp_path: Path, text: str, name: str = "c.yaml") -> Path:
     p = tmp_path / name

@@ -19,13 +19,6 @@ from xroute_cli.app import app
 EXTS = ("lef", "def", "guide")
 
 
-@pytest.fixture
-def runner() -> CliRunner:
-    try:
-        return CliRunner(mix_stderr=False)
-    except TypeError:
-        return CliRunner()
-
 
 def _files(folder: Path) -> dict[str, bytes]:
     return {ext: (folder / f"{folder.name}.{ext}").read_bytes() for ext in EXTS}

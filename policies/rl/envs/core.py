@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable
 
+import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
@@ -160,3 +161,34 @@ class RegionStepper:
         info = {"net": int(result["net"]), "candidate": cand, "invalid_action": invalid,
                 "metrics": self.metrics, "cost": cost, "unreached": int(result["unreached"])}
         return float(reward), info
+
+
+class RegionEnv(gym.Env):
+    """What the net-ordering envs share: the current episode's :class:`RegionStepper` (None between
+    episodes), its action mask and its engine Region. Subclasses set ``max_candidates``, create the
+    stepper in ``reset`` and define ``_info()`` (the env's own info keys)."""
+
+    max_candidates: int
+    _stepper: RegionStepper | None = None
+
+    def _info(self) -> dict[str, Any]:
+        raise NotImplementedError
+
+    def _step_region(self, action: int) -> tuple[dict[str, np.ndarray], float, bool, dict[str, Any]]:
+        """Routes the chosen net: (observation, reward, region done, info with the env's keys)."""
+        if self._stepper is None:
+            raise RuntimeError("the episode is over (or never started): call reset()")
+        reward, info = self._stepper.step(action)
+        info.update(self._info())
+        return self._stepper.observation(), reward, self._stepper.done, info
+
+    def action_masks(self) -> np.ndarray:
+        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
+        if self._stepper is None:
+            return np.zeros(self.max_candidates, dtype=bool)
+        return self._stepper.action_mask()
+
+    @property
+    def region(self) -> Any:
+        """The engine Region of the current episode (None between episodes)."""
+        return None if self._stepper is None else self._stepper.region

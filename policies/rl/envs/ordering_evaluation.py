@@ -28,6 +28,7 @@ import numpy as np
 from policies.rl.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
+    RegionEnv,
     RegionStepper,
     RewardFn,
     check_max_candidates,
@@ -59,7 +60,7 @@ class _LendingPolicy:
         return list(range(len(features)))  # every net is routed already; nothing is left to order
 
 
-class NetOrderingEvaluationEnv(gym.Env):
+class NetOrderingEvaluationEnv(RegionEnv):
     """The whole routing flow of a testcase with the agent ordering every region (see the module
     docstring). observation_space / action_space as in :mod:`policies.rl.envs.core`."""
 
@@ -174,13 +175,11 @@ class NetOrderingEvaluationEnv(gym.Env):
                 "cost": s.cost, "metrics": s.metrics}
 
     def step(self, action: int):
-        if self._stepper is None:
-            raise RuntimeError("the episode is over (or never started): call reset()")
-        reward, info = self._stepper.step(action)
-        if not self._stepper.done:
-            info.update(self._info())
-            return self._stepper.observation(), reward, False, False, info
+        observation, reward, region_done, info = self._step_region(action)
+        if not region_done:
+            return observation, reward, False, False, info
         self.regions_done += 1
+        info["regions_done"] = self.regions_done
         self._resume.put("continue")
         final = self._next_event()
         if self._stepper is None:
@@ -188,12 +187,6 @@ class NetOrderingEvaluationEnv(gym.Env):
             return empty_observation(self.max_candidates), reward, True, False, info
         info.update(self._info())
         return self._stepper.observation(), reward, False, False, info
-
-    def action_masks(self) -> np.ndarray:
-        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
-        if self._stepper is None:
-            return np.zeros(self.max_candidates, dtype=bool)
-        return self._stepper.action_mask()
 
     def close(self) -> None:
         self._stop()

@@ -27,6 +27,7 @@ import numpy as np
 from policies.rl.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
+    RegionEnv,
     RegionStepper,
     RewardFn,
     check_max_candidates,
@@ -46,7 +47,7 @@ def region_boxes(xs: np.ndarray, ys: np.ndarray, size: int) -> list[tuple[tuple[
     return out
 
 
-class NetOrderingTrainingEnv(gym.Env):
+class NetOrderingTrainingEnv(RegionEnv):
     """Net ordering on the regions of a testcase, one region per episode (see the module docstring).
 
     observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
@@ -167,23 +168,8 @@ class NetOrderingTrainingEnv(gym.Env):
                 "replay": self._replay, "pass": self.passes_done, "cost": s.cost, "metrics": s.metrics}
 
     def step(self, action: int):
-        if self._stepper is None:
-            raise RuntimeError("call reset() first")
-        reward, info = self._stepper.step(action)
-        terminated = self._stepper.done
-        info.update(self._info())
-        return self._stepper.observation(), reward, terminated, False, info
-
-    def action_masks(self) -> np.ndarray:
-        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
-        if self._stepper is None:
-            return np.zeros(self.max_candidates, dtype=bool)
-        return self._stepper.action_mask()
-
-    @property
-    def region(self) -> Any:
-        """The engine Region of the current episode."""
-        return None if self._stepper is None else self._stepper.region
+        observation, reward, done, info = self._step_region(action)
+        return observation, reward, done, False, info
 
     def close(self) -> None:
         self._stepper = None

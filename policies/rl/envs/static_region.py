@@ -14,11 +14,11 @@ from __future__ import annotations
 from typing import Any
 
 import gymnasium as gym
-import numpy as np
 
 from policies.rl.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
+    RegionEnv,
     RegionStepper,
     RewardFn,
     check_max_candidates,
@@ -26,7 +26,7 @@ from policies.rl.envs.core import (
 )
 
 
-class StaticRegionEnv(gym.Env):
+class StaticRegionEnv(RegionEnv):
     """One static region, one episode per reset (see the module docstring).
 
     observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
@@ -63,22 +63,8 @@ class StaticRegionEnv(gym.Env):
         return {"box": self.box, "candidates": len(s.rows), "cost": s.cost, "metrics": s.metrics}
 
     def step(self, action: int):
-        if self._stepper is None:
-            raise RuntimeError("call reset() first")
-        reward, info = self._stepper.step(action)
-        info.update(self._info())
-        return self._stepper.observation(), reward, self._stepper.done, False, info
-
-    def action_masks(self) -> np.ndarray:
-        """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""
-        if self._stepper is None:
-            return np.zeros(self.max_candidates, dtype=bool)
-        return self._stepper.action_mask()
-
-    @property
-    def region(self) -> Any:
-        """The engine Region of the current episode."""
-        return None if self._stepper is None else self._stepper.region
+        observation, reward, done, info = self._step_region(action)
+        return observation, reward, done, False, info
 
 
 def static_region_env(region_dir: str, **kwargs: Any) -> StaticRegionEnv:
