@@ -14,14 +14,11 @@ resets/s (opening a region). Loading the design is not counted.
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 from collections import defaultdict
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 
 def main() -> None:
@@ -33,8 +30,8 @@ def main() -> None:
     ap.add_argument("--location", default="20,20")
     args = ap.parse_args()
 
-    from policies.rl.envs import core
-    from policies.rl.envs.ordering_training import NetOrderingTrainingEnv
+    from xroute.envs import core
+    from xroute.envs.ordering_training import NetOrderingTrainingEnv
 
     gx, gy = (int(v) for v in args.location.split(","))
     spent: dict[str, float] = defaultdict(float)

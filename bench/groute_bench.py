@@ -28,10 +28,10 @@ from route_bench import _child_env  # noqa: E402
 CHILD = r"""
 import json, sys, time
 t0 = time.perf_counter()
-from xroute_cli import load_design
-from xroute_cli.groute import global_route
-from xroute_cli.outputs import write_route_outputs
-from xroute_cli.router import route_design
+from xroute import load_design
+from xroute.groute import global_route
+from xroute.outputs import write_route_outputs
+from xroute.router import route_design
 a = json.loads(sys.argv[1])
 d = load_design(a["testcase"], use_guide=a["use_guide"])
 gr = None

@@ -22,7 +22,7 @@ import sys
 
 CHILD = r"""
 import json, os, resource, sys, time
-from xroute_cli import _engine, load_design
+from xroute import _engine, load_design
 base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 t0 = time.perf_counter()
 d = load_design(sys.argv[1])

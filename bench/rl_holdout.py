@@ -17,17 +17,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from policies.onnx_policy import OnnxPolicy  # noqa: E402
-from policies.rl.region_filter import held_out  # noqa: E402
-from xroute_cli import _engine, load_design  # noqa: E402
+from xroute.policies.onnx_policy import OnnxPolicy  # noqa: E402
+from xroute.policies.rl.region_filter import held_out  # noqa: E402
+from xroute import _engine, load_design  # noqa: E402
 
 WEIGHTS = (0.5, 4.0, 500.0)  # per um of wire, per via, per DRV
 

@@ -19,7 +19,6 @@ heuristic written in Python (same order, one Python call per region): the cost o
 from __future__ import annotations
 
 import argparse
-import importlib.machinery
 import json
 import os
 import statistics
@@ -34,9 +33,9 @@ REPO_ROOT = Path(__file__).resolve().parent.parent
 CHILD = r"""
 import json, sys, time
 t0 = time.perf_counter()
-from xroute_cli import load_design
-from xroute_cli.outputs import write_route_outputs
-from xroute_cli.router import route_design
+from xroute import load_design
+from xroute.outputs import write_route_outputs
+from xroute.router import route_design
 a = json.loads(sys.argv[1])
 t1 = time.perf_counter()
 d = load_design(a["testcase"])
@@ -52,11 +51,7 @@ print(json.dumps({"import_s": t1 - t0, "load_s": t2 - t1, "route_s": r.seconds, 
 
 
 def _child_env() -> dict[str, str]:
-    env = os.environ.copy()
-    package = REPO_ROOT / "xroute_cli"
-    if any((package / f"_engine{s}").is_file() for s in importlib.machinery.EXTENSION_SUFFIXES):
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (str(REPO_ROOT), env.get("PYTHONPATH", "")) if p)
-    return env
+    return os.environ.copy()
 
 
 def run_once(args: argparse.Namespace) -> dict:

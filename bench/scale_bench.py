@@ -3,7 +3,7 @@
     python bench/scale_bench.py [TESTCASE] [--by 1x1,2x2,4x4] [--threads 2] [--iterations 10]
                                 [--keep DIR] [--json FILE]
 
-The tiled testcases (``testcases.tiling``: R x C renamed copies of TESTCASE, default
+The tiled testcases (``xroute.testcases.tiling``: R x C renamed copies of TESTCASE, default
 ispd18_test1) are written into a temporary folder (or --keep DIR) and routed with the
 heuristic policy, one fresh Python process each (the child of ``route_bench.py``: load,
 route, write the DEF, re-read and check it). Printed per size: nets, routing time, the
@@ -23,12 +23,11 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 import route_bench  # noqa: E402  (bench/route_bench.py: the child process and its measurement)
 
-from testcases import ENV_VAR  # noqa: E402
-from testcases.tiling import parse_by, tile_testcase  # noqa: E402
+from xroute.testcases import ENV_VAR  # noqa: E402
+from xroute.testcases.tiling import parse_by, tile_testcase  # noqa: E402
 
 
 def slope(xs: list[float], ys: list[float]) -> float:

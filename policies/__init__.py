@@ -1,9 +1,9 @@
-"""Net-order policies: the protocol, the built-ins and the registry (see :mod:`policies.base`).
+"""Net-order policies: the protocol, the built-ins and the registry (see :mod:`xroute.policy`).
 
 Importing this package loads no engine and no torch.
 """
 
-from policies.base import (
+from xroute.policy import (
     FEATURE_COLUMNS,
     CallablePolicy,
     HeuristicPolicy,
@@ -12,7 +12,7 @@ from policies.base import (
     RandomPolicy,
     heuristic_order,
 )
-from policies.registry import BUILTIN_POLICIES, get_policy, load_policy_file
+from xroute.policies.registry import BUILTIN_POLICIES, get_policy, load_policy_file
 
 __all__ = [
     "BUILTIN_POLICIES",

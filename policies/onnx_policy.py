@@ -1,7 +1,7 @@
 """``OnnxPolicy(path)``: a net-order policy whose scores come from an ONNX model (onnxruntime).
 
 The model scores every candidate net of a region in one call, on the region's state when it
-opens (:func:`policies.rl.observation.observe`); nets are routed by descending score, ties in the
+opens (:func:`xroute.policies.rl.observation.observe`); nets are routed by descending score, ties in the
 heuristic order. Signature (written by ``xroute export``, checked on load)::
 
     inputs   obstacle      float32 [1, 3, 64, 64]
@@ -24,8 +24,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from policies.base import PolicyError, heuristic_order
-from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+from xroute.policy import PolicyError, heuristic_order
+from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 
 ALGORITHMS: tuple[str, ...] = ("ppo", "dqn")
 
@@ -131,7 +131,7 @@ class OnnxPolicy:
         engine_region = region.get("engine_region")
         if engine_region is None:
             raise PolicyError(f"ONNX policy {self.name} needs the region's grid (region['engine_region']); "
-                              "route with xroute_cli.router.route_design, which lends it")
+                              "route with xroute.router.route_design, which lends it")
         mask = unrouted_mask(engine_region)
         pending = np.flatnonzero(mask)  # the rows of `features`, in order
         obs = observe_arrays(engine_region.grid(), engine_region.candidates, mask, tuple(engine_region.box),

@@ -1,8 +1,8 @@
 """Policies by name: ``get_policy("heuristic" | "random" | "path/to/file.py", seed)``.
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
-define ``order(region, features)`` (see :mod:`policies.base`); it may also set ``NAME`` (default:
-the file's stem). A ``.onnx`` file is an :class:`~policies.onnx_policy.OnnxPolicy` (onnxruntime
+define ``order(region, features)`` (see :mod:`xroute.policy`); it may also set ``NAME`` (default:
+the file's stem). A ``.onnx`` file is an :class:`~xroute.policies.onnx_policy.OnnxPolicy` (onnxruntime
 loaded then, not before).
 """
 
@@ -14,9 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from policies.base import CallablePolicy, HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy
-
-BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random")
+from xroute.policy import BUILTIN_POLICIES, CallablePolicy, NetOrderPolicy, PolicyError, builtin_policy
 
 
 def load_policy_file(path: str | Path) -> CallablePolicy:
@@ -47,13 +45,11 @@ def get_policy(spec: str, seed: int = 1) -> NetOrderPolicy:
     """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), or a ``.py``
     file defining ``order(region, features)``, or a ``.onnx`` net-order model. Raises
     :class:`PolicyError` (an ``XrouteError``) for anything else or a file that cannot be used."""
-    if spec == "heuristic":
-        return HeuristicPolicy()
-    if spec == "random":
-        return RandomPolicy(seed)
+    if spec in BUILTIN_POLICIES:
+        return builtin_policy(spec, seed)
     suffix = Path(spec).suffix.lower()
     if suffix == ".onnx":
-        from policies.onnx_policy import OnnxPolicy
+        from xroute.policies.onnx_policy import OnnxPolicy
 
         return OnnxPolicy(spec)
     if suffix == ".py":

@@ -1,6 +1,6 @@
 """Known testcases (ISPD-2018/2019 detailed-routing contests), the search path that finds them, and static regions."""
 
-from testcases.known import (
+from xroute.testcases.known import (
     KNOWN_BY_NAME,
     KNOWN_TESTCASES,
     STATIC_REGIONS,
@@ -8,7 +8,7 @@ from testcases.known import (
     StaticRegion,
     known_testcase,
 )
-from testcases.registry import DEMO, EMBEDDED_ROOT, ENV_VAR, FoundTestcase, find_testcase, locate_all, search_path
+from xroute.testcases.registry import DEMO, EMBEDDED_ROOT, ENV_VAR, FoundTestcase, find_testcase, locate_all, search_path
 
 __all__ = [
     "DEMO",

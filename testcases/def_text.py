@@ -11,7 +11,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from xroute_cli.errors import InputError
+from xroute.errors import InputError
 
 _TOKEN = re.compile(r'"[^"]*"|[^\s"]+')
 # Sections whose body is a list of "- ... ;" entries (or statements) closed by "END <name>".

@@ -10,7 +10,7 @@ Metal3). Guides are GCell-aligned rectangles in DBU; layers are routing-layer in
 
 from __future__ import annotations
 
-from testcases.gen_tech import LAYERS
+from xroute.testcases.gen_tech import LAYERS
 
 LONG_EDGE = 8  # GCells: a tree edge longer than this is guided on Metal4/Metal5
 SHORT_PAIR = (1, 2)  # (vertical, horizontal) routing-layer indices: Metal2, Metal3

@@ -19,7 +19,7 @@ import math
 import random
 from dataclasses import dataclass, field
 
-from testcases.gen_tech import CELL_BY_NAME, CELLS, M1_PITCH, ROW_H, SITE_W, Cell
+from xroute.testcases.gen_tech import CELL_BY_NAME, CELLS, M1_PITCH, ROW_H, SITE_W, Cell
 
 GCELL_SITES = 15  # GCell width in sites (5700 DBU)
 GCELL_ROWS = 2  # GCell height in rows (5600 DBU)

@@ -11,7 +11,7 @@ same (cells, seed, name) gives byte-identical files. The pieces:
   power rails as special nets, nets) and the files.
 
 The shipped demo (``testcases/data/demo``) is ``make_testcase(DEMO_CELLS, DEMO_SEED, ".../demo")``;
-regenerate it with ``python -m testcases.generator`` after changing the generator (a test checks
+regenerate it with ``python -m xroute.testcases.generator`` after changing the generator (a test checks
 that the shipped files equal the generator's output).
 """
 
@@ -19,11 +19,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from testcases.def_text import GuideNet, write_guides
-from testcases.gen_guides import net_guides
-from testcases.gen_netlist import GCELL_H, GCELL_W, Netlist, make_netlist, pin_center
-from testcases.gen_tech import DBU, LAYERS, RAIL_HALF, ROW_H, SITE_W, technology_lef
-from xroute_cli.errors import XrouteError
+from xroute.testcases.def_text import GuideNet, write_guides
+from xroute.testcases.gen_guides import net_guides
+from xroute.testcases.gen_netlist import GCELL_H, GCELL_W, Netlist, make_netlist, pin_center
+from xroute.testcases.gen_tech import DBU, LAYERS, RAIL_HALF, ROW_H, SITE_W, technology_lef
+from xroute.errors import XrouteError
 
 MAX_CELLS = 2_000_000
 DEMO_CELLS, DEMO_SEED = 400, 1  # the shipped demo: testcases/data/demo (about 320 nets)

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 import yaml
 
-from xroute_cli.errors import XrouteError
+from xroute.errors import XrouteError
 
 REGION_YAML = "region.yaml"
 
@@ -83,7 +83,7 @@ class RegionSummary:
 
 def paper_region_box(number: int | str) -> tuple[str, tuple[int, int, int, int]]:
     """(testcase, box) of the XRoute paper's static region ``number`` (1..10 or "Region3")."""
-    from testcases.known import STATIC_REGIONS
+    from xroute.testcases.known import STATIC_REGIONS
 
     name = f"Region{number}" if str(number).isdigit() else str(number)
     for r in STATIC_REGIONS:
@@ -156,7 +156,7 @@ def make_region(
     """Writes the static region (``location`` + ``size`` in GCells, or ``box`` in DBU) of ``testcase``
     into ``out_dir`` (see the module docstring); ``design``: the loaded, unrouted testcase to reuse
     (it is routed inside the box as a side effect). Raises :class:`RegionError` for a bad region."""
-    from xroute_cli import _engine, load_design
+    from xroute import _engine, load_design
 
     if (location is None) == (box is None):
         raise RegionError("give either a GCell location (with a size) or a box")
@@ -288,8 +288,8 @@ def _write_atomically(out_dir: Path, files: dict[str, str], lef: Path) -> None:
 
 def load_region(region_dir: str | os.PathLike[str]) -> tuple[Any, dict[str, Any]]:
     """(design, region.yaml dict) of a folder written by :func:`make_region`."""
-    from xroute_cli import load_design
-    from xroute_cli.errors import InputError
+    from xroute import load_design
+    from xroute.errors import InputError
 
     folder = Path(region_dir)
     meta_path = folder / REGION_YAML

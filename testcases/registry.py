@@ -5,7 +5,7 @@ and, optionally, ``<name>.input.guide`` (the contest's naming), or the plain
 ``<name>.lef`` / ``<name>.def`` / ``<name>.guide``. Files are read as they are: no
 compressed (.gz) variants. The roots, in order, are given by :func:`search_path`; after
 them, the testcases shipped inside the package (:data:`EMBEDDED_ROOT`: ``demo``, made by
-``testcases.generator``), so a folder named ``demo`` on the search path wins over the shipped one.
+``xroute.testcases.generator``), so a folder named ``demo`` on the search path wins over the shipped one.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from testcases.known import KNOWN_TESTCASES, KnownTestcase
-from xroute_cli.errors import TestcaseNotFound
+from xroute.testcases.known import KNOWN_TESTCASES, KnownTestcase
+from xroute.errors import TestcaseNotFound
 
 ENV_VAR = "XROUTE_TESTCASES"
 SHARED_RELATIVE = Path("..") / "shared" / "testcases"  # relative to the project root
@@ -101,7 +101,7 @@ def find_testcase(name: str) -> FoundTestcase:
     """The first folder ``<root>/<name>`` on the search path that holds the testcase's LEF and DEF.
 
     Names the registry does not list are found the same way; the testcases shipped in the
-    package (``demo``) come last. Raises :class:`~xroute_cli.errors.TestcaseNotFound` naming
+    package (``demo``) come last. Raises :class:`~xroute.errors.TestcaseNotFound` naming
     the folders searched.
     """
     roots = search_path()

@@ -29,7 +29,7 @@ from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
-from testcases.def_text import (
+from xroute.testcases.def_text import (
     DefText,
     GuideNet,
     Section,
@@ -39,8 +39,8 @@ from testcases.def_text import (
     write_def_text,
     write_guides,
 )
-from testcases.registry import find_testcase
-from xroute_cli.errors import InputError, XrouteError
+from xroute.testcases.registry import find_testcase
+from xroute.errors import InputError, XrouteError
 
 COPY_ONCE = ("VIAS", "NONDEFAULTRULES", "STYLES", "PROPERTYDEFINITIONS")
 WIRING = ("ROUTED", "FIXED", "COVER", "SHIELD", "RECT", "POLYGON", "VIA")

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from xroute_cli import _engine
+from xroute import _engine
 
 TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
 

@@ -12,7 +12,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES
+from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES
 
 
 class FakeRegionEnv(gym.Env):

@@ -11,12 +11,12 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-import xroute_cli
-from testcases import ENV_VAR, find_testcase
-from xroute_cli.app import app
-from xroute_cli.console import error_line
-from xroute_cli.errors import InputError
-from xroute_cli.errors import TestcaseNotFound as NotFound
+import xroute.cli
+from xroute.testcases import ENV_VAR, find_testcase
+from xroute.cli.app import app
+from xroute.cli.console import error_line
+from xroute.errors import InputError
+from xroute.errors import TestcaseNotFound as NotFound
 
 
 WIDE = {"COLUMNS": "200"}  # tables wide enough that no cell wraps, whatever the caller's terminal
@@ -215,10 +215,10 @@ def test_error_line_format() -> None:
 
 def test_real_process_prints_one_line_without_traceback(tmp_path: Path) -> None:
     """The console-script path (``main()``), not only CliRunner, turns user errors into one line."""
-    package_parent = str(Path(xroute_cli.__file__).resolve().parent.parent)
+    package_parent = str(Path(xroute.cli.__file__).resolve().parent.parent)
     env = {**os.environ, "PYTHONPATH": package_parent, ENV_VAR: str(tmp_path)}
     proc = subprocess.run(
-        [sys.executable, "-m", "xroute_cli", "info", "no_such_testcase_xyz"],
+        [sys.executable, "-m", "xroute", "info", "no_such_testcase_xyz"],
         cwd=tmp_path,
         env=env,
         capture_output=True,

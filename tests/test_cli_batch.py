@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from conftest import make_runner, require_testcase
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
 SMOKE = REPO / "configs" / "ci-smoke.yaml"

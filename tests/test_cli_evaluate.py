@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
 PY_POLICY = REPO / "bench" / "python_heuristic_policy.py"

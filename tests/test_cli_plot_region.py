@@ -9,7 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from png import distinct_colours, read_png
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 
 def need_matplotlib() -> None:

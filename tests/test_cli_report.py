@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from png import distinct_colours
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 

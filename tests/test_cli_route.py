@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 
 
@@ -150,7 +150,7 @@ def test_route_exit_1_when_the_written_def_has_opens(runner: CliRunner, testcase
                                                      monkeypatch: pytest.MonkeyPatch) -> None:
     """A router that claims success but routes nothing: the check of the written DEF finds the opens."""
     testcase("ispd18_sample")
-    import xroute_cli.router as router
+    import xroute.router as router
 
     def no_routing(design, **kw):
         fake = router.IterationReport(iteration=0, region_size=5, offset=0, regions=0, net_routes=0, unreached=0,

@@ -11,9 +11,9 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
-from xroute_cli.app import app
-from xroute_cli.config import CostSection, RouterSection, XrouteConfig, load_config, run_settings
-from xroute_cli.config_schema import ConfigError
+from xroute.cli.app import app
+from xroute.config import CostSection, RouterSection, XrouteConfig, load_config, run_settings
+from xroute.config_schema import ConfigError
 
 REPO = Path(__file__).resolve().parent.parent
 CONFIGS = REPO / "configs"

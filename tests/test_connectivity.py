@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from drawn import contest_input, load_drawn
-from xroute_cli import _engine
+from xroute import _engine
 
 # Three routing layers, all 100 DBU wide (half width 50); V12 / V23 are
 # 100 x 100 squares on each of their three layers, centred on the via point.

@@ -17,9 +17,9 @@ from pathlib import Path
 
 import pytest
 
-from testcases import find_testcase
-from xroute_cli import load_design
-from xroute_cli import errors
+from xroute.testcases import find_testcase
+from xroute import load_design
+from xroute import errors
 
 EXPECTED = {
     # name: components, nets, io_pins, special_nets, rows, tracks, gcell_patterns, def_vias, net_pins, guides

@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from testcases import find_testcase
-from xroute_cli import _engine, errors, load_design
-from xroute_cli.errors import InputError
+from xroute.testcases import find_testcase
+from xroute import _engine, errors, load_design
+from xroute.errors import InputError
 
 # A small valid design for ispd18_sample's LEF; tests break one line of it.
 GOOD = [

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from drawn import shape_rows
-from xroute_cli import _engine
+from xroute import _engine
 
 TECH_LEF = """\
 VERSION 5.8 ;

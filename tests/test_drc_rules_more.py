@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from test_drc_rules import OBS, PIN, SPECIAL, VIA, WIRE, check, db  # noqa: F401  (db is a fixture)
-from xroute_cli import _engine
+from xroute import _engine
 
 
 # ----------------------------------------------------------- cuts, V1/V2 --

@@ -2,7 +2,7 @@
 
 Every file under tests/fuzz_regressions/<lef|def|guide>/ goes through the Python
 API: a LEF alone, a DEF with the ispd18_sample LEF, a guide with the ispd18_sample
-LEF and DEF. Each must either load or raise xroute_cli.errors.InputError with the
+LEF and DEF. Each must either load or raise xroute.errors.InputError with the
 fuzz file and a line inside it - never crash, hang or raise anything else. A DEF
 that loads must also survive the round trip the DEF fuzz target checks: written
 back, re-read, and equal.
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import pytest
 
-from xroute_cli import _engine
-from xroute_cli.errors import InputError
+from xroute import _engine
+from xroute.errors import InputError
 
 HERE = Path(__file__).resolve().parent / "fuzz_regressions"
 

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from testcases import DEMO, EMBEDDED_ROOT, ENV_VAR, find_testcase
-from testcases.gen_netlist import GCELL_H, GCELL_W
-from testcases.gen_tech import CELL_BY_NAME, ROW_H, SITE_W
-from testcases.generator import DEMO_CELLS, DEMO_SEED, make_testcase
-from xroute_cli.app import app
+from xroute.testcases import DEMO, EMBEDDED_ROOT, ENV_VAR, find_testcase
+from xroute.testcases.gen_netlist import GCELL_H, GCELL_W
+from xroute.testcases.gen_tech import CELL_BY_NAME, ROW_H, SITE_W
+from xroute.testcases.generator import DEMO_CELLS, DEMO_SEED, make_testcase
+from xroute.cli.app import app
 
 EXTS = ("lef", "def", "guide")
 
@@ -25,14 +25,14 @@ def _files(folder: Path) -> dict[str, bytes]:
 
 
 def _load(folder: Path):
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     f = {ext: str(folder / f"{folder.name}.{ext}") for ext in EXTS}
     return load_design(lef=[f["lef"]], def_=f["def"], guide=f["guide"])
 
 
 def test_shipped_demo_is_what_the_generator_writes(tmp_path: Path) -> None:
-    """Regenerate with `python -m testcases.generator` when this fails after a generator change."""
+    """Regenerate with `python -m xroute.testcases.generator` when this fails after a generator change."""
     fresh = make_testcase(DEMO_CELLS, DEMO_SEED, tmp_path / DEMO)
     assert _files(fresh) == _files(EMBEDDED_ROOT / DEMO)
 

@@ -16,10 +16,10 @@ from typer.testing import CliRunner
 
 from conftest import require_testcase
 from drawn import write_design
-from xroute_cli import _engine
-from xroute_cli.app import app
-from xroute_cli.design import load_design
-from xroute_cli.groute import GlobalRouteArgumentError, global_route
+from xroute import _engine
+from xroute.cli.app import app
+from xroute.design import load_design
+from xroute.groute import GlobalRouteArgumentError, global_route
 
 # ---------------------------------------------------------------------------
 # A drawn grid (UNITS 1000). Three routing layers M1 (horizontal), M2 (vertical), M3
@@ -221,8 +221,8 @@ def test_global_route_is_deterministic(sample_guides: tuple[Any, Path], tmp_path
 
 def test_sample_routes_with_built_in_guides_without_opens(tmp_path: Path) -> None:
     require_testcase("ispd18_sample")
-    from xroute_cli.outputs import write_route_outputs
-    from xroute_cli.router import route_design
+    from xroute.outputs import write_route_outputs
+    from xroute.router import route_design
 
     design = load_design("ispd18_sample", use_guide=False)
     assert design.guide_source == "none"

@@ -22,7 +22,7 @@ def start_route(out: Path, testcases_root: Path) -> subprocess.Popen:
     # checkout beside which to look for ../shared/testcases).
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p), "CI": "true",
            "XROUTE_TESTCASES": str(testcases_root)}
-    return subprocess.Popen([sys.executable, "-m", "xroute_cli", "route", DESIGN, "--iterations", "1", "--out", str(out)],
+    return subprocess.Popen([sys.executable, "-m", "xroute", "route", DESIGN, "--iterations", "1", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=out.parent)
 
 

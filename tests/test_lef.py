@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from xroute_cli import _engine
+from xroute import _engine
 
 # ../shared/testcases seen from the repository root, unless $XROUTE_TESTCASES says otherwise.
 TESTCASES = Path(os.environ.get("XROUTE_TESTCASES", Path(__file__).resolve().parents[2] / "shared" / "testcases"))

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from xroute_cli import _engine
-from xroute_cli.errors import InputError
+from xroute import _engine
+from xroute.errors import InputError
 
 # A 35-line technology LEF: UNITS 1000, SITE core, layers M1 V1 M2, VIA V12.
 TECH_LEF = Path(__file__).resolve().parent / "data" / "lef" / "tech.lef"

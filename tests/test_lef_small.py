@@ -8,7 +8,7 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
-from xroute_cli import _engine
+from xroute import _engine
 
 # A 35-line technology LEF: UNITS 1000, SITE core, layers M1 V1 M2, VIA V12.
 TECH_LEF = Path(__file__).resolve().parent / "data" / "lef" / "tech.lef"

@@ -35,9 +35,9 @@ class Peeking:
 
 
 def test_a_policy_needing_the_region_gets_it_for_one_call() -> None:
-    from policies import CallablePolicy
-    from xroute_cli import load_design
-    from xroute_cli.router import route_design
+    from xroute.policies import CallablePolicy
+    from xroute import load_design
+    from xroute.router import route_design
 
     require_testcase("ispd18_sample")
     policy = Peeking()
@@ -60,15 +60,15 @@ def test_a_policy_needing_the_region_gets_it_for_one_call() -> None:
 
 
 def test_importing_policies_loads_no_engine_torch_or_onnxruntime() -> None:
-    code = ("import sys, policies, policies.onnx_policy, policies.rl.observation; "
-            "print([m for m in ('torch', 'onnxruntime', 'xroute_cli._engine') if m in sys.modules])")
+    code = ("import sys, policies, xroute.policies.onnx_policy, xroute.policies.rl.observation; "
+            "print([m for m in ('torch', 'onnxruntime', 'xroute._engine') if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], cwd=REPO_ROOT, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
 
 
 def test_load_region_refuses_a_folder_without_or_with_a_bad_yaml(tmp_path) -> None:
-    from testcases.regions import load_region
-    from xroute_cli.errors import InputError
+    from xroute.testcases.regions import load_region
+    from xroute.errors import InputError
 
     with pytest.raises(InputError, match="not a region folder"):
         load_region(tmp_path)

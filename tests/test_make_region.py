@@ -11,13 +11,13 @@ import yaml
 from typer.testing import CliRunner
 
 from conftest import require_testcase
-from xroute_cli.app import app
+from xroute.cli.app import app
 
 
 @pytest.fixture(scope="module")
 def region3(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The XRoute paper's Region3 of ispd18_test1, made once for the module."""
-    from testcases.regions import make_region, paper_region_box
+    from xroute.testcases.regions import make_region, paper_region_box
 
     require_testcase("ispd18_test1")
     out = tmp_path_factory.mktemp("regions") / "region3"
@@ -40,8 +40,8 @@ def test_paper_region3_folder_and_counts(region3: Path) -> None:
 
 
 def test_region_round_trip_loads_and_routes_without_opens(region3: Path) -> None:
-    from testcases.regions import load_region
-    from xroute_cli.router import route_design
+    from xroute.testcases.regions import load_region
+    from xroute.router import route_design
 
     design, meta = load_region(region3)
     assert design.num_nets == meta["nets"]
@@ -55,7 +55,7 @@ def test_static_region_env_check_env_and_determinism(region3: Path) -> None:
     gym = pytest.importorskip("gymnasium")
     from gymnasium.utils.env_checker import check_env
 
-    import policies.rl  # noqa: F401
+    import xroute.envs  # noqa: F401  (registers the environments)
 
     env = gym.make("xroute/StaticRegion-v0", region_dir=str(region3), max_candidates=64)
     with pytest.warns(UserWarning, match="infinity"):

@@ -10,8 +10,8 @@ import pytest
 
 import test_drc_design
 from test_connectivity import load as load_conn
-from xroute_cli import _engine
-from xroute_cli.errors import InputError
+from xroute import _engine
+from xroute.errors import InputError
 
 TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
 

@@ -17,8 +17,8 @@ pytest.importorskip("onnxruntime", reason="onnxruntime (rl extra) is not install
 from onnx import TensorProto, helper  # noqa: E402
 
 from conftest import require_testcase  # noqa: E402
-from policies.base import PolicyError  # noqa: E402
-from policies.rl.observation import NET_FEATURES  # noqa: E402
+from xroute.policy import PolicyError  # noqa: E402
+from xroute.policies.rl.observation import NET_FEATURES  # noqa: E402
 
 FEATURES = ",".join(NET_FEATURES)
 
@@ -64,8 +64,8 @@ def make_model(path: Path, *, column: str = "heuristic_rank", weight: float = -1
 
 
 def test_registry_loads_an_onnx_model(tmp_path: Path) -> None:
-    from policies import get_policy
-    from policies.onnx_policy import OnnxPolicy
+    from xroute.policies import get_policy
+    from xroute.policies.onnx_policy import OnnxPolicy
 
     p = get_policy(str(make_model(tmp_path / "m.onnx")), 1)
     assert isinstance(p, OnnxPolicy) and p.name == "m.onnx" and p.algorithm == "ppo" and p.needs_region
@@ -88,7 +88,7 @@ def test_registry_loads_an_onnx_model(tmp_path: Path) -> None:
     ],
 )
 def test_a_model_with_the_wrong_signature_is_refused(tmp_path: Path, kwargs: dict, problem: str) -> None:
-    from policies.onnx_policy import EXPECTED_SIGNATURE, OnnxPolicy
+    from xroute.policies.onnx_policy import EXPECTED_SIGNATURE, OnnxPolicy
 
     path = make_model(tmp_path / "bad.onnx", **kwargs)
     with pytest.raises(PolicyError) as err:
@@ -99,7 +99,7 @@ def test_a_model_with_the_wrong_signature_is_refused(tmp_path: Path, kwargs: dic
 
 
 def test_missing_and_unreadable_model_files(tmp_path: Path) -> None:
-    from policies.onnx_policy import OnnxPolicy
+    from xroute.policies.onnx_policy import OnnxPolicy
 
     with pytest.raises(PolicyError, match="ONNX model not found"):
         OnnxPolicy(tmp_path / "nothing.onnx")
@@ -109,9 +109,9 @@ def test_missing_and_unreadable_model_files(tmp_path: Path) -> None:
 
 
 def test_a_model_scoring_minus_the_heuristic_rank_routes_like_the_heuristic(tmp_path: Path) -> None:
-    from policies.onnx_policy import OnnxPolicy
-    from xroute_cli import load_design
-    from xroute_cli.router import route_design
+    from xroute.policies.onnx_policy import OnnxPolicy
+    from xroute import load_design
+    from xroute.router import route_design
 
     require_testcase("ispd18_sample")
     policy = OnnxPolicy(make_model(tmp_path / "h.onnx"))
@@ -138,7 +138,7 @@ def test_a_model_scoring_minus_the_heuristic_rank_routes_like_the_heuristic(tmp_
 
 
 def test_order_without_the_region_is_a_policy_error(tmp_path: Path) -> None:
-    from policies.onnx_policy import OnnxPolicy
+    from xroute.policies.onnx_policy import OnnxPolicy
 
     policy = OnnxPolicy(make_model(tmp_path / "m.onnx"))
     with pytest.raises(PolicyError, match="needs the region's grid"):

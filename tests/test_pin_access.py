@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from drawn import shape_rows, write_design
-from xroute_cli import _engine
-from xroute_cli.design import load_design
+from xroute import _engine
+from xroute.design import load_design
 
 UP, EAST, WEST, NORTH, SOUTH = 1, 2, 4, 8, 16
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from policies import (
+from xroute.policies import (
     FEATURE_COLUMNS,
     CallablePolicy,
     HeuristicPolicy,
@@ -21,8 +21,8 @@ from policies import (
     get_policy,
     heuristic_order,
 )
-from policies.base import check_order
-from xroute_cli.errors import XrouteError
+from xroute.policy import check_order
+from xroute.errors import XrouteError
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 REGION = {"iteration": 0, "region": 3, "box": (0, 0, 1000, 1000)}
@@ -37,7 +37,7 @@ def features(rows: list[tuple[int, int, int, int, int, int]]) -> np.ndarray:
 
 
 def test_feature_columns_match_the_engine() -> None:
-    engine = pytest.importorskip("xroute_cli._engine")
+    engine = pytest.importorskip("xroute._engine")
     assert tuple(engine.POLICY_FEATURES) == FEATURE_COLUMNS
 
 
@@ -145,9 +145,9 @@ def test_importing_policies_loads_no_engine_and_no_torch() -> None:
     code = textwrap.dedent(
         """
         import sys
-        import policies, policies.base, policies.registry
-        policies.get_policy("heuristic", 1)
-        print(sorted(m for m in sys.modules if m.startswith("xroute_cli._engine") or m.split(".")[0] == "torch"))
+        import xroute.policies, xroute.policy, xroute.policies.registry
+        xroute.policies.get_policy("heuristic", 1)
+        print(sorted(m for m in sys.modules if m.startswith("xroute._engine") or m.split(".")[0] == "torch"))
         """
     )
     out = subprocess.run([sys.executable, "-c", code], cwd=REPO_ROOT, capture_output=True, text=True, check=True)

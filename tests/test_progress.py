@@ -8,8 +8,8 @@ import re
 import pytest
 from rich.console import Console
 
-from xroute_cli.progress import ProgressDisplay, output_mode
-from xroute_cli.router import IterationReport, RouteProgress
+from xroute.cli.progress import ProgressDisplay, output_mode
+from xroute.router import IterationReport, RouteProgress
 
 
 def console(terminal: bool) -> Console:

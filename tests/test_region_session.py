@@ -14,7 +14,7 @@ from conftest import require_testcase
 
 
 def fresh(name: str):
-    from xroute_cli import load_design
+    from xroute import load_design
 
     require_testcase(name)
     return load_design(name)
@@ -25,7 +25,7 @@ def whole_die(design) -> tuple[int, int, int, int]:
 
 
 def test_a_region_over_the_whole_sample_routes_every_net_without_opens() -> None:
-    from xroute_cli import _engine
+    from xroute import _engine
 
     d = fresh("ispd18_sample")
     session = _engine.RoutingSession(d.engine)
@@ -61,7 +61,7 @@ def test_a_region_over_the_whole_sample_routes_every_net_without_opens() -> None
 
 
 def test_grid_views_are_live_and_shaped_z_y_x() -> None:
-    from xroute_cli import _engine
+    from xroute import _engine
 
     d = fresh("ispd18_sample")
     region = _engine.RoutingSession(d.engine).open_region(whole_die(d))
@@ -84,7 +84,7 @@ def test_grid_views_are_live_and_shaped_z_y_x() -> None:
 
 
 def test_any_order_connects_every_net_and_repeats_byte_for_byte() -> None:
-    from xroute_cli import _engine
+    from xroute import _engine
 
     def run(order_key):
         d = fresh("ispd18_sample2")
@@ -102,7 +102,7 @@ def test_any_order_connects_every_net_and_repeats_byte_for_byte() -> None:
 
 
 def test_a_routed_region_reopened_rips_up_and_reroutes_its_nets() -> None:
-    from xroute_cli import _engine
+    from xroute import _engine
 
     d = fresh("ispd18_sample")
     session = _engine.RoutingSession(d.engine)
@@ -121,7 +121,7 @@ def test_a_routed_region_reopened_rips_up_and_reroutes_its_nets() -> None:
 
 
 def test_a_region_of_ispd18_test1_connects_every_net_it_holds_whole() -> None:
-    from xroute_cli import _engine
+    from xroute import _engine
 
     d = fresh("ispd18_test1")
     session = _engine.RoutingSession(d.engine)

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-import testcases.registry as registry
-from testcases import (
+import xroute.testcases.registry as registry
+from xroute.testcases import (
     ENV_VAR,
     KNOWN_BY_NAME,
     KNOWN_TESTCASES,
@@ -19,8 +19,8 @@ from testcases import (
     locate_all,
     search_path,
 )
-from xroute_cli.errors import TestcaseNotFound as NotFound
-from xroute_cli.errors import XrouteError
+from xroute.errors import TestcaseNotFound as NotFound
+from xroute.errors import XrouteError
 
 
 def _make(root: Path, name: str, *exts: str, pattern: str = "{n}.input.{e}") -> Path:

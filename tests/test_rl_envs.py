@@ -1,4 +1,4 @@
-"""Gymnasium environments of net ordering (policies/rl/envs): check_env, seeded determinism,
+"""Gymnasium environments of net ordering (xroute.envs, the envs/ folder): check_env, seeded determinism,
 rewards against the paper's cost, and the evaluation env against ``xroute route``."""
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ def _rollout(env, seed: int, steps: int) -> list[tuple]:
 
 
 def test_envs_are_registered_on_import() -> None:
-    import policies.rl  # noqa: F401
+    import xroute.envs  # noqa: F401  (registers the environments)
 
     for env_id in ("xroute/NetOrdering-v0", "xroute/NetOrderingEval-v0", "xroute/StaticRegion-v0"):
         assert env_id in gym.registry
@@ -40,7 +40,7 @@ def test_envs_are_registered_on_import() -> None:
 def test_training_env_passes_check_env_and_walks_regions() -> None:
     from gymnasium.utils.env_checker import check_env
 
-    import policies.rl  # noqa: F401
+    import xroute.envs  # noqa: F401  (registers the environments)
 
     require_testcase("ispd18_sample")
     env = gym.make("xroute/NetOrdering-v0", testcase_name="ispd18_sample", region_size=2, max_candidates=8)
@@ -61,7 +61,7 @@ def test_training_env_passes_check_env_and_walks_regions() -> None:
 
 
 def test_training_env_same_seed_same_episode() -> None:
-    from policies.rl.envs.ordering_training import ordering_training_env
+    from xroute.envs.ordering_training import ordering_training_env
 
     require_testcase("ispd18_sample")
     a = _rollout(ordering_training_env("ispd18_sample", region_size=2, max_candidates=8), 5, 25)
@@ -71,8 +71,8 @@ def test_training_env_same_seed_same_episode() -> None:
 
 
 def test_reward_is_the_drop_of_the_paper_cost() -> None:
-    from policies.rl.envs.core import CostWeights
-    from policies.rl.envs.ordering_training import ordering_training_env
+    from xroute.envs.core import CostWeights
+    from xroute.envs.ordering_training import ordering_training_env
 
     require_testcase("ispd18_sample")
     weights = CostWeights(wirelength_um=1.0, via=2.0, violation=100.0)
@@ -92,7 +92,7 @@ def test_reward_is_the_drop_of_the_paper_cost() -> None:
 
 
 def test_an_invalid_action_routes_the_first_legal_row() -> None:
-    from policies.rl.envs.ordering_training import ordering_training_env
+    from xroute.envs.ordering_training import ordering_training_env
 
     require_testcase("ispd18_sample")
     env = ordering_training_env("ispd18_sample", region_size=100, max_candidates=16)
@@ -106,10 +106,10 @@ def test_an_invalid_action_routes_the_first_legal_row() -> None:
 def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
     from gymnasium.utils.env_checker import check_env
 
-    from policies.base import heuristic_order
-    from policies.rl.envs.ordering_evaluation import ordering_evaluation_env
-    from xroute_cli import load_design
-    from xroute_cli.router import route_design
+    from xroute.policy import heuristic_order
+    from xroute.envs.ordering_evaluation import ordering_evaluation_env
+    from xroute import load_design
+    from xroute.router import route_design
 
     require_testcase("ispd18_sample")
     env = ordering_evaluation_env("ispd18_sample", region_size=2, iteration_count=3, max_candidates=8,
@@ -137,7 +137,7 @@ def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
 
 
 def test_region_loop_replays_a_region_from_the_same_state_and_location_pins_it() -> None:
-    from policies.rl.envs.ordering_training import ordering_training_env
+    from xroute.envs.ordering_training import ordering_training_env
 
     require_testcase("ispd18_sample")
 

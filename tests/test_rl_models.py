@@ -11,12 +11,12 @@ torch = pytest.importorskip("torch", reason="the train extra (torch) is not inst
 onnx = pytest.importorskip("onnx", reason="the train extra (onnx) is not installed")
 ort = pytest.importorskip("onnxruntime", reason="the train extra (onnxruntime) is not installed")
 
-from policies.rl.checkpoint import Checkpoint, CheckpointError, load_checkpoint, save_checkpoint  # noqa: E402
-from policies.rl.export import INPUT_NAMES, example_inputs, export_checkpoint  # noqa: E402
-from policies.rl.models import MASKED_SCORE, NetOrderModel, RegionScorer  # noqa: E402
-from policies.rl.observation import NET_FEATURES  # noqa: E402
-from policies.rl.train_config import default_config, load_config  # noqa: E402
-from xroute_cli.errors import InputError  # noqa: E402
+from xroute.policies.rl.checkpoint import Checkpoint, CheckpointError, load_checkpoint, save_checkpoint  # noqa: E402
+from xroute.policies.rl.export import INPUT_NAMES, example_inputs, export_checkpoint  # noqa: E402
+from xroute.policies.rl.models import MASKED_SCORE, NetOrderModel, RegionScorer  # noqa: E402
+from xroute.policies.rl.observation import NET_FEATURES  # noqa: E402
+from xroute.policies.rl.train_config import default_config, load_config  # noqa: E402
+from xroute.errors import InputError  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 S = len(NET_FEATURES)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from policies.rl.observation import (
+from xroute.policies.rl.observation import (
     ALIGNED_SHAPE,
     NET_CHANNELS,
     NET_FEATURES,

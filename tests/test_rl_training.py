@@ -18,12 +18,12 @@ pytest.importorskip("gymnasium", reason="the train extra (gymnasium) is not inst
 ort = pytest.importorskip("onnxruntime", reason="the train extra (onnxruntime) is not installed")
 
 from fake_region_env import FakeRegionEnv  # noqa: E402
-from policies.rl.batch import collate, compact  # noqa: E402
-from policies.rl.checkpoint import load_checkpoint  # noqa: E402
-from policies.rl.export import INPUT_NAMES, export_checkpoint  # noqa: E402
-from policies.rl.train import train  # noqa: E402
-from policies.rl.train_config import config_from_dict  # noqa: E402
-from xroute_cli.app import app  # noqa: E402
+from xroute.policies.rl.batch import collate, compact  # noqa: E402
+from xroute.policies.rl.checkpoint import load_checkpoint  # noqa: E402
+from xroute.policies.rl.export import INPUT_NAMES, export_checkpoint  # noqa: E402
+from xroute.policies.rl.train import train  # noqa: E402
+from xroute.policies.rl.train_config import config_from_dict  # noqa: E402
+from xroute.cli.app import app  # noqa: E402
 
 SMALL = {"ppo": {"update_every": 12, "epochs": 2, "checkpoint_every": 2},
          "dqn": {"learning_starts": 8, "target_update": 5, "checkpoint_every": 2}}
@@ -141,9 +141,9 @@ def test_cli_train_on_sample_regions_then_export_then_route_with_the_onnx_policy
     from conftest import require_testcase
 
     require_testcase("ispd18_sample")
-    from policies.onnx_policy import OnnxPolicy
-    from xroute_cli import load_design
-    from xroute_cli.router import route_design
+    from xroute.policies.onnx_policy import OnnxPolicy
+    from xroute import load_design
+    from xroute.router import route_design
 
     runner = CliRunner()
     res = runner.invoke(app, ["train", "dqn", "--testcase", "ispd18_sample", "--episodes", "3", "--region-size", "2",

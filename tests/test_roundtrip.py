@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from testcases import find_testcase
-from xroute_cli import errors, load_design
+from xroute.testcases import find_testcase
+from xroute import errors, load_design
 
 NAMES = ["ispd18_sample", "ispd18_sample2", "ispd18_sample3", "ispd19_sample4", "ispd18_test1", "ispd19_test1",
          "ispd19_test3"]

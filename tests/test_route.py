@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from conftest import require_testcase
-from policies import CallablePolicy, HeuristicPolicy, PolicyError, RandomPolicy
-from xroute_cli.errors import XrouteError
-from xroute_cli.outputs import RouteOutputs, write_route_outputs
-from xroute_cli.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, route_design
+from xroute.policies import CallablePolicy, HeuristicPolicy, PolicyError, RandomPolicy, get_policy
+from xroute.errors import XrouteError
+from xroute.outputs import RouteOutputs, write_route_outputs
+from xroute.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, route_design
 
 SAMPLES = ["ispd18_sample", "ispd18_sample2", "ispd19_sample4"]
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -25,7 +25,7 @@ REPO_ROOT = Path(__file__).resolve().parent.parent
 def fresh(name: str) -> Any:
     """A newly loaded design (routing changes it, so never the shared session fixture)."""
     require_testcase(name)
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     return load_design(name)
 
@@ -38,7 +38,7 @@ def route_def(name: str, **kw: Any) -> str:
 
 
 def reread(design: Any, outputs: RouteOutputs) -> Any:
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     return load_design(lef=design.lef_paths, def_=outputs.def_path)
 
@@ -197,7 +197,7 @@ def test_python_policy_order_is_honoured() -> None:
 def test_heuristic_in_python_gives_the_builtin_routing(name: str) -> None:
     builtin = route_def(name, policy="heuristic")
     assert route_def(name, policy=CallablePolicy(HeuristicPolicy().order, name="py")) == builtin
-    assert route_def(name, policy=str(REPO_ROOT / "bench" / "python_heuristic_policy.py")) == builtin
+    assert route_def(name, policy=get_policy(str(REPO_ROOT / "bench" / "python_heuristic_policy.py"))) == builtin
 
 
 def test_subclass_of_a_builtin_that_overrides_order_is_called() -> None:
@@ -232,7 +232,7 @@ def test_policy_returning_a_non_permutation_is_a_clear_error(fn, message: str) -
 
 def test_engine_check_of_the_order_is_named_after_the_policy(monkeypatch: pytest.MonkeyPatch) -> None:
     # Without the Python-side check, the engine's own check still rejects the order.
-    import xroute_cli.router as router
+    import xroute.router as router
 
     monkeypatch.setattr(router, "check_order", lambda order, n, name: list(order))
     with pytest.raises(PolicyError, match=r"net-order policy 'dup' returned an order that is not a permutation of 11"):

@@ -16,9 +16,9 @@ MODELS = Path(__file__).resolve().parent.parent / "policies" / "models"
 
 @pytest.mark.parametrize("algorithm", ["ppo", "dqn"])
 def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(algorithm: str) -> None:
-    from policies.onnx_policy import OnnxPolicy
-    from policies.registry import get_policy
-    from xroute_cli import _engine, load_design
+    from xroute.policies.onnx_policy import OnnxPolicy
+    from xroute.policies.registry import get_policy
+    from xroute import _engine, load_design
 
     path = MODELS / f"{algorithm}.onnx"
     assert path.is_file() and path.stat().st_size < 2_000_000

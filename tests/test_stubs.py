@@ -1,9 +1,9 @@
-"""The compiled module's typed stub (xroute_cli/_engine.pyi) is current, and every
+"""The compiled module's typed stub (src/xroute/_engine.pyi) is current, and every
 bound function and property carries a docstring of its own.
 
-Regenerate the stub after changing the bindings (from an in-place build):
+Regenerate the stub after changing the bindings (after reinstalling):
 
-    python -m nanobind.stubgen -m xroute_cli._engine -o xroute_cli/_engine.pyi
+    python -m nanobind.stubgen -m xroute._engine -o src/xroute/_engine.pyi
 """
 
 from __future__ import annotations
@@ -15,11 +15,10 @@ from pathlib import Path
 
 import pytest
 
-import xroute_cli
-from xroute_cli import _engine
+from xroute import _engine
 
-STUB = Path(__file__).resolve().parent.parent / "xroute_cli" / "_engine.pyi"
-REGENERATE = "python -m nanobind.stubgen -m xroute_cli._engine -o xroute_cli/_engine.pyi"
+STUB = Path(__file__).resolve().parent.parent / "src" / "xroute" / "_engine.pyi"
+REGENERATE = "python -m nanobind.stubgen -m xroute._engine -o src/xroute/_engine.pyi"
 
 
 def test_stub_matches_compiled_module(tmp_path: Path) -> None:
@@ -28,13 +27,13 @@ def test_stub_matches_compiled_module(tmp_path: Path) -> None:
     except ImportError:
         pytest.skip("nanobind is not importable: install the 'test' extra (pip install '.[test]') to check the stub")
     out = tmp_path / "_engine.pyi"
-    # Run stubgen on the package the tests import (source tree or installed), whatever the cwd.
-    env = dict(os.environ, PYTHONPATH=str(Path(xroute_cli.__file__).resolve().parent.parent))
+    # Run stubgen on the package the tests import, from a folder where nothing shadows it.
+    env = dict(os.environ)
     subprocess.run(
-        [sys.executable, "-m", "nanobind.stubgen", "-q", "-m", "xroute_cli._engine", "-o", str(out)],
+        [sys.executable, "-m", "nanobind.stubgen", "-q", "-m", "xroute._engine", "-o", str(out)],
         check=True, cwd=tmp_path, env=env, capture_output=True, text=True,
     )
-    assert out.read_text() == STUB.read_text(), f"xroute_cli/_engine.pyi is stale; regenerate it: {REGENERATE}"
+    assert out.read_text() == STUB.read_text(), f"src/xroute/_engine.pyi is stale; regenerate it: {REGENERATE}"
 
 
 def _own_docs(fn) -> list[str]:

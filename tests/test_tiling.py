@@ -1,4 +1,4 @@
-"""Tiling a testcase R x C (``testcases.tiling``, ``xroute make-testcase --tile``)."""
+"""Tiling a testcase R x C (``xroute.testcases.tiling``, ``xroute make-testcase --tile``)."""
 
 from __future__ import annotations
 
@@ -7,15 +7,15 @@ from pathlib import Path
 
 import pytest
 
-from testcases import DEMO
-from testcases.tiling import _point_offset, parse_by, tile_testcase
-from xroute_cli.errors import XrouteError
+from xroute.testcases import DEMO
+from xroute.testcases.tiling import _point_offset, parse_by, tile_testcase
+from xroute.errors import XrouteError
 
 SCALED = ("components", "nets", "net_pins", "guides", "io_pins", "blockages")
 
 
 def _load(folder: Path):
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     n = folder.name
     guide = folder / f"{n}.input.guide"
@@ -46,9 +46,9 @@ def test_parse_by_rejects(text: str) -> None:
 
 def test_sample_2x2_is_four_renamed_copies_and_routes(testcase, tmp_path: Path) -> None:
     testcase("ispd18_sample")
-    from xroute_cli.design import load_design
-    from xroute_cli.outputs import write_route_outputs
-    from xroute_cli.router import route_design
+    from xroute.design import load_design
+    from xroute.outputs import write_route_outputs
+    from xroute.router import route_design
 
     base = load_design("ispd18_sample")
     tiled = _load(tile_testcase("ispd18_sample", 2, 2, tmp_path / "s22"))
@@ -75,9 +75,9 @@ def test_sample_2x2_is_four_renamed_copies_and_routes(testcase, tmp_path: Path) 
 
 def test_demo_1x2_keeps_io_pins_merges_rails_and_routes(tmp_path: Path) -> None:
     """The shipped demo has IO pins and power special nets; runs without contest data."""
-    from xroute_cli.design import load_design
-    from xroute_cli.outputs import write_route_outputs
-    from xroute_cli.router import route_design
+    from xroute.design import load_design
+    from xroute.outputs import write_route_outputs
+    from xroute.router import route_design
 
     base = load_design(DEMO)
     tiled = _load(tile_testcase(DEMO, 1, 2, tmp_path / "demo_1x2"))
@@ -93,8 +93,8 @@ def test_demo_1x2_keeps_io_pins_merges_rails_and_routes(tmp_path: Path) -> None:
 
 
 def test_tiling_refuses_what_it_cannot_move(tmp_path: Path) -> None:
-    from testcases.def_text import read_def_text
-    from testcases.tiling import tile_def
+    from xroute.testcases.def_text import read_def_text
+    from xroute.testcases.tiling import tile_def
 
     path = tmp_path / "a.def"
     path.write_text("VERSION 5.8 ;\nDESIGN a ;\nDIEAREA ( 0 0 ) ( 10 0 ) ( 10 10 ) ;\nEND DESIGN\n")

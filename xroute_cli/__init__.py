@@ -1,11 +1,5 @@
-"""xroute: a VLSI detailed router whose net order is chosen by a pluggable policy.
+"""The ``xroute`` command (Typer): :mod:`xroute.cli.app` assembles one module per command from
+:mod:`xroute.cli.commands`; console output, progress and the batch runner live beside them.
 
-The Python API lives here; the compiled engine is the private module
-``xroute_cli._engine``.
+The top layer of the package: nothing below it imports from here.
 """
-
-from xroute_cli.design import Design, load_design
-from xroute_cli.errors import InputError, TestcaseNotFound, XrouteError
-
-__all__ = ["Design", "InputError", "TestcaseNotFound", "XrouteError", "load_design"]
-__version__ = "0.1.0"

@@ -1,6 +1,6 @@
 """The ``xroute`` command: assembles the subcommands (one module each) and turns user errors into one line.
 
-Errors: any :class:`~xroute_cli.errors.XrouteError` (bad input file, unknown testcase)
+Errors: any :class:`~xroute.errors.XrouteError` (bad input file, unknown testcase)
 or ``OSError`` (unreadable file) raised by a command is printed as one line
 ``error: <file>:<line>: <message>`` on stderr and exits with status 2, without a
 traceback. Usage errors keep Typer's status 2. Anything else is a bug and shows its
@@ -9,12 +9,12 @@ traceback.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
 
 import typer
 from typer.core import TyperGroup
 
-from xroute_cli.commands import (
+from xroute.cli.commands import (
     batch,
     evaluate,
     export,
@@ -28,7 +28,7 @@ from xroute_cli.commands import (
     testcases,
     train,
 )
-from xroute_cli.console import USER_ERRORS, print_error
+from xroute.cli.console import USER_ERRORS, print_error
 
 EXIT_USER_ERROR = 2
 
@@ -52,6 +52,24 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy.",
 )
+
+
+def _print_version(value: bool) -> None:
+    if value:
+        from xroute import __version__
+
+        typer.echo(f"xroute {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[bool, typer.Option("--version", callback=_print_version, is_eager=True,
+                                          help="Print the version and exit.")] = False,
+) -> None:
+    """xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy."""
+
+
 app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)

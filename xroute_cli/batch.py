@@ -5,7 +5,7 @@ Layout of the output folder ``OUT``::
     OUT/jobs/<job id>/            one folder per finished job: <design>.routed.def, .metrics.json,
                                   .drc.rpt and job.json (the job's record)
     OUT/jobs/.<job id>.tmp-<pid>  a job being run (renamed into place when complete)
-    OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute_cli.batch_summary`)
+    OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute.cli.batch_summary`)
 
 A job writes everything into its temporary folder and renames it to ``jobs/<job id>`` as its
 last step, so an interrupted batch leaves no partial job folder (stale temporary folders are
@@ -25,9 +25,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from xroute_cli.batch_config import BatchConfig
-from xroute_cli.config import CostSection, RunSettings, run_settings
-from xroute_cli.runs import policy_label
+from xroute.cli.batch_config import BatchConfig
+from xroute.config import CostSection, RunSettings, run_settings
+from xroute.cli.runs import policy_label
 
 JOB_RECORD = "job.json"
 JOB_FORMAT = 1
@@ -78,7 +78,7 @@ def plan_jobs(cfg: BatchConfig) -> list[Job]:
     ids = [j.id for j in jobs]
     dupes = sorted({i for i in ids if ids.count(i) > 1})
     if dupes:
-        from xroute_cli.config_schema import ConfigError
+        from xroute.config_schema import ConfigError
 
         raise ConfigError(f"two jobs would share the id {dupes[0]} (policies with the same file name?)", cfg.path, 0)
     return jobs
@@ -103,7 +103,7 @@ def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
 
 def clean_stale_job_folders(out_root: Path) -> list[Path]:
     """Removes temporary job folders whose process is gone (an interrupted batch)."""
-    from xroute_cli.outputs import _pid_alive
+    from xroute.outputs import _pid_alive
 
     removed = []
     jobs = out_root / "jobs"
@@ -124,11 +124,11 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     ``events``: a queue receiving progress tuples ``(job id, iteration, regions done, regions total,
     violations or None, iteration done, line)``; None for no progress.
     """
-    from xroute_cli.console import error_line
-    from xroute_cli.errors import XrouteError
-    from xroute_cli.outputs import atomic_write_text
-    from xroute_cli.progress import iteration_line
-    from xroute_cli.runs import route_testcase, run_summary
+    from xroute.cli.console import error_line
+    from xroute.errors import XrouteError
+    from xroute.outputs import atomic_write_text
+    from xroute.cli.progress import iteration_line
+    from xroute.cli.runs import route_testcase, run_summary
 
     root = Path(out_root)
     final = job_dir(root, job)

@@ -19,9 +19,9 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from xroute_cli.config import CHECKS, ScheduleEntry, XrouteConfig, load_config
-from xroute_cli.config_schema import Context, load_sections, setting
-from xroute_cli.router import MAX_ITERATIONS
+from xroute.config import CHECKS, ScheduleEntry, XrouteConfig, load_config
+from xroute.config_schema import Context, load_sections, setting
+from xroute.router import MAX_ITERATIONS
 
 
 def check_name(value: str, ctx: Context) -> tuple[str, str | None]:

@@ -1,6 +1,6 @@
 """The Ray backend of ``xroute batch`` (optional extra ``ray``: ``pip install 'xroute[ray]'``).
 
-Each job runs as a Ray task (one CPU each) with :func:`xroute_cli.batch.run_job`; the workers
+Each job runs as a Ray task (one CPU each) with :func:`xroute.cli.batch.run_job`; the workers
 must see the same testcases and output folder (a shared file system on a cluster). Connects
 to ``address`` (``ray://host:10001`` or ``host:6379``) or, with None, starts a local Ray instance
 for the run and shuts it down afterwards.
@@ -12,9 +12,9 @@ import pickle
 from pathlib import Path
 from typing import Any, Callable
 
-import xroute_cli
-from xroute_cli.batch import BatchProgress, Job
-from xroute_cli.errors import XrouteError
+import xroute.cli
+from xroute.cli.batch import BatchProgress, Job
+from xroute.errors import XrouteError
 
 
 def _job_runner(package_root: str | None) -> Callable[[bytes, str], dict[str, Any]]:
@@ -30,7 +30,7 @@ def _job_runner(package_root: str | None) -> Callable[[bytes, str], dict[str, An
 
         if package_root is not None and (not sys.path or sys.path[0] != package_root):
             sys.path.insert(0, package_root)
-        from xroute_cli.batch import run_job
+        from xroute.cli.batch import run_job
 
         return run_job(_pickle.loads(job_bytes), out_root)
 
@@ -57,7 +57,7 @@ def run_ray(jobs: list[Job], out_root: Path, workers: int, progress: BatchProgre
             raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
     try:
         # On a cluster the workers use their own installed xroute; locally, the driver's.
-        package_root = None if address else str(Path(xroute_cli.__file__).resolve().parent.parent)
+        package_root = None if address else str(Path(xroute.cli.__file__).resolve().parent.parent)
         task = ray.remote(num_cpus=1)(_job_runner(package_root))
         refs = {task.remote(pickle.dumps(job), str(out_root.resolve())): job for job in jobs}
         for job in jobs:

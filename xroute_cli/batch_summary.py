@@ -15,9 +15,9 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any
 
-from xroute_cli.batch_config import Gates
-from xroute_cli.config_schema import ConfigError
-from xroute_cli.outputs import atomic_write_text
+from xroute.cli.batch_config import Gates
+from xroute.config_schema import ConfigError
+from xroute.outputs import atomic_write_text
 
 SUMMARY_FORMAT = 1
 BASELINE_FORMAT = 1

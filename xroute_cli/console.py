@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 from rich.console import Console
 
-from xroute_cli.errors import InputError, XrouteError
+from xroute.errors import InputError, XrouteError
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
+    from xroute.design import Design
 
 # Width of tables when stdout is not a terminal (pipes, CliRunner) and COLUMNS is unset.
 PIPE_WIDTH = 160
@@ -79,9 +79,20 @@ def check_design_args(testcase: str | None, lef: list[Path] | None, def_: Path |
 
 
 def load_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> Design:
-    """Loads the design the (checked) arguments name; the compiled engine loads only now."""
-    from xroute_cli.design import load_design
+    """Loads the design the (checked) arguments name, as it is (no global routing); the compiled
+    engine loads only now."""
+    from xroute.design import load_design
 
     if testcase is not None:
         return load_design(testcase)
     return load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
+
+
+def prepare_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> Design:
+    """Loads the design the (checked) arguments name, ready to route (:func:`xroute.pipeline.prepare_design`:
+    global-routed when it has no guide)."""
+    from xroute.pipeline import prepare_design
+
+    if testcase is not None:
+        return prepare_design(testcase)
+    return prepare_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)

@@ -1,7 +1,7 @@
 """Command-line options shared by the routing commands (route, evaluate, batch).
 
 Routing flags default to None, meaning "not given": the value then comes from ``--config``
-(see :mod:`xroute_cli.config`), and from the defaults in configs/default.yaml without one.
+(see :mod:`xroute.config`), and from the defaults in configs/default.yaml without one.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
+from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
 
 ConfigOption = Annotated[
     Path | None,

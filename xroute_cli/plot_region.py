@@ -15,10 +15,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from xroute_cli.errors import InputError, XrouteError
+from xroute.errors import InputError, XrouteError
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
+    from xroute.design import Design
 
 Box = tuple[int, int, int, int]  # xlo, ylo, xhi, yhi (DBU)
 

@@ -17,7 +17,7 @@ from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeEl
 if TYPE_CHECKING:
     from rich.console import Console
 
-    from xroute_cli.router import RouteProgress
+    from xroute.router import RouteProgress
 
 MODES = ("rich", "lines", "quiet", "json")
 

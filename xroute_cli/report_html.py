@@ -14,9 +14,9 @@ from html import escape
 from pathlib import Path
 from typing import Any
 
-from xroute_cli.config import CostSection
-from xroute_cli.errors import InputError
-from xroute_cli.svg_chart import line_chart
+from xroute.config import CostSection
+from xroute.errors import InputError
+from xroute.cli.svg_chart import line_chart
 
 MAX_DEPTH = 4  # folder levels searched below each RUN_DIR
 

@@ -1,37 +1,28 @@
-"""One routing run from settings to written outputs, shared by evaluate and batch.
+"""One routing run from settings to written outputs (through :mod:`xroute.pipeline`), shared by evaluate and batch.
 
 The library never prints: progress goes to the optional callback.
 """
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable
 
 if TYPE_CHECKING:
-    from xroute_cli.config import CostSection, RunSettings
-    from xroute_cli.outputs import RouteOutputs
-    from xroute_cli.router import RouteProgress
+    from xroute.config import CostSection, RunSettings
+    from xroute.outputs import RouteOutputs
+    from xroute.router import RouteProgress
 
 
 def route_testcase(testcase: str, settings: RunSettings, out_dir: str | Path,
                    progress: Callable[[RouteProgress], None] | None = None) -> RouteOutputs:
-    """Loads ``testcase``, routes it with ``settings`` and writes the checked outputs into ``out_dir``."""
-    from policies.registry import get_policy
-    from xroute_cli.design import load_design
-    from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
-    from xroute_cli.router import route_design
+    """Routes ``testcase`` with ``settings`` through the pipeline and writes the checked outputs into ``out_dir``."""
+    from xroute import pipeline
+    from xroute.policies import get_policy
 
-    started = time.perf_counter()
-    kwargs = settings.route_kwargs()
+    route_settings = settings.route_settings()
     policy = get_policy(settings.policy, settings.seed)
-    design = load_design(testcase)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    clean_stale_temporaries(out)
-    result = route_design(design, policy=policy, progress=progress, **kwargs)
-    return write_route_outputs(design, result, out, started=started)
+    return pipeline.run(testcase, out_dir, route_settings, policy, progress)
 
 
 def run_summary(outputs: RouteOutputs, cost: CostSection) -> dict[str, Any]:

@@ -573,7 +573,7 @@ void bindDatabase(nb::module_& m) {
         return new Database(loadDatabase(lef_paths, def_path, guide_path.value_or("")));
       },
       "lef_paths"_a, "def_path"_a, "guide_path"_a = nb::none(), nb::rv_policy::take_ownership,
-      "Reads LEF files, a DEF and optionally a guide file. Raises xroute_cli.errors.InputError on bad input.");
+      "Reads LEF files, a DEF and optionally a guide file. Raises xroute.errors.InputError on bad input.");
 
   m.def(
       "load_lef",

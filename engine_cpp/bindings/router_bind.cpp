@@ -28,10 +28,14 @@ namespace {
 // A policy implemented by a Python callable:
 //   fn(region: dict, features: int32[n, 9]) -> sequence of n distinct ints.
 // With `needsRegion`, region["engine_region"] is the Region being routed (a
-// _engine.Region lent for this call: grid views, route_net...).
+// _engine.Region lent for this call: grid views, route_net...). Its name, in
+// errors, is fn.name when the callable has one (the Python policy's), else "python".
 class PythonPolicy final : public NetOrderPolicy {
  public:
-  PythonPolicy(nb::object fn, bool needsRegion) : fn_(std::move(fn)), needsRegion_(needsRegion) {}
+  PythonPolicy(nb::object fn, bool needsRegion)
+      : fn_(std::move(fn)),
+        needsRegion_(needsRegion),
+        name_(nb::hasattr(fn_, "name") ? nb::cast<std::string>(nb::str(fn_.attr("name"))) : "python") {}
   ~PythonPolicy() override {
     nb::gil_scoped_acquire gil;
     fn_.reset();
@@ -44,7 +48,7 @@ class PythonPolicy final : public NetOrderPolicy {
                                    const std::vector<NetCandidate>& c) override {
     return call(needsRegion_ ? &router : nullptr, region, c);
   }
-  std::string name() const override { return "python"; }
+  std::string name() const override { return name_; }
 
  private:
   std::vector<int32_t> call(RegionRouter* router, const RegionInfo& region, const std::vector<NetCandidate>& c) {
@@ -77,6 +81,7 @@ class PythonPolicy final : public NetOrderPolicy {
 
   nb::object fn_;
   bool needsRegion_ = false;
+  std::string name_;  // in error messages
   std::mutex mutex_;
 };
 

@@ -1,5 +1,6 @@
 #include "flow/region_router.hpp"
 
+#include "io/engine_errors.hpp"
 #include "route/min_area_fix.hpp"
 
 #include <algorithm>
@@ -480,7 +481,7 @@ void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
   RegionInfo info{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
   const std::vector<int32_t> order = policy.orderRegion(*this, info, cands);
   if (!isPermutation(order, cands.size())) {
-    throw std::invalid_argument("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
+    throw PolicyOrderError("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
                                 std::to_string(cands.size()) + " candidates");
   }
   for (int32_t k : order) {

@@ -1,5 +1,7 @@
 #include "grid/region_grid.hpp"
 
+#include "io/engine_errors.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -48,7 +50,7 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
 
   const size_t n = xs_.size() * ys_.size() * static_cast<size_t>(nz_);
   if (n > kMaxRegionNodes) {
-    throw std::invalid_argument("a region of " + std::to_string(xs_.size()) + " x " + std::to_string(ys_.size()) +
+    throw SettingError("a region of " + std::to_string(xs_.size()) + " x " + std::to_string(ys_.size()) +
                                 " x " + std::to_string(nz_) + " grid nodes exceeds the limit of " +
                                 std::to_string(kMaxRegionNodes) + "; use a smaller region size");
   }

@@ -23,8 +23,8 @@ from typing import Any
 
 import torch
 
-from policies.rl.models import NetOrderModel
-from xroute_cli.errors import XrouteError
+from xroute.policies.rl.models import NetOrderModel
+from xroute.errors import XrouteError
 
 FORMAT = "xroute-checkpoint"
 VERSION = 1

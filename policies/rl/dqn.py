@@ -8,7 +8,7 @@ loss between Q(s, a) and r + gamma x max over legal a' of Q_target(s', a') (0 af
 of a region); the target network is a copy of the model refreshed every ``target_update``
 gradient steps. The model runs in eval mode throughout (as exported); its batch-norm statistics
 are re-estimated on :data:`BATCH_NORM_SAMPLE` buffered states just before each target copy
-(:func:`~policies.rl.batch.refresh_batch_norm`), and once when learning starts.
+(:func:`~xroute.policies.rl.batch.refresh_batch_norm`), and once when learning starts.
 """
 
 from __future__ import annotations
@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
-from policies.rl.batch import StoredObs, chosen_rows, collate, refresh_batch_norm
-from policies.rl.models import NetOrderModel
-from policies.rl.train_config import DQNConfig
+from xroute.policies.rl.batch import StoredObs, chosen_rows, collate, refresh_batch_norm
+from xroute.policies.rl.models import NetOrderModel
+from xroute.policies.rl.train_config import DQNConfig
 
 
 BATCH_NORM_SAMPLE = 64

@@ -24,8 +24,8 @@ from pathlib import Path
 import onnx
 import torch
 
-from policies.rl.checkpoint import Checkpoint, load_checkpoint
-from policies.rl.models import ALIGNED_SHAPE, NET_CHANNELS, RegionScorer
+from xroute.policies.rl.checkpoint import Checkpoint, load_checkpoint
+from xroute.policies.rl.models import ALIGNED_SHAPE, NET_CHANNELS, RegionScorer
 
 OPSET = 17
 INPUT_NAMES: tuple[str, ...] = ("obstacle", "nets", "net_features", "mask")

@@ -3,7 +3,7 @@
 Imported only by the training, checkpoint and export modules (``pip install 'xroute[train]'``);
 nothing that routes with a shipped ONNX model imports torch.
 
-Layout (shapes as in ``policies.rl.observation``: the aligned grid is (z, y, x) = (3, 64, 64))::
+Layout (shapes as in ``xroute.policies.rl.observation``: the aligned grid is (z, y, x) = (3, 64, 64))::
 
     obstacle [B, 3, 64, 64]  --GridEncoder(1 channel)-->  obstacle vector [B, 64]
     nets  [K, 7, 3, 64, 64]  --GridEncoder(7 channels)--> net vector      [K, 64]
@@ -32,7 +32,7 @@ from __future__ import annotations
 import torch
 from torch import nn
 
-from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS
+from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS
 
 EMBED = 64
 """Length of the obstacle and net vectors."""

@@ -54,7 +54,7 @@ NET_FEATURES: tuple[str, ...] = (
 # Grid flag bits (engine_cpp/grid/region_grid.hpp NodeFlag).
 _ACCESS = 2
 _OWNER_MIXED = -2
-# Columns of the engine's candidate rows (policies.base.FEATURE_COLUMNS).
+# Columns of the engine's candidate rows (xroute.policy.FEATURE_COLUMNS).
 _NET, _PINS, _TERMINALS, _APS, _XLO, _YLO, _XHI, _YHI, _NET_PINS = range(9)
 
 

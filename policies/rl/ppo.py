@@ -2,7 +2,7 @@
 
 The model always runs in eval mode (batch norm on its running statistics, as the exported model
 does). Every ``update_every`` env steps: the batch-norm statistics are re-estimated on the
-rollout's states (:func:`~policies.rl.batch.refresh_batch_norm`), the rollout's log-probs and
+rollout's states (:func:`~xroute.policies.rl.batch.refresh_batch_norm`), the rollout's log-probs and
 values are recomputed with them (so each update starts at ratio 1), and the rollout is replayed
 ``epochs`` times in shuffled minibatches of ``batch_size`` transitions: clipped surrogate loss +
 ``value_coef`` x squared error of the critic against GAE(``gamma``, ``gae_lambda``) returns -
@@ -19,9 +19,9 @@ from dataclasses import dataclass
 import numpy as np
 import torch
 
-from policies.rl.batch import StoredObs, collate, refresh_batch_norm
-from policies.rl.models import NetOrderModel
-from policies.rl.train_config import PPOConfig
+from xroute.policies.rl.batch import StoredObs, collate, refresh_batch_norm
+from xroute.policies.rl.models import NetOrderModel
+from xroute.policies.rl.train_config import PPOConfig
 
 
 @dataclass

@@ -8,7 +8,7 @@ into ``out_dir``:
   at the end: 0.5 WL(um) + 4 vias + 500 DRVs), ``wirelength_dbu``, ``vias``, ``drvs``,
   ``seconds`` (wall time of the episode, updates included) and the last losses;
 * ``<algorithm>-epNNNNN.pt`` every ``checkpoint_every`` episodes and ``<algorithm>-final.pt``
-  at the end (see :mod:`policies.rl.checkpoint`).
+  at the end (see :mod:`xroute.policies.rl.checkpoint`).
 
 Determinism: ``torch.manual_seed(seed)``, the DQN generator seeded with ``seed`` and the env's
 first ``reset(seed=seed)``; later resets continue the env's own generator. Same seed, same log
@@ -25,12 +25,12 @@ from typing import Any, Callable
 
 import torch
 
-from policies.rl.batch import compact
-from policies.rl.checkpoint import Checkpoint, save_checkpoint
-from policies.rl.dqn import DQNTrainer
-from policies.rl.observation import NET_FEATURES
-from policies.rl.ppo import PPOTrainer
-from policies.rl.train_config import CommonConfig, DQNConfig, PPOConfig, config_dict
+from xroute.policies.rl.batch import compact
+from xroute.policies.rl.checkpoint import Checkpoint, save_checkpoint
+from xroute.policies.rl.dqn import DQNTrainer
+from xroute.policies.rl.observation import NET_FEATURES
+from xroute.policies.rl.ppo import PPOTrainer
+from xroute.policies.rl.train_config import CommonConfig, DQNConfig, PPOConfig, config_dict
 
 
 @dataclass

@@ -5,7 +5,7 @@ The defaults are the XRoute paper's hyperparameters where it gives them (marked 
 (a test keeps them equal to these dataclasses). Numpy/yaml only: no torch here.
 
 A YAML file may set any subset of the keys; an unknown key, a value of the wrong type or out of
-range raises :class:`~xroute_cli.errors.InputError` with the file and line.
+range raises :class:`~xroute.errors.InputError` with the file and line.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from xroute_cli.errors import InputError
+from xroute.errors import InputError
 
 
 @dataclass

@@ -1,1 +1,1 @@
-"""The subcommands of ``xroute``, one module each; :mod:`xroute_cli.app` assembles them."""
+"""The subcommands of ``xroute``, one module each; :mod:`xroute.cli.app` assembles them."""

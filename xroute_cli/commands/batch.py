@@ -17,9 +17,9 @@ from rich.markup import escape
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from xroute_cli.console import print_json, stdout_console
-from xroute_cli.options import JsonOption, QuietOption
-from xroute_cli.progress import output_mode
+from xroute.cli.console import print_json, stdout_console
+from xroute.cli.options import JsonOption, QuietOption
+from xroute.cli.progress import output_mode
 
 EXIT_FAILED = 1
 
@@ -123,20 +123,20 @@ def batch(
 
     Example (CI): CI=true xroute batch configs/ci-smoke.yaml --jobs 2
     """
-    from xroute_cli.batch import BatchProgress, clean_stale_job_folders, completed_record, plan_jobs, run_local
-    from xroute_cli.batch_config import load_batch_config
-    from xroute_cli.batch_summary import baseline_doc, check_gates, job_row, load_baseline, write_summary
-    from xroute_cli.outputs import atomic_write_text
+    from xroute.cli.batch import BatchProgress, clean_stale_job_folders, completed_record, plan_jobs, run_local
+    from xroute.cli.batch_config import load_batch_config
+    from xroute.cli.batch_summary import baseline_doc, check_gates, job_row, load_baseline, write_summary
+    from xroute.outputs import atomic_write_text
 
     if backend not in ("local", "ray"):
         raise typer.BadParameter("use local or ray", param_hint="--backend")
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
     job_list = plan_jobs(cfg)
-    from policies.registry import get_policy
+    from xroute.policies.registry import get_policy
 
     for job in job_list:  # settings and policies checked before the first job starts
-        job.run.route_kwargs()
+        job.run.route_settings()
     for spec in dict.fromkeys(job.run.policy for job in job_list):
         get_policy(spec)
     out_root = out if out is not None else Path(cfg.batch.out_dir)
@@ -156,7 +156,7 @@ def batch(
     with display:
         progress = BatchProgress(on_start=display.on_start, on_event=display.on_event, on_done=display.on_done)
         if backend == "ray":
-            from xroute_cli.batch_ray import run_ray
+            from xroute.cli.batch_ray import run_ray
 
             records = run_ray(todo, out_root, workers, progress, ray_address)
         else:

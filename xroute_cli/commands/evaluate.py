@@ -17,8 +17,8 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute_cli.console import TestcaseArg, print_json, stdout_console
-from xroute_cli.options import (
+from xroute.cli.console import TestcaseArg, print_json, stdout_console
+from xroute.cli.options import (
     ConfigOption,
     IterationsOption,
     JsonOption,
@@ -28,7 +28,7 @@ from xroute_cli.options import (
     SeedOption,
     ThreadsOption,
 )
-from xroute_cli.progress import ProgressDisplay, output_mode
+from xroute.cli.progress import ProgressDisplay, output_mode
 
 EVALUATION_FORMAT = 1
 
@@ -95,10 +95,10 @@ def evaluate(
 
     Example: xroute evaluate --policy bench/python_heuristic_policy.py ispd18_sample --iterations 3
     """
-    from xroute_cli.config import load_config, run_settings
-    from xroute_cli.outputs import atomic_write_text
-    from xroute_cli.router import RouteSettings
-    from xroute_cli.runs import policy_label, route_testcase, run_summary
+    from xroute.config import load_config, run_settings
+    from xroute.outputs import atomic_write_text
+    from xroute.router import RouteSettings
+    from xroute.cli.runs import policy_label, route_testcase, run_summary
 
     cfg = load_config(config)
     name = testcase or cfg.testcase.testcase_name
@@ -107,13 +107,13 @@ def evaluate(
     specs = {"policy": policy, "baseline": baseline}
     settings = {k: run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=v, seed=seed)
                 for k, v in specs.items()}
-    from policies.registry import get_policy
+    from xroute.policies.registry import get_policy
 
     for rs in settings.values():  # every setting and both policies checked before the first route
         RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed)
-        rs.route_kwargs()
+        rs.route_settings()
         get_policy(rs.policy, rs.seed)
-    from testcases.registry import find_testcase
+    from xroute.testcases.registry import find_testcase
 
     find_testcase(name)
     if out is None:

@@ -1,6 +1,6 @@
 """``xroute export CHECKPOINT --out model.onnx``: a training checkpoint as an ONNX net-order model.
 
-The model follows the contract read by ``OnnxPolicy`` (see :mod:`policies.rl.export`). Needs
+The model follows the contract read by ``OnnxPolicy`` (see :mod:`xroute.policies.rl.export`). Needs
 the ``train`` extra (torch, onnx). Exit status 2 for a missing or foreign checkpoint.
 """
 
@@ -11,8 +11,8 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.console import stdout_console
-from xroute_cli.errors import XrouteError
+from xroute.cli.console import stdout_console
+from xroute.errors import XrouteError
 
 
 class ExportError(XrouteError):
@@ -29,7 +29,7 @@ def export(
         import torch  # noqa: F401
     except ImportError as exc:
         raise ExportError(f"export needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
-    from policies.rl.export import export_checkpoint
+    from xroute.policies.rl.export import export_checkpoint
 
     path = export_checkpoint(checkpoint, out)
     stdout_console().print(f"wrote {path} ({path.stat().st_size / 1024:,.0f} KiB)", highlight=False)

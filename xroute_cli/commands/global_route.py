@@ -13,8 +13,8 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.console import print_json
-from xroute_cli.groute import DEFAULT_CAPACITY_PERCENT, DEFAULT_ITERATIONS
+from xroute.cli.console import print_json
+from xroute.groute import DEFAULT_CAPACITY_PERCENT, DEFAULT_ITERATIONS
 
 
 def _split_inputs(inputs: list[str]) -> tuple[str | None, str | None, list[str]]:
@@ -48,9 +48,9 @@ def global_route(
     as_json: Annotated[bool, typer.Option("--json", help="Print the statistics as JSON on stdout, nothing else.")] = False,
 ) -> None:
     """Global-route a placed design and write its route guides (ISPD guide format)."""
-    from xroute_cli.commands.route import global_route_summary
-    from xroute_cli.design import load_design
-    from xroute_cli.groute import global_route as run_global_route
+    from xroute.cli.commands.route import global_route_summary
+    from xroute.design import load_design
+    from xroute.groute import global_route as run_global_route
 
     testcase, def_, lefs = _split_inputs(inputs)
     if testcase is not None:

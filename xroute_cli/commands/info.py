@@ -8,7 +8,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute_cli.console import (
+from xroute.cli.console import (
     DefOption,
     GuideOption,
     LefOption,
@@ -20,7 +20,7 @@ from xroute_cli.console import (
 )
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
+    from xroute.design import Design
 
 # Buckets of the pins-per-net histogram: label -> (min pins, max pins), inclusive.
 PIN_BUCKETS: dict[str, tuple[int, int]] = {

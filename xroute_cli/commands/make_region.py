@@ -3,7 +3,7 @@
 The region is ``--size`` x ``--size`` GCells from the GCell ``--location X,Y`` (its lower-left),
 or a ``--box xlo,ylo,xhi,yhi`` in DBU, or one of the XRoute paper's static regions
 (``--paper-region 1``..``3`` on ispd18_test1). The folder (``--out``) gets region.lef, region.def,
-region.guide and region.yaml (see :mod:`testcases.regions`), written atomically; the
+region.guide and region.yaml (see :mod:`xroute.testcases.regions`), written atomically; the
 ``xroute/StaticRegion-v0`` environment loads it.
 """
 
@@ -14,8 +14,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from testcases.regions import RegionError, make_region, paper_region_box
-from xroute_cli.console import print_json, stdout_console
+from xroute.testcases.regions import RegionError, make_region, paper_region_box
+from xroute.cli.console import print_json, stdout_console
 
 
 def _ints(text: str, count: int, what: str) -> tuple[int, ...]:

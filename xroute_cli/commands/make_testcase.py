@@ -13,7 +13,7 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.console import print_json
+from xroute.cli.console import print_json
 
 
 def make_testcase(
@@ -39,14 +39,14 @@ def make_testcase(
     if (cells is None) == (tile is None):
         raise typer.BadParameter("give exactly one of --cells N or --tile TESTCASE", param_hint="--cells/--tile")
 
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     if cells is not None:
-        from testcases.generator import make_testcase as generate
+        from xroute.testcases.generator import make_testcase as generate
 
         folder = generate(cells, seed, out if out is not None else Path(f"gen{cells}_s{seed}"))
     else:
-        from testcases.tiling import parse_by, tile_testcase
+        from xroute.testcases.tiling import parse_by, tile_testcase
 
         rows, cols = parse_by(by)
         folder = tile_testcase(tile, rows, cols, out if out is not None else Path(f"{tile}_{rows}x{cols}"))

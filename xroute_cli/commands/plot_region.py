@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.console import GuideOption, LefOption
+from xroute.cli.console import GuideOption, LefOption
 
 
 def plot_region(
@@ -33,9 +33,9 @@ def plot_region(
 
     Example: xroute plot-region out/ispd18_test1 --gcell 35,43 --size 1 --out region1.png
     """
-    from xroute_cli.design import load_design
-    from xroute_cli.outputs import atomic_write_bytes
-    from xroute_cli.plot_region import describe, gcell_box, parse_ints, read_drc_report, render_png, run_dir_inputs
+    from xroute.design import load_design
+    from xroute.outputs import atomic_write_bytes
+    from xroute.cli.plot_region import describe, gcell_box, parse_ints, read_drc_report, render_png, run_dir_inputs
 
     if (box is None) == (gcell is None):
         raise typer.BadParameter("give either --box xlo,ylo,xhi,yhi or --gcell X,Y", param_hint="--box/--gcell")

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from xroute_cli.options import ConfigOption
+from xroute.cli.options import ConfigOption
 
 
 def report(
@@ -25,9 +25,9 @@ def report(
 
     Example: xroute report out/evaluate/ispd18_test1 runs/ci-smoke --out report.html
     """
-    from xroute_cli.config import load_config
-    from xroute_cli.outputs import atomic_write_text
-    from xroute_cli.report_html import find_runs, render
+    from xroute.config import load_config
+    from xroute.outputs import atomic_write_text
+    from xroute.cli.report_html import find_runs, render
 
     cfg = load_config(config)
     runs = find_runs(run_dirs)

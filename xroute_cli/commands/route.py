@@ -14,17 +14,17 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute_cli.console import (
+from xroute.cli.console import (
     DefOption,
     GuideOption,
     LefOption,
     TestcaseArg,
     check_design_args,
-    load_design_args,
+    prepare_design_args,
     print_json,
     stdout_console,
 )
-from xroute_cli.options import (
+from xroute.cli.options import (
     ConfigOption,
     IterationsOption,
     JsonOption,
@@ -36,14 +36,12 @@ from xroute_cli.options import (
     SeedOption,
     ThreadsOption,
 )
-from xroute_cli.progress import ProgressDisplay, output_mode
-from xroute_cli.router import RouteSettings
+from xroute.cli.progress import ProgressDisplay, output_mode
 
 if TYPE_CHECKING:
-    from rich.console import Console
 
-    from xroute_cli.groute import GlobalRouteStats
-    from xroute_cli.outputs import RouteOutputs
+    from xroute.groute import GlobalRouteStats
+    from xroute.outputs import RouteOutputs
 
 EXIT_OPENS = 1
 MAX_OPENS_PRINTED = 20
@@ -51,7 +49,7 @@ MAX_OPENS_PRINTED = 20
 
 def parse_schedule(text: str) -> tuple[tuple[int, int], ...]:
     """``'5:0,5:2'`` -> ``((5, 0), (5, 2))``; a malformed step raises RouteArgumentError."""
-    from xroute_cli.router import RouteArgumentError
+    from xroute.router import RouteArgumentError
 
     steps = []
     for item in text.split(","):
@@ -135,52 +133,42 @@ def route(
     On a terminal a Rich progress bar shows the iteration, regions done and current violations;
     when stdout is not a terminal (or CI=true) one plain line per iteration is printed instead.
     """
-    from xroute_cli.config import load_config, run_settings
+    from xroute.config import load_config, run_settings
 
     cfg = load_config(config)  # validated before anything else
     if testcase is None and not lef and def_ is None:
         testcase = cfg.testcase.testcase_name
     if testcase is None and not lef and def_ is None and guide is None:
-        from testcases import DEMO
+        from xroute.testcases import DEMO
 
         testcase = DEMO
     check_design_args(testcase, lef, def_, guide)
     started = time.perf_counter()
 
-    from policies.registry import get_policy
-    from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
-    from xroute_cli.router import route_design
+    from xroute import pipeline
+    from xroute.policies import get_policy
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
                       schedule=steps)
-    RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed,
-                  schedule=rs.schedule or None)  # fail before loading
-    kwargs = rs.route_kwargs()
+    settings = rs.route_settings()  # fail before loading
     pol = get_policy(rs.policy, rs.seed)
-    design = load_design_args(testcase, lef, def_, guide)
+    console = stdout_console()
+    mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
+    design = prepare_design_args(testcase, lef, def_, guide)
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
     out_dir = out if out is not None else Path("out") / design.name
     out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
-    clean_stale_temporaries(out_dir)  # left by a run that was killed while writing
-
-    console = stdout_console()
-    mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
-    if not design.has_guides:
-        from xroute_cli.groute import global_route
-
-        stats = global_route(design)
-        if mode in ("rich", "lines"):
-            typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
-                       f"({global_route_summary(stats)})")
+    if design.global_route_stats is not None and mode in ("rich", "lines"):
+        typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
+                   f"({global_route_summary(design.global_route_stats)})")
     if mode == "lines":
         typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {rs.region_size}, "
                    f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
     with ProgressDisplay(console, mode, rs.iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
-        result = route_design(design, policy=pol, progress=display, **kwargs)
-    outputs = write_route_outputs(design, result, out_dir, started=started)
+        outputs = pipeline.route_to_outputs(design, out_dir, settings, pol, progress=display, started=started)
 
     if mode == "json":
         print_json(outputs.metrics)

@@ -10,7 +10,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute_cli.console import print_json, stdout_console
+from xroute.cli.console import print_json, stdout_console
 
 CONTEST_SITES = {
     "ISPD-2018": "http://www.ispd.cc/contests/18/",
@@ -28,7 +28,7 @@ def _die_um(die_mm: tuple[float, float] | None) -> str:
 
 def collect() -> dict[str, Any]:
     """What ``xroute testcases`` shows, as JSON-ready data."""
-    from testcases import ENV_VAR, STATIC_REGIONS, locate_all, search_path
+    from xroute.testcases import ENV_VAR, STATIC_REGIONS, locate_all, search_path
 
     located = locate_all()
     found_names = {known.name for known, found in located if found is not None}

@@ -14,8 +14,8 @@ from typing import Annotated, Any
 import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-from xroute_cli.console import print_json, stdout_console
-from xroute_cli.errors import XrouteError
+from xroute.cli.console import print_json, stdout_console
+from xroute.errors import XrouteError
 
 ALGORITHMS = ("ppo", "dqn")
 
@@ -42,13 +42,13 @@ def training_env_factory(testcase: str, region_size: int, location: tuple[int, i
                          max_candidates: int, region_loop: int = 1, hold_out_every: int = 0,
                          min_candidates: int = 1) -> Any:
     """A function making the training env (``xroute/NetOrdering-v0``) for these options, wrapped in
-    a :class:`~policies.rl.region_filter.RegionFilter` when regions are held out or skipped."""
+    a :class:`~xroute.policies.rl.region_filter.RegionFilter` when regions are held out or skipped."""
 
     def make() -> Any:
         import gymnasium
 
-        import policies.rl  # noqa: F401 - registers the env IDs
-        from policies.rl.region_filter import RegionFilter
+        import xroute.policies.rl  # noqa: F401 - registers the env IDs
+        from xroute.policies.rl.region_filter import RegionFilter
 
         env = gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,
                              region_size=region_size, testcase_loop=1_000_000, region_location=location,
@@ -109,9 +109,9 @@ def train(
         raise typer.BadParameter(f"use sequential or random, got {region_order!r}", param_hint="--region-order")
     location = parse_location(region_location)
     _require_torch()
-    from policies.rl.train import train as run_training
-    from policies.rl.train_config import load_config
-    from testcases import find_testcase
+    from xroute.policies.rl.train import train as run_training
+    from xroute.policies.rl.train_config import load_config
+    from xroute.testcases import find_testcase
 
     cfg = load_config(algorithm, config)
     find_testcase(testcase)  # unknown testcase: one-line error before any work

@@ -37,7 +37,7 @@ from typing import Any, Callable, Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
-from xroute_cli.errors import XrouteError
+from xroute.errors import PolicyError
 
 FEATURE_COLUMNS: tuple[str, ...] = (
     "net",
@@ -50,13 +50,14 @@ FEATURE_COLUMNS: tuple[str, ...] = (
     "bbox_yhi",
     "net_pins",
 )
-"""Columns of the ``features`` array (the same as ``xroute_cli._engine.POLICY_FEATURES``)."""
+"""Columns of the ``features`` array (the same as ``xroute._engine.POLICY_FEATURES``)."""
 
 _COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
 
 
-class PolicyError(XrouteError):
-    """A policy that cannot be loaded, or that returned something other than a permutation."""
+BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random")
+"""Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`)."""
+
 
 
 @runtime_checkable
@@ -163,3 +164,15 @@ def check_order(order: Any, n: int, policy_name: str) -> list[int]:
             raise PolicyError(f"{where} returned index {v} twice; it must return a permutation of range({n})")
         seen[v] = True
     return out
+
+
+def builtin_policy(name: str, seed: int = 1) -> NetOrderPolicy:
+    """The built-in policy called ``name`` (one of :data:`BUILTIN_POLICIES`); ``random`` is seeded with ``seed``."""
+    if name == "heuristic":
+        return HeuristicPolicy()
+    if name == "random":
+        return RandomPolicy(seed)
+    raise PolicyError(
+        f"unknown policy '{name}': use {', '.join(BUILTIN_POLICIES)}, or load a policy file or model with "
+        "xroute.policies.get_policy"
+    )

@@ -20,8 +20,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
-    from xroute_cli.router import RouteResult
+    from xroute.design import Design
+    from xroute.router import RouteResult
 
 METRICS_FORMAT = 1  # version of the metrics JSON layout
 MAX_OPENS_LISTED = 100  # open nets listed by name in the metrics JSON (all are counted)
@@ -128,7 +128,7 @@ def write_route_outputs(
     ``started`` is the ``time.perf_counter()`` of the start of the whole run (loading included),
     for the runtime figure; by default the routing time is used.
     """
-    from xroute_cli.design import load_design
+    from xroute.design import load_design
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -9,7 +9,7 @@ region the walk starts again on a freshly loaded design, ``testcase_loop`` passe
 (GCell column, row of a region's lower-left) restricts the walk to that one region, which is then
 never committed: every episode starts from the same state.
 
-Spaces and reward: see :mod:`policies.rl.envs.core`. One step routes one net; the episode
+Spaces and reward: see :mod:`xroute.envs.core`. One step routes one net; the episode
 terminates when every candidate of the region is routed.
 
 Seeding: ``reset(seed=s)`` restarts the walk from the first region on a fresh design (with
@@ -24,7 +24,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from policies.rl.envs.core import (
+from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
     RegionEnv,
@@ -102,7 +102,7 @@ class NetOrderingTrainingEnv(RegionEnv):
         return self.passes_done >= self.testcase_loop
 
     def _fresh_design(self) -> None:
-        from xroute_cli import _engine, load_design
+        from xroute import _engine, load_design
 
         if self._dirty or self._design is None:
             self._session = None

@@ -16,12 +16,11 @@ import time
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
-from policies.base import HeuristicPolicy, NetOrderPolicy, PolicyError, RandomPolicy, check_order
-from policies.registry import get_policy
-from xroute_cli.errors import XrouteError
+from xroute.policy import HeuristicPolicy, NetOrderPolicy, RandomPolicy, builtin_policy, check_order
+from xroute.errors import PolicyError, RouteArgumentError
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
+    from xroute.design import Design
 
 DEFAULT_REGION_SIZE = 5  # GCells per region side: measured best on ispd18_test1 (3: more violations, 7: slower)
 DEFAULT_ITERATIONS = 10  # the flow stops earlier when an iteration ends with zero violations
@@ -38,10 +37,6 @@ VIOLATION_TYPES: tuple[str, ...] = (
     "CornerSpacing",
 )
 """Design-rule marker types, in the engine's order."""
-
-
-class RouteArgumentError(XrouteError, ValueError):
-    """An invalid routing setting (region size, iteration count, thread count, seed)."""
 
 
 @dataclass(frozen=True)
@@ -177,15 +172,16 @@ class RouteResult:
 
 
 def _engine() -> Any:
-    from xroute_cli import _engine as engine  # compiled module; imported on first use
+    from xroute import _engine as engine  # compiled module; imported on first use
 
     return engine
 
 
 def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
-    """A policy object from a name/path (see :func:`policies.get_policy`) or a policy object."""
+    """A policy object from a built-in's name or a policy object (policy files and ONNX models:
+    :func:`xroute.policies.get_policy`)."""
     if isinstance(policy, str):
-        return get_policy(policy, seed)
+        return builtin_policy(policy, seed)
     if not isinstance(policy, NetOrderPolicy):
         raise PolicyError(f"not a net-order policy (needs name and order(region, features)): {policy!r}")
     return policy
@@ -206,6 +202,7 @@ class _PolicyCallback:
 
     def __init__(self, policy: NetOrderPolicy) -> None:
         self.policy = policy
+        self.name = policy.name  # the engine names the policy by it in its errors
         self.seconds = 0.0  # wall time in order() and the check
         self.calls = 0
 
@@ -232,10 +229,10 @@ def route_design(
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
     ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), a path to a ``.py`` policy
-    file, or a policy object (:class:`~policies.base.HeuristicPolicy`, ``RandomPolicy(seed)`` -
+    file, or a policy object (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` -
     whose own seed is used -, ``CallablePolicy(fn)`` or anything with ``name`` and ``order``).
     Built-in policies run in C++; any other is called once per region. Raises
-    :class:`RouteArgumentError` for invalid settings and :class:`~policies.base.PolicyError`
+    :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.
@@ -276,21 +273,16 @@ def route_design(
         kwargs["progress"] = on_progress
 
     start = time.perf_counter()
-    try:
-        out = _engine().route(
-            design.engine,
-            region_size=settings.region_size,
-            iterations=settings.iterations,
-            threads=settings.threads,
-            schedule=list(settings.schedule) if settings.schedule is not None else None,
-            **kwargs,
-        )
-    except ValueError as exc:
-        if "not a permutation" in str(exc):  # the engine's own check (the Python wrapper checks first)
-            raise PolicyError(str(exc).replace("'python'", f"'{pol.name}'")) from exc
-        if "grid nodes exceeds" in str(exc):  # the region size is too large for this design
-            raise RouteArgumentError(str(exc)) from exc
-        raise
+    # The engine raises PolicyError (not a permutation: the Python wrapper checks first) and
+    # RouteArgumentError (a region too large for this design) itself.
+    out = _engine().route(
+        design.engine,
+        region_size=settings.region_size,
+        iterations=settings.iterations,
+        threads=settings.threads,
+        schedule=list(settings.schedule) if settings.schedule is not None else None,
+        **kwargs,
+    )
     seconds = time.perf_counter() - start
     reports = tuple(IterationReport.from_engine(d) for d in out["iterations"])
     return RouteResult(

@@ -1,11 +1,11 @@
 """``xroute/StaticRegion-v0``: net ordering on one static region written by ``xroute make-region``.
 
 ``region_dir`` holds region.lef / region.def / region.guide / region.yaml (see
-:mod:`testcases.regions`). Every episode routes the same region from scratch: the whole die of the
+:mod:`xroute.testcases.regions`). Every episode routes the same region from scratch: the whole die of the
 clipped design (the region box plus the components it keeps), with its boundary pins as terminals.
 Nothing is committed, so every episode starts from the same state.
 
-Spaces and reward: see :mod:`policies.rl.envs.core`. ``reset(seed=)`` seeds ``self.np_random``;
+Spaces and reward: see :mod:`xroute.envs.core`. ``reset(seed=)`` seeds ``self.np_random``;
 the env draws nothing from it (same actions, same episode).
 """
 
@@ -15,7 +15,7 @@ from typing import Any
 
 import gymnasium as gym
 
-from policies.rl.envs.core import (
+from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
     RegionEnv,
@@ -37,8 +37,8 @@ class StaticRegionEnv(RegionEnv):
 
     def __init__(self, region_dir: str, *, max_candidates: int = DEFAULT_MAX_CANDIDATES,
                  weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None) -> None:
-        from testcases.regions import load_region
-        from xroute_cli import _engine
+        from xroute.testcases.regions import load_region
+        from xroute import _engine
 
         self.region_dir = str(region_dir)
         self.max_candidates = check_max_candidates(max_candidates)

@@ -3,7 +3,7 @@
 The engine routes every net on the GCell grid (DEF GCELLGRID, else a regular grid of 15 track
 pitches), with pattern routing, then rip-up and maze rerouting under negotiated congestion,
 then layer assignment (see ``engine_cpp/groute/README.md``). The guides replace any the design
-had, in memory, so that :func:`xroute_cli.router.route_design` can run on them without a file;
+had, in memory, so that :func:`xroute.router.route_design` can run on them without a file;
 ``out`` also writes them in the ISPD guide format (atomically). Deterministic.
 """
 
@@ -13,18 +13,14 @@ import os
 from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING, Any
 
-from xroute_cli.errors import XrouteError
+from xroute.errors import GlobalRouteArgumentError
 
 if TYPE_CHECKING:
-    from xroute_cli.design import Design
+    from xroute.design import Design
 
 DEFAULT_ITERATIONS = 30  # rip-up-and-reroute rounds at most (stops at zero overflow)
 DEFAULT_CAPACITY_PERCENT = 70  # ispd18_test1 detailed-routed: 29 violations at 70, 51 at 100 (README of engine_cpp/groute)
 DEFAULT_CONGESTION_COST = 0.0  # layer assignment: cost of a GCell edge at full use, in edge-length units
-
-
-class GlobalRouteArgumentError(XrouteError, ValueError):
-    """An invalid global-routing setting."""
 
 
 @dataclass(frozen=True)
@@ -87,6 +83,6 @@ def global_route(
 
 
 def _engine() -> Any:
-    from xroute_cli import _engine as engine  # compiled module; imported on first use
+    from xroute import _engine as engine  # compiled module; imported on first use
 
     return engine

@@ -6,13 +6,13 @@ each a frozen dataclass whose fields carry the XRoute paper's parameter names
 ``iteration_count``, ``thread_count``, ``net_loop``) and the cost weights (0.5 per µm of
 wirelength, 4 per via, 500 per design-rule violation). ``configs/default.yaml`` documents every
 key with its unit and default. The file is validated once, when loaded; any problem raises
-:class:`~xroute_cli.config_schema.ConfigError` with the file, the line and the dotted key.
+:class:`~xroute.config_schema.ConfigError` with the file, the line and the dotted key.
 
 Paths *read* from a config (policy files, baseline files) are relative to the config file's
 folder; output folders are relative to the current directory.
 
 Other commands compose these sections with their own into a dataclass and load it with
-:func:`xroute_cli.config_schema.load_sections` (passing :data:`CHECKS`), e.g.::
+:func:`xroute.config_schema.load_sections` (passing :data:`CHECKS`), e.g.::
 
     @dataclass(frozen=True)
     class TrainConfig:
@@ -30,9 +30,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
-from xroute_cli.config_schema import ConfigError, Context, load_sections, setting
-from xroute_cli.errors import XrouteError
-from xroute_cli.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
+from xroute.config_schema import ConfigError, Context, load_sections, setting
+from xroute.errors import XrouteError
+from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
 
 __all__ = [
     "CHECKS",
@@ -53,8 +53,8 @@ __all__ = [
 
 # -- checks run on values (name -> function), shared with other commands' configs -------------------
 def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
-    from testcases.registry import find_testcase
-    from xroute_cli.errors import TestcaseNotFound
+    from xroute.testcases.registry import find_testcase
+    from xroute.errors import TestcaseNotFound
 
     try:
         find_testcase(value)
@@ -66,7 +66,7 @@ def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
 def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     """A built-in policy name stays as it is; anything else is a policy file, which must be
     readable (relative to the config file's folder). Its format is checked when it is loaded."""
-    from policies.registry import BUILTIN_POLICIES
+    from xroute.policy import BUILTIN_POLICIES
 
     if value in BUILTIN_POLICIES:
         return value, None
@@ -203,19 +203,13 @@ class RunSettings:
     schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
     net_loop: int = 1
 
-    def route_kwargs(self) -> dict[str, Any]:
-        """Keyword arguments of :func:`xroute_cli.router.route_design` (without the policy)."""
-        from xroute_cli.router import RouteSettings
-
-        kwargs: dict[str, Any] = {"region_size": self.region_size, "iterations": self.iterations,
-                                  "threads": self.threads, "seed": self.seed,
-                                  "schedule": list(self.schedule) if self.schedule else None}
-        RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
-                      seed=self.seed, schedule=self.schedule or None)  # RouteArgumentError when invalid
+    def route_settings(self) -> RouteSettings:
+        """The detailed router's settings (validated: RouteArgumentError when invalid)."""
         if self.net_loop != 1:
             raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
                               "once per visit; net_loop > 1 applies to the training environments only")
-        return kwargs
+        return RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
+                             seed=self.seed, schedule=self.schedule or None)
 
     def to_dict(self) -> dict[str, Any]:
         return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,

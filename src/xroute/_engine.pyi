@@ -1,4 +1,4 @@
-"""xroute's compiled engine (private; use the xroute_cli Python API)."""
+"""xroute's compiled engine (private; use the xroute Python API)."""
 
 from collections.abc import Sequence
 from typing import Annotated
@@ -218,7 +218,7 @@ class Database:
 
 def load(lef_paths: Sequence[str], def_path: str, guide_path: str | None = None) -> Database:
     """
-    Reads LEF files, a DEF and optionally a guide file. Raises xroute_cli.errors.InputError on bad input.
+    Reads LEF files, a DEF and optionally a guide file. Raises xroute.errors.InputError on bad input.
     """
 
 def load_lef(lef_paths: Sequence[str]) -> Database:

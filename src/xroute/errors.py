@@ -1,4 +1,9 @@
-"""Exceptions raised by xroute for bad user input."""
+"""The exceptions xroute raises (the bottom layer: it imports nothing of xroute).
+
+Every error a user can cause derives from :class:`XrouteError`; the command line reports it as
+one line and exits with status 2. The compiled engine raises :class:`InputError`,
+:class:`RouteArgumentError` and :class:`PolicyError` itself (typed, never recognised by text).
+"""
 
 from __future__ import annotations
 
@@ -27,3 +32,20 @@ class InputError(XrouteError, ValueError):
 
 class TestcaseNotFound(XrouteError, LookupError):
     """A testcase name that no folder on the search path holds."""
+
+
+class SettingsError(XrouteError, ValueError):
+    """An invalid setting (a value out of range, a setting the design cannot honour)."""
+
+
+class RouteArgumentError(SettingsError):
+    """An invalid detailed-routing setting (region size, iteration count, threads, seed, schedule),
+    including a region too large for the engine's grid limit on this design."""
+
+
+class GlobalRouteArgumentError(SettingsError):
+    """An invalid global-routing setting."""
+
+
+class PolicyError(XrouteError):
+    """A policy that cannot be loaded, or that returned something other than a permutation."""

@@ -1,7 +1,7 @@
 """What every net-ordering environment shares: spaces, the cost and reward, and one region stepped
 net by net (:class:`RegionStepper`).
 
-Spaces (M = ``max_candidates``, S = ``len(NET_FEATURES)``; see :mod:`policies.rl.observation`)::
+Spaces (M = ``max_candidates``, S = ``len(NET_FEATURES)``; see :mod:`xroute.policies.rl.observation`)::
 
     observation = Dict(obstacle:     Box(0, 1, (3, 64, 64), float32),
                        nets:         Box(0, 1, (M, 7, 3, 64, 64), float32),
@@ -30,8 +30,8 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from policies.base import heuristic_order
-from policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+from xroute.policy import heuristic_order
+from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 
 DEFAULT_MAX_CANDIDATES = 64
 

@@ -14,11 +14,11 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from xroute_cli.errors import InputError
+from xroute.errors import InputError
 
 
 def _engine():
-    from xroute_cli import _engine as engine  # compiled module; imported on first use
+    from xroute import _engine as engine  # compiled module; imported on first use
 
     return engine
 
@@ -49,7 +49,7 @@ class Design:
         self.testcase = testcase
         self._layers: list[LayerInfo] | None = None
         self._net_names: list[str] | None = None
-        # Set by xroute_cli.groute.global_route when the guides come from the built-in global router.
+        # Set by xroute.groute.global_route when the guides come from the built-in global router.
         self.global_route_stats: Any = None
 
     # -- identity -----------------------------------------------------------
@@ -81,7 +81,7 @@ class Design:
 
     @property
     def engine(self) -> Any:
-        """The underlying engine object (``xroute_cli._engine.Database``)."""
+        """The underlying engine object (``xroute._engine.Database``)."""
         return self._db
 
     # -- counts and summaries ---------------------------------------------
@@ -334,7 +334,7 @@ def load_design(
     if testcase is not None:
         if lef is not None or def_ is not None:
             raise ValueError("give either a testcase name or lef=/def_= paths, not both")
-        from testcases import find_testcase
+        from xroute.testcases.registry import find_testcase
 
         found = find_testcase(testcase)
         lef_paths = [str(found.lef)]

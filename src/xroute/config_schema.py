@@ -25,7 +25,7 @@ from typing import Any, Callable, Literal, Union
 
 import yaml
 
-from xroute_cli.errors import InputError
+from xroute.errors import InputError
 
 _NUMBER_TYPES = (int, float)
 

@@ -3,13 +3,13 @@
 ``reset()`` loads ``testcase_name`` afresh and starts the router's own flow (as ``xroute route``:
 regions of ``region_size`` GCells, up to ``iteration_count`` iterations, rip-up and reroute of the
 nets in design-rule markers, early stop at zero violations) in a background thread, with a policy
-that lends every region to this env (``needs_region = True``, see :mod:`policies.base`). Each
+that lends every region to this env (``needs_region = True``, see :mod:`xroute.policy`). Each
 step routes one net of the region being routed (``action`` = its row, see
-:mod:`policies.rl.envs.core` for the spaces and the reward); when the region's last net is routed
+:mod:`xroute.envs.core` for the spaces and the reward); when the region's last net is routed
 the router commits it and moves on, and the next observation is the next region's. The episode
 terminates when the router is done; the final ``info`` holds ``result`` (the
-:class:`~xroute_cli.router.RouteResult`) and, with ``out_dir``, ``outputs``: the routed DEF,
-metrics JSON and DRC report written by :func:`xroute_cli.outputs.write_route_outputs`, exactly as
+:class:`~xroute.router.RouteResult`) and, with ``out_dir``, ``outputs``: the routed DEF,
+metrics JSON and DRC report written by :func:`xroute.outputs.write_route_outputs`, exactly as
 ``xroute route`` writes them.
 
 The flow is deterministic (one routing thread), so same actions, same episode; ``reset(seed=)``
@@ -25,7 +25,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from policies.rl.envs.core import (
+from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
     CostWeights,
     RegionEnv,
@@ -62,7 +62,7 @@ class _LendingPolicy:
 
 class NetOrderingEvaluationEnv(RegionEnv):
     """The whole routing flow of a testcase with the agent ordering every region (see the module
-    docstring). observation_space / action_space as in :mod:`policies.rl.envs.core`."""
+    docstring). observation_space / action_space as in :mod:`xroute.envs.core`."""
 
     metadata = {"render_modes": []}
 
@@ -77,7 +77,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
         reward_fn: RewardFn | None = None,
         out_dir: str | None = None,
     ) -> None:
-        from xroute_cli.router import RouteSettings
+        from xroute.router import RouteSettings
 
         RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
         self.testcase_name = testcase_name
@@ -100,10 +100,10 @@ class NetOrderingEvaluationEnv(RegionEnv):
 
     # -- the routing thread -------------------------------------------------
     def _start(self) -> None:
-        from xroute_cli import load_design
-        from xroute_cli.router import route_design
+        from xroute.pipeline import prepare_design
+        from xroute.router import route_design
 
-        self.design = load_design(self.testcase_name)
+        self.design = prepare_design(self.testcase_name)
         self._events, self._resume = queue.Queue(), queue.Queue()
         policy = _LendingPolicy(self._events, self._resume)
         design, events = self.design, self._events
@@ -153,7 +153,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
             raise payload
         out: dict[str, Any] = {"result": payload}
         if self.out_dir is not None:
-            from xroute_cli.outputs import write_route_outputs
+            from xroute.outputs import write_route_outputs
 
             out["outputs"] = write_route_outputs(self.design, payload, self.out_dir)
         return out

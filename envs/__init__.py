@@ -1,0 +1,52 @@
+"""Gymnasium environments of net ordering (the ``rl`` extra), one per module:
+
+* ``xroute/NetOrdering-v0`` (:mod:`.ordering_training`, :func:`ordering_training_env`): training
+  mode, one region an episode;
+* ``xroute/NetOrderingEval-v0`` (:mod:`.ordering_evaluation`, :func:`ordering_evaluation_env`):
+  routes a whole testcase, the agent ordering every region;
+* ``xroute/StaticRegion-v0`` (:mod:`.static_region`, :func:`static_region_env`): one region
+  written by ``xroute make-region``.
+
+Importing this package registers the three IDs with gymnasium (nothing else is loaded until an
+environment is made), so ``import xroute.envs; gymnasium.make("xroute/NetOrdering-v0")`` works, and
+so does ``gymnasium.make("xroute.envs:xroute/NetOrdering-v0")`` without the import.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from gymnasium.envs.registration import register, registry
+
+ENV_IDS: dict[str, str] = {
+    "xroute/NetOrdering-v0": "xroute.envs.ordering_training:NetOrderingTrainingEnv",
+    "xroute/NetOrderingEval-v0": "xroute.envs.ordering_evaluation:NetOrderingEvaluationEnv",
+    "xroute/StaticRegion-v0": "xroute.envs.static_region:StaticRegionEnv",
+}
+
+_FACTORIES = {
+    "ordering_training_env": "xroute.envs.ordering_training",
+    "ordering_evaluation_env": "xroute.envs.ordering_evaluation",
+    "static_region_env": "xroute.envs.static_region",
+}
+
+
+def register_envs() -> None:
+    """Registers every xroute environment with gymnasium (idempotent; done on import)."""
+    for env_id, entry_point in ENV_IDS.items():
+        if env_id not in registry:
+            register(id=env_id, entry_point=entry_point)
+
+
+def __getattr__(name: str) -> Any:
+    """The factories load their module on first use (the engine is imported when an env is made)."""
+    if name in _FACTORIES:
+        import importlib
+
+        return getattr(importlib.import_module(_FACTORIES[name]), name)
+    raise AttributeError(f"module 'xroute.envs' has no attribute '{name}'")
+
+
+register_envs()
+
+__all__ = ["ENV_IDS", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]

@@ -1,0 +1,94 @@
+"""The one routing pipeline: load -> global route when there is no guide -> detailed route ->
+write and check the outputs.
+
+``xroute route``, ``evaluate``, ``batch`` and the evaluation environment all go through these
+functions, so a design without a route guide gets the built-in global router's guides whichever
+of them routes it, and every run's outputs are written and checked the same way.
+
+The library never prints: progress goes to the optional callback.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable, Sequence
+
+from xroute.design import Design, load_design
+from xroute.groute import global_route
+from xroute.outputs import RouteOutputs, clean_stale_temporaries, write_route_outputs
+from xroute import router
+from xroute.router import RouteProgress, RouteResult, RouteSettings
+
+if TYPE_CHECKING:
+    from xroute.policy import NetOrderPolicy
+
+PathLike = str | os.PathLike[str]
+
+
+def prepare_design(
+    testcase: str | None = None,
+    *,
+    lef: PathLike | Sequence[PathLike] | None = None,
+    def_: PathLike | None = None,
+    guide: PathLike | None = None,
+) -> Design:
+    """Loads a design (a testcase name, or ``lef=``/``def_=`` files) ready for detailed routing:
+    when it has no route guide, the built-in global router gives it one (its figures are then in
+    ``design.global_route_stats``, and ``design.guide_source == "built-in"``)."""
+    design = load_design(testcase, lef=lef, def_=def_, guide=guide)
+    if not design.has_guides:
+        global_route(design)
+    return design
+
+
+def route(
+    design: Design,
+    settings: RouteSettings,
+    policy: str | NetOrderPolicy = "heuristic",
+    progress: Callable[[RouteProgress], None] | None = None,
+) -> RouteResult:
+    """Detailed-routes a prepared design in place with ``settings`` and ``policy``."""
+    return router.route_design(  # looked up on the module: tests may replace it
+        design,
+        region_size=settings.region_size,
+        iterations=settings.iterations,
+        threads=settings.threads,
+        seed=settings.seed,
+        schedule=settings.schedule,
+        policy=policy,
+        progress=progress,
+    )
+
+
+def route_to_outputs(
+    design: Design,
+    out_dir: PathLike,
+    settings: RouteSettings,
+    policy: str | NetOrderPolicy = "heuristic",
+    progress: Callable[[RouteProgress], None] | None = None,
+    started: float | None = None,
+) -> RouteOutputs:
+    """Routes a prepared design and writes the routed DEF, metrics JSON and DRC report into
+    ``out_dir`` (created if needed; leftovers of a killed run cleaned first), checked on the
+    written DEF. ``started`` (a ``time.perf_counter()`` value) counts loading in the run time."""
+    started = time.perf_counter() if started is None else started
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    clean_stale_temporaries(out)
+    result = route(design, settings, policy, progress)
+    return write_route_outputs(design, result, out, started=started)
+
+
+def run(
+    testcase: str,
+    out_dir: PathLike,
+    settings: RouteSettings,
+    policy: str | NetOrderPolicy = "heuristic",
+    progress: Callable[[RouteProgress], None] | None = None,
+) -> RouteOutputs:
+    """The whole pipeline for a testcase name: prepare, route, write and check."""
+    started = time.perf_counter()
+    design = prepare_design(testcase)
+    return route_to_outputs(design, out_dir, settings, policy, progress, started=started)

@@ -1,3 +1,0 @@
-from xroute_cli.app import main
-
-main()
