@@ -23,13 +23,13 @@ the two metrics dicts replaces it; ``info`` carries ``metrics`` and ``cost`` for
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Callable
 
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from xroute.config import CostSection
 from xroute.policy import heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 
@@ -38,19 +38,8 @@ DEFAULT_MAX_CANDIDATES = 64
 RewardFn = Callable[[dict[str, Any], dict[str, Any]], float]
 
 
-@dataclass(frozen=True)
-class CostWeights:
-    """Weights of the paper's cost: per micron of wire, per via, per design-rule violation."""
-
-    wirelength_um: float = 0.5
-    via: float = 4.0
-    violation: float = 500.0
-
-    def cost(self, metrics: dict[str, Any], dbu_per_micron: int) -> float:
-        """The cost of a region's metrics (``Region.metrics()``; wirelength in DBU)."""
-        wl_um = float(metrics["wirelength_dbu"]) / max(1, int(dbu_per_micron))
-        return self.wirelength_um * wl_um + self.via * float(metrics["vias"]) + self.violation * float(
-            metrics["violations"])
+CostWeights = CostSection
+"""The paper's cost weights (:class:`xroute.config.CostSection`, their one definition)."""
 
 
 def observation_space(max_candidates: int) -> spaces.Dict:
@@ -94,7 +83,7 @@ class RegionStepper:
         self.rows = np.asarray(region.candidates, dtype=np.int32)
         self.heuristic = heuristic_order(self.rows)
         self.metrics = region.metrics()
-        self.cost = weights.cost(self.metrics, self.dbu)
+        self.cost = weights.region_cost(self.metrics, self.dbu)
         self.slots = np.zeros(0, dtype=np.int64)
         self.order: list[int] = []  # candidate indices in the order routed
         # The net channels depend only on the terminals, fixed for the region: built once per row set.
@@ -152,7 +141,7 @@ class RegionStepper:
         self.order.append(cand)
         before = self.metrics
         self.metrics = self.region.metrics()
-        cost = self.weights.cost(self.metrics, self.dbu)
+        cost = self.weights.region_cost(self.metrics, self.dbu)
         if self.reward_fn is not None:
             reward = float(self.reward_fn(before, self.metrics))
         else:

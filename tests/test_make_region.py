@@ -32,7 +32,7 @@ def test_paper_region3_folder_and_counts(region3: Path) -> None:
     assert meta["testcase"] == "ispd18_test1"
     assert meta["box"] == [148200, 210900, 153900, 216600] and meta["origin"] == [148200, 210900]
     # Our counts for the paper's Region3 (the paper reports 49 nets / 66 pins; see policies/rl/README.md).
-    assert (meta["nets"], meta["pins"]) == (38, 12)
+    assert (meta["nets"], meta["pins"]) == (39, 13)
     assert len(meta["net_names"]) == meta["nets"]
     assert meta["sparsity"] == pytest.approx(meta["grid_nodes"] / meta["nets"], abs=1e-3)
     die = meta["die"]
@@ -64,7 +64,7 @@ def test_static_region_env_check_env_and_determinism(region3: Path) -> None:
     def rollout(seed: int) -> list[tuple[float, float]]:
         rng = np.random.default_rng(seed)
         obs, info = env.reset(seed=seed)
-        assert info["candidates"] == 38
+        assert info["candidates"] == 39
         out, done = [], False
         while not done:
             obs, reward, done, _, _ = env.step(int(rng.choice(np.flatnonzero(env.unwrapped.action_masks()))))
@@ -72,7 +72,7 @@ def test_static_region_env_check_env_and_determinism(region3: Path) -> None:
         return out
 
     first = rollout(7)
-    assert len(first) == 38
+    assert len(first) == 39
     assert rollout(7) == first
 
 

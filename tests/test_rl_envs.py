@@ -75,7 +75,7 @@ def test_reward_is_the_drop_of_the_paper_cost() -> None:
     from xroute.envs.ordering_training import ordering_training_env
 
     require_testcase("ispd18_sample")
-    weights = CostWeights(wirelength_um=1.0, via=2.0, violation=100.0)
+    weights = CostWeights(wirelength_weight=1.0, via_weight=2.0, drv_weight=100.0)
     env = ordering_training_env("ispd18_sample", region_size=100, max_candidates=16, weights=weights)
     _, info = env.reset(seed=0)
     cost0 = info["cost"]

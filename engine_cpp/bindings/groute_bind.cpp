@@ -87,8 +87,9 @@ void bindGlobalRouter(nb::module_& m) {
         d["seconds"] = st.seconds;
         return d;
       },
-      "db"_a, "out"_a = "", "iterations"_a = 30, "capacity_percent"_a = 70, "min_layer"_a = 1, "slack"_a = 0,
-      "congestion_cost"_a = 0.0,
+      "db"_a, "out"_a = "", "iterations"_a = GlobalRouteSettings{}.iterations,
+      "capacity_percent"_a = GlobalRouteSettings{}.capacityPercent, "min_layer"_a = GlobalRouteSettings{}.minLayer,
+      "slack"_a = GlobalRouteSettings{}.slack, "congestion_cost"_a = GlobalRouteSettings{}.congestionCost,
       "Global-routes every net of the database and replaces its guides with the result (any guides it had are "
       "dropped). out: also write them to this path in the ISPD guide format (atomically; '' = no file). "
       "iterations: rip-up-and-reroute rounds at most; capacity_percent: share of each GCell edge's free tracks "

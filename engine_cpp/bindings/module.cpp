@@ -15,6 +15,7 @@ void bindRouter(nb::module_& m);
 void bindPinAccess(nb::module_& m);
 void bindRegion(nb::module_& m);
 void bindGlobalRouter(nb::module_& m);
+void bindDefaults(nb::module_& m);
 
 NB_MODULE(_engine, m) {
   m.doc() = "xroute's compiled engine (private; use the xroute Python API).";
@@ -42,4 +43,5 @@ NB_MODULE(_engine, m) {
   bindPinAccess(m);
   bindRegion(m);
   bindGlobalRouter(m);
+  bindDefaults(m);
 }

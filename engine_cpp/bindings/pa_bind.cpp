@@ -59,7 +59,7 @@ void bindPinAccess(nb::module_& m) {
   m.attr("ACCESS_SOUTH") = int(kAccessSouth);
 
   nb::class_<Database> cls = nb::borrow<nb::class_<Database>>(nb::type<Database>());
-  cls.def("pin_access", &pinAccessDict, "max_points_per_pin"_a = 3, "threads"_a = 1, "share_classes"_a = true,
+  cls.def("pin_access", &pinAccessDict, "max_points_per_pin"_a = PinAccessSettings{}.maxPointsPerPin, "threads"_a = 1, "share_classes"_a = true,
           "Access points of every net pin (every entry of pin_refs), best first.\n\n"
           "Returns a dict:\n"
           "  start: int32[pin_refs + 1]; pin ref i owns rows start[i] .. start[i+1] of points.\n"

@@ -118,7 +118,9 @@ void bindRouter(nb::module_& m) {
          nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs,
          const std::optional<std::vector<std::pair<int, int>>>& schedule) {
         if (region_size < 1) throw nb::value_error("region_size must be >= 1");
-        if (iterations < 1 || iterations > 64) throw nb::value_error("iterations must be in 1..64");
+        if (iterations < 1 || iterations > kMaxIterations) {
+          throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
+        }
         if (threads < 1) throw nb::value_error("threads must be >= 1");
         std::unique_ptr<NetOrderPolicy> p;
         if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region);
@@ -173,7 +175,7 @@ void bindRouter(nb::module_& m) {
         result["policy"] = policy_fn.is_none() ? policy : std::string("python");
         return result;
       },
-      "db"_a, "region_size"_a = 5, "iterations"_a = 10, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
+      "db"_a, "region_size"_a = RouterSettings{}.regionSize, "iterations"_a = RouterSettings{}.iterations, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
       "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(), "costs"_a = nb::dict(),
       "schedule"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "

@@ -29,12 +29,6 @@ struct NetShape {
 // extension is given), via shapes at their positions, patches.
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out);
 
-// Access points kept per pin (best first, spread over distinct wire
-// coordinates). 6 measured on ispd18_test1: 3 gives 89,896 um / 13
-// violations, 6 gives 89,027 um / 37 (with the router's default marker and
-// history costs), 10 gives more violations and no shorter wires after repair.
-inline constexpr int kAccessPointsPerPin = 6;
-
 struct RouteContext {
   RouteContext(const Tech& tech, Design& design, int threads, int accessPointsPerPin = kAccessPointsPerPin);
 

@@ -51,7 +51,7 @@ class Flow {
     for (Net& n : design_.nets) n.routing = NetRouting{};
     ctx_.rebuildRoutedIndex();
     RouteOutcome out;
-    const int iterations = std::clamp(s_.iterations, 1, 64);
+    const int iterations = std::clamp(s_.iterations, 1, kMaxIterations);
     for (int it = 0; it < iterations; ++it) {
       const auto t0 = Clock::now();
       IterationReport rep;

@@ -26,9 +26,11 @@ struct ScheduleStep {
   int offset = 0;                  // GCells, 0 <= offset < regionSize
 };
 
+inline constexpr int kMaxIterations = 64;  // the most iterations one run may ask for
+
 struct RouterSettings {
   int regionSize = 5;              // GCells per region side (C); 5 measured best on ispd18_test1
-  int iterations = 10;             // iterations 0..iterations-1 at most (1..64)
+  int iterations = 10;             // iterations 0..iterations-1 at most (1..kMaxIterations)
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...
   MazeCosts costs;                 // maze costs of iteration 0

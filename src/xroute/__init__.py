@@ -15,9 +15,12 @@ One import root, in layers that only import downward (ARCHITECTURE.md):
 Importing ``xroute`` loads neither the compiled engine (that happens on first use) nor torch.
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from __future__ import annotations
 
-from xroute.design import Design, load_design
+from importlib import import_module
+from importlib.metadata import PackageNotFoundError, version
+from typing import Any
+
 from xroute.errors import (
     InputError,
     PolicyError,
@@ -26,13 +29,29 @@ from xroute.errors import (
     TestcaseNotFound,
     XrouteError,
 )
-from xroute.pipeline import prepare_design, route_to_outputs
-from xroute.router import RouteResult, RouteSettings, route_design
 
 try:
     __version__ = version("xroute")  # the one definition is pyproject.toml's
 except PackageNotFoundError:  # not installed (a source tree on sys.path)
     __version__ = "0+unknown"
+
+# The library's entry points, imported on first use (the router modules load the engine).
+_LAZY = {
+    "Design": "xroute.design",
+    "load_design": "xroute.design",
+    "prepare_design": "xroute.pipeline",
+    "route_to_outputs": "xroute.pipeline",
+    "RouteResult": "xroute.router",
+    "RouteSettings": "xroute.router",
+    "route_design": "xroute.router",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'xroute' has no attribute '{name}'")
+
 
 __all__ = [
     "Design",

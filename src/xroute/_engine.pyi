@@ -196,7 +196,7 @@ class Database:
         file cannot be written (nothing is left behind).
         """
 
-    def pin_access(self, max_points_per_pin: int = 3, threads: int = 1, share_classes: bool = True) -> dict:
+    def pin_access(self, max_points_per_pin: int = 6, threads: int = 1, share_classes: bool = True) -> dict:
         """
         Access points of every net pin (every entry of pin_refs), best first.
 
@@ -335,3 +335,5 @@ def global_route(db: Database, out: str = '', iterations: int = 30, capacity_per
     """
     Global-routes every net of the database and replaces its guides with the result (any guides it had are dropped). out: also write them to this path in the ISPD guide format (atomically; '' = no file). iterations: rip-up-and-reroute rounds at most; capacity_percent: share of each GCell edge's free tracks the router may fill; min_layer: lowest routing-layer index carrying routes (pins get guides on their own layer and the one above regardless); slack: GCells every guide is grown by; congestion_cost: layer assignment's cost of one GCell edge at full use (0: only full layers and vias count). Returns statistics: gcells (nx, ny), layers, nets, initial_overflow, overflow, overflow_edges, overflow_3d (tracks), wirelength_gcells, vias, guides, iterations, reroutes, seconds.
     """
+
+DEFAULTS: dict = ...

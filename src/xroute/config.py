@@ -153,7 +153,9 @@ class PolicySection:
 
 @dataclass(frozen=True)
 class CostSection:
-    """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs."""
+    """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs.
+
+    The one definition of the weights: commands, reports and the environments' rewards use it."""
 
     wirelength_weight: float = setting(0.5, min=0.0, unit="per µm")
     via_weight: float = setting(4.0, min=0.0, unit="per via")
@@ -161,6 +163,11 @@ class CostSection:
 
     def cost(self, wirelength_um: float, vias: int, violations: int) -> float:
         return self.wirelength_weight * wirelength_um + self.via_weight * vias + self.drv_weight * violations
+
+    def region_cost(self, metrics: dict[str, Any], dbu_per_micron: int) -> float:
+        """The cost of a region's metrics (``Region.metrics()``: wirelength in DBU, vias, violations)."""
+        wl_um = float(metrics["wirelength_dbu"]) / max(1, int(dbu_per_micron))
+        return self.cost(wl_um, int(metrics["vias"]), int(metrics["violations"]))
 
 
 @dataclass(frozen=True)

@@ -13,14 +13,17 @@ import os
 from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING, Any
 
+from xroute import defaults
 from xroute.errors import GlobalRouteArgumentError
 
 if TYPE_CHECKING:
     from xroute.design import Design
 
-DEFAULT_ITERATIONS = 30  # rip-up-and-reroute rounds at most (stops at zero overflow)
-DEFAULT_CAPACITY_PERCENT = 70  # ispd18_test1 detailed-routed: 29 violations at 70, 51 at 100 (README of engine_cpp/groute)
-DEFAULT_CONGESTION_COST = 0.0  # layer assignment: cost of a GCell edge at full use, in edge-length units
+# From the engine's GlobalRouteSettings (xroute.defaults); the measurements behind them are in
+# engine_cpp/groute/README.md.
+DEFAULT_ITERATIONS = defaults.GROUTE_ITERATIONS  # rip-up-and-reroute rounds at most (stops at zero overflow)
+DEFAULT_CAPACITY_PERCENT = defaults.GROUTE_CAPACITY_PERCENT  # share of each GCell edge's free tracks
+DEFAULT_CONGESTION_COST = defaults.GROUTE_CONGESTION_COST  # layer assignment: cost of an edge at full use
 
 
 @dataclass(frozen=True)
@@ -53,8 +56,8 @@ def global_route(
     *,
     iterations: int = DEFAULT_ITERATIONS,
     capacity_percent: int = DEFAULT_CAPACITY_PERCENT,
-    min_layer: int = 1,
-    slack: int = 0,
+    min_layer: int = defaults.GROUTE_MIN_LAYER,
+    slack: int = defaults.GROUTE_SLACK,
     congestion_cost: float = DEFAULT_CONGESTION_COST,
 ) -> GlobalRouteStats:
     """Global-routes ``design``, installs the guides in it and, with ``out``, writes them there."""

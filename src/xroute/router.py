@@ -17,14 +17,16 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from xroute.policy import HeuristicPolicy, NetOrderPolicy, RandomPolicy, builtin_policy, check_order
+from xroute import defaults
 from xroute.errors import PolicyError, RouteArgumentError
 
 if TYPE_CHECKING:
     from xroute.design import Design
 
-DEFAULT_REGION_SIZE = 5  # GCells per region side: measured best on ispd18_test1 (3: more violations, 7: slower)
-DEFAULT_ITERATIONS = 10  # the flow stops earlier when an iteration ends with zero violations
-MAX_ITERATIONS = 64
+# From the engine's RouterSettings (xroute.defaults): GCells per region side, iteration limit.
+DEFAULT_REGION_SIZE = defaults.REGION_SIZE
+DEFAULT_ITERATIONS = defaults.ITERATIONS
+MAX_ITERATIONS = defaults.MAX_ITERATIONS
 
 VIOLATION_TYPES: tuple[str, ...] = (
     "Short",
@@ -44,7 +46,7 @@ class RouteSettings:
     """The settings of one routing run (validated on construction)."""
 
     region_size: int = DEFAULT_REGION_SIZE  # GCells per region side
-    iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..64)
+    iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..MAX_ITERATIONS)
     threads: int = 1  # worker threads for the regions of one colour
     seed: int = 1  # seed of the random policy
     # per-iteration (region_size, offset) in GCells, cycled over the iterations; None: region_size

@@ -1,0 +1,32 @@
+// _engine.DEFAULTS: the engine's settings defaults and limits, read from the C++
+// settings structs themselves, so that Python states none of them a second time.
+#include <nanobind/nanobind.h>
+
+#include "flow/router.hpp"
+#include "grid/region_grid.hpp"
+#include "groute/global_router.hpp"
+#include "pa/pin_access.hpp"
+
+namespace nb = nanobind;
+
+void bindDefaults(nb::module_& m) {
+  using namespace xroute;
+  const RouterSettings router;
+  const GlobalRouteSettings groute;
+  const PinAccessSettings pa;
+  nb::dict d;
+  d["region_size"] = router.regionSize;
+  d["iterations"] = router.iterations;
+  d["max_iterations"] = kMaxIterations;
+  d["threads"] = router.threads;
+  d["access_points_per_pin"] = pa.maxPointsPerPin;
+  d["marker_penalty"] = router.markerPenalty;
+  d["history_penalty"] = router.historyPenalty;
+  d["max_region_nodes"] = static_cast<int64_t>(kMaxRegionNodes);
+  d["groute_iterations"] = groute.iterations;
+  d["groute_capacity_percent"] = groute.capacityPercent;
+  d["groute_min_layer"] = groute.minLayer;
+  d["groute_slack"] = groute.slack;
+  d["groute_congestion_cost"] = groute.congestionCost;
+  m.attr("DEFAULTS") = d;
+}

@@ -1,0 +1,23 @@
+"""The engine's settings defaults and limits, read from the C++ settings structs (``_engine.DEFAULTS``,
+engine_cpp/bindings/defaults_bind.cpp): Python states none of them a second time.
+
+Importing this module loads the compiled engine.
+"""
+
+from __future__ import annotations
+
+from xroute import _engine
+
+_D: dict = dict(_engine.DEFAULTS)
+
+REGION_SIZE: int = int(_D["region_size"])  # GCells per region side (measured best on ispd18_test1)
+ITERATIONS: int = int(_D["iterations"])  # iteration limit; the flow stops earlier at zero violations
+MAX_ITERATIONS: int = int(_D["max_iterations"])
+ACCESS_POINTS_PER_PIN: int = int(_D["access_points_per_pin"])
+MAX_REGION_NODES: int = int(_D["max_region_nodes"])  # grid nodes of one region at most
+
+GROUTE_ITERATIONS: int = int(_D["groute_iterations"])  # rip-up-and-reroute rounds at most
+GROUTE_CAPACITY_PERCENT: int = int(_D["groute_capacity_percent"])  # share of free tracks the global router fills
+GROUTE_MIN_LAYER: int = int(_D["groute_min_layer"])
+GROUTE_SLACK: int = int(_D["groute_slack"])
+GROUTE_CONGESTION_COST: float = float(_D["groute_congestion_cost"])
