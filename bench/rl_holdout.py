@@ -25,7 +25,8 @@ import numpy as np
 
 from xroute.policies.onnx_policy import OnnxPolicy  # noqa: E402
 from xroute.policies.rl.region_filter import held_out  # noqa: E402
-from xroute import _engine, load_design  # noqa: E402
+from xroute import load_design  # noqa: E402
+from xroute.session import open_session  # noqa: E402
 
 WEIGHTS = (0.5, 4.0, 500.0)  # per um of wire, per via, per DRV
 
@@ -49,7 +50,7 @@ def main() -> None:
 
     design = load_design(args.testcase)
     dbu = design.dbu_per_micron
-    session = _engine.RoutingSession(design.engine)
+    session = open_session(design)
     xs, ys = (np.asarray(a) for a in session.gcell_lines)
     policies = {p.stem: OnnxPolicy(p) for p in args.models}
     rows = []

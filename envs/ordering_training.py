@@ -22,7 +22,6 @@ from __future__ import annotations
 from typing import Any
 
 import gymnasium as gym
-import numpy as np
 
 from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
@@ -33,18 +32,6 @@ from xroute.envs.core import (
     check_max_candidates,
     observation_space,
 )
-
-
-def region_boxes(xs: np.ndarray, ys: np.ndarray, size: int) -> list[tuple[tuple[int, int], tuple[int, int, int, int]]]:
-    """((gcell column, row), box in DBU) of every region of ``size`` GCells, row by row (the
-    router's first-iteration partition, offset 0)."""
-    nx, ny = len(xs) - 1, len(ys) - 1
-    out = []
-    for gy in range(0, ny, size):
-        for gx in range(0, nx, size):
-            box = (int(xs[gx]), int(ys[gy]), int(xs[min(gx + size, nx)]), int(ys[min(gy + size, ny)]))
-            out.append(((gx, gy), box))
-    return out
 
 
 class NetOrderingTrainingEnv(RegionEnv):
@@ -102,15 +89,15 @@ class NetOrderingTrainingEnv(RegionEnv):
         return self.passes_done >= self.testcase_loop
 
     def _fresh_design(self) -> None:
-        from xroute import _engine, load_design
+        from xroute import load_design
+        from xroute.session import open_session
 
         if self._dirty or self._design is None:
             self._session = None
             self._design = load_design(self.testcase_name)
-            self._session = _engine.RoutingSession(self._design.engine)
+            self._session = open_session(self._design)
             self._dirty = False
-        xs, ys = self._session.gcell_lines
-        walk = region_boxes(np.asarray(xs), np.asarray(ys), self.region_size)
+        walk = [(tuple(loc), tuple(box)) for loc, box in self._session.regions(self.region_size)]
         if self.region_location is not None:
             walk = [w for w in walk if w[0] == self.region_location]
             if not walk:

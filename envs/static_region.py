@@ -38,7 +38,7 @@ class StaticRegionEnv(RegionEnv):
     def __init__(self, region_dir: str, *, max_candidates: int = DEFAULT_MAX_CANDIDATES,
                  weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None) -> None:
         from xroute.testcases.regions import load_region
-        from xroute import _engine
+        from xroute.session import open_session
 
         self.region_dir = str(region_dir)
         self.max_candidates = check_max_candidates(max_candidates)
@@ -46,7 +46,7 @@ class StaticRegionEnv(RegionEnv):
         self.reward_fn = reward_fn
         self.design, self.meta = load_region(self.region_dir)
         self.box = tuple(self.meta["die"])
-        self._session = _engine.RoutingSession(self.design.engine)
+        self._session = open_session(self.design)
         self.observation_space = observation_space(self.max_candidates)
         self.action_space = gym.spaces.Discrete(self.max_candidates)
         self._stepper: RegionStepper | None = None

@@ -156,12 +156,13 @@ def make_region(
     """Writes the static region (``location`` + ``size`` in GCells, or ``box`` in DBU) of ``testcase``
     into ``out_dir`` (see the module docstring); ``design``: the loaded, unrouted testcase to reuse
     (it is routed inside the box as a side effect). Raises :class:`RegionError` for a bad region."""
-    from xroute import _engine, load_design
+    from xroute import load_design
+    from xroute.session import open_session
 
     if (location is None) == (box is None):
         raise RegionError("give either a GCell location (with a size) or a box")
     d = design if design is not None else load_design(testcase)
-    session = _engine.RoutingSession(d.engine)
+    session = open_session(d)
     xs, ys = (np.asarray(a) for a in session.gcell_lines)
     if location is not None:
         box = region_box(xs, ys, location, size)

@@ -136,5 +136,9 @@ def test_bad_config_values_name_the_file_and_line(tmp_path: Path) -> None:
         load_config("dqn", bad)
     assert err.value.line == 2
     bad.write_text("lr: [1\n")
-    with pytest.raises(InputError, match="malformed YAML"):
+    with pytest.raises(InputError, match="invalid YAML"):  # the same reader and message as the route configs
         load_config("dqn", bad)
+    bad.write_text("lr: [1, 2]\n")
+    with pytest.raises(InputError, match="'lr' must be a single value") as err:
+        load_config("dqn", bad)
+    assert err.value.line == 1

@@ -16,6 +16,7 @@
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
 #include "flow/route_context.hpp"
+#include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/standalone.hpp"
 
@@ -69,6 +70,20 @@ void bindRegion(nb::module_& m) {
           "gcell_lines",
           [](const RoutingSession& s) { return nb::make_tuple(s.ctx->gcells.xs, s.ctx->gcells.ys); },
           "The GCell grid lines (xs, ys) in DBU that regions align to.")
+      .def(
+          "regions",
+          [](const RoutingSession& s, int size, int offset) {
+            if (size < 1) throw nb::value_error("size must be >= 1");
+            nb::list out;
+            for (const Region& r : partitionRegions(s.ctx->gcells, size, offset)) {
+              out.append(nb::make_tuple(nb::make_tuple(r.gx0, r.gy0),
+                                        nb::make_tuple(r.box.xlo, r.box.ylo, r.box.xhi, r.box.yhi)));
+            }
+            return out;
+          },
+          "size"_a, "offset"_a = 0,
+          "The router's partition into regions of size x size GCells (the first column and row shortened by "
+          "offset), row by row: [((gcell column, row), (xlo, ylo, xhi, yhi) in DBU), ...].")
       .def(
           "open_region",
           [](RoutingSession& s, std::tuple<Dbu, Dbu, Dbu, Dbu> box, int iteration) {

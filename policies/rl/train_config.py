@@ -16,6 +16,7 @@ from typing import Any
 
 import yaml
 
+from xroute.config_schema import compose_file, scalar_value
 from xroute.errors import InputError
 
 
@@ -126,23 +127,20 @@ def load_config(algorithm: str, path: str | Path | None) -> CommonConfig:
     p = Path(path)
     if not p.is_file():
         raise InputError("config file not found", str(p))
-    text = p.read_text()
-    try:
-        node = yaml.compose(text)
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        raise InputError(f"malformed YAML: {getattr(exc, 'problem', None) or exc}", str(p),
-                         mark.line + 1 if mark else 0) from exc
-    if data is None:
-        data = {}
-    if not isinstance(data, dict):
-        raise InputError("a training config must be a mapping of settings", str(p), 1)
+    node = compose_file(p)  # the one YAML reader of configs (xroute.config_schema): file:line errors
+    if node is None:
+        return default_config(algorithm)
+    if not isinstance(node, yaml.MappingNode):
+        raise InputError("a training config must be a mapping of settings", str(p), node.start_mark.line + 1)
+    values: dict[str, Any] = {}
     lines: dict[str, int] = {}
-    if isinstance(node, yaml.MappingNode):
-        for key_node, _ in node.value:
-            lines[str(key_node.value)] = key_node.start_mark.line + 1
-    return config_from_dict(algorithm, {str(k): v for k, v in data.items()}, str(p), lines)
+    for key_node, value_node in node.value:
+        key = str(key_node.value)
+        lines[key] = key_node.start_mark.line + 1
+        if not isinstance(value_node, yaml.ScalarNode):
+            raise InputError(f"setting '{key}' must be a single value", str(p), lines[key])
+        values[key] = scalar_value(value_node)
+    return config_from_dict(algorithm, values, str(p), lines)
 
 
 def config_dict(cfg: CommonConfig) -> dict[str, Any]:

@@ -268,6 +268,11 @@ class RoutingSession:
     def gcell_lines(self) -> tuple:
         """The GCell grid lines (xs, ys) in DBU that regions align to."""
 
+    def regions(self, size: int, offset: int = 0) -> list:
+        """
+        The router's partition into regions of size x size GCells (the first column and row shortened by offset), row by row: [((gcell column, row), (xlo, ylo, xhi, yhi) in DBU), ...].
+        """
+
     def open_region(self, box: tuple[int, int, int, int], iteration: int = 0) -> Region:
         """
         Opens the region box (xlo, ylo, xhi, yhi) in DBU: nets with pins or routing inside, or whose guides cross its edges, become candidates (routed nets are ripped up inside the box).

@@ -47,7 +47,7 @@ def training_env_factory(testcase: str, region_size: int, location: tuple[int, i
     def make() -> Any:
         import gymnasium
 
-        import xroute.policies.rl  # noqa: F401 - registers the env IDs
+        import xroute.envs  # noqa: F401 - registers the env IDs
         from xroute.policies.rl.region_filter import RegionFilter
 
         env = gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,

@@ -1,0 +1,28 @@
+"""Region-by-region routing for the learning side: a routing session over a loaded design.
+
+The environments, static regions and benchmarks open regions of a design one at a time, route
+their nets in an order they choose and read the grid, candidates and metrics back. The session
+and its regions are the compiled engine's objects (typed in ``_engine.pyi``); this module is
+where the layers above the library get them, so none of them imports the private engine.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from xroute import _engine
+
+if TYPE_CHECKING:
+    from xroute.design import Design
+
+RoutingSession = _engine.RoutingSession
+"""A design's shared routing state (tracks, pin access, fixed shapes): ``open_region(box, iteration)``,
+``gcell_lines``; see ``engine_cpp/flow/README.md``."""
+
+Region = _engine.Region
+"""One region being routed: ``candidates``, ``grid()``, ``route_net(i)``, ``unrouted()``, ``metrics()``, ``commit()``."""
+
+
+def open_session(design: Design, threads: int = 1) -> RoutingSession:
+    """A routing session over ``design`` (which must outlive it)."""
+    return _engine.RoutingSession(design.engine, threads=threads)
