@@ -113,3 +113,22 @@ def test_corner_spacing_except_eol_on_either_corner(db):
     assert check(db, [a, ("M5", 1100, 1100, 1300, 2000, 2)]) == [
         ("CornerSpacing", "M5", (1000, 1000, 1100, 1100), (1, 2))
     ]
+
+
+def test_corner_spacing_between_pins_is_the_inputs(db):
+    # Two pins' corners face each other 100 x 100 apart (< 250): the library's
+    # geometry. Routing joined to each pin away from the corners does not make
+    # it the router's (as for EndOfLine): fixed, dropped by skip_fixed_pairs.
+    #              +--pin B--+--wire B
+    #              |         |
+    #   wire A--+--+ (1100,1100)
+    #   +-pin A-+ (1000,1000)
+    pin_a, wire_a = ("M5", 0, 0, 1000, 1000, 1), ("M5", -500, 400, 0, 600, 1)
+    pin_b, wire_b = ("M5", 1100, 1100, 2100, 2100, 2), ("M5", 2100, 1500, 2600, 1700, 2)
+    shapes, origins = [pin_a, wire_a, pin_b, wire_b], [PIN, WIRE, PIN, WIRE]
+    marker = ("CornerSpacing", "M5", (1000, 1000, 1100, 1100), (1, 2))
+    assert check(db, shapes, origins=origins, skip_fixed_pairs=True) == []
+    assert check(db, shapes, origins=origins, skip_fixed_pairs=False) == [marker]
+    # A via pad on pin B's corner: the corner is the router's too.
+    pad = ("M5", 1100, 1100, 1300, 1300, 2)
+    assert check(db, [*shapes, pad], origins=[*origins, VIA], skip_fixed_pairs=True) == [marker]

@@ -11,7 +11,9 @@
 // of the metal at k (the smaller side of the widest member rect having k as
 // its corner). EXCEPTEOL: a corner that ends an edge shorter than eolWidth
 // with two convex corners (a line end) is exempt, on either side of the pair.
-// The pair is fixed when both conductors are all fixed. Marker box: k to p.
+// The pair is fixed (the input's) when every rect having k on its boundary
+// and every one having p on its boundary is fixed, even if routing joined
+// either conductor elsewhere (as EndOfLine does). Marker box: k to p.
 // drc/README.md says why (what drt and the LEF text do).
 #include <algorithm>
 #include <unordered_map>
@@ -53,6 +55,15 @@ void collectCorners(const std::vector<Edge>& edges, const CornerSpacingRule& rul
     if (it != vert.end() && key(*it) == key(h)) h.eol = h.eol || it->eol;
     out.push_back(h);
   }
+}
+
+// Is corner (x, y) of component c carried by fixed rects only?
+bool cornerFixed(const LayerShapes& ls, int32_t c, Dbu x, Dbu y) {
+  bool fixed = true;
+  ls.index.query(Rect{x, y, x, y}, [&](int32_t j) {
+    if (ls.comp[j] == c && ls.rects[j].contains(Point{x, y}) && !ls.fixed[j]) fixed = false;
+  });
+  return fixed;
 }
 
 }  // namespace
@@ -108,7 +119,8 @@ void checkCornerSpacing(const LayerShapes& ls, MarkerSink& out) {
             const Rect box = Rect::fromCorners({k.x, k.y}, {p.x, p.y});
             int32_t n1 = ls.nets[first], n2 = ls.isObs(oFirst) ? -1 : ls.nets[oFirst];
             if (n2 >= 0 && n2 < n1) std::swap(n1, n2);
-            out.push_back({Marker{MarkerType::CornerSpacing, ls.layer, box, n1, n2}, ls.compFixed[c] && ls.compFixed[o]});
+            const bool fixed = cornerFixed(ls, c, k.x, k.y) && cornerFixed(ls, o, p.x, p.y);
+            out.push_back({Marker{MarkerType::CornerSpacing, ls.layer, box, n1, n2}, fixed});
           }
         }
       }
