@@ -16,12 +16,12 @@ def test_min_area_pin_sticking_out_of_its_via_pad_is_the_inputs(db):
     # The ispd18_test1 case: a library pin smaller than AREA, a via pad on it
     # that sticks out. Union 30000 + 20000 - 16000 (overlap) = 34000 < 50000.
     #
-    #   y=300 +----+----+----+
-    #         |pin |  pad    |      pin (0,0)-(100,300), fixed
-    #   y=100 |    +----+----+      pad (20,100)-(120,300), a via's
-    #         |    |
-    #   y=0   +----+
-    #         x=0  x=100    x=120
+    #   y=300 +--+-------+--+
+    #         |  |overlap|  |       pin (0,0)-(100,300), fixed
+    #   y=100 |  +-------+--+       pad (20,100)-(120,300), a via's
+    #         |   pin    |
+    #   y=0   +----------+
+    #        x=0 x=20  x=100 x=120
     pin = ("M1", 0, 0, 100, 300, 1)
     pad = ("M1", 20, 100, 120, 300, 1)
     shapes, origins = [pin, pad], [PIN, VIA]
