@@ -94,25 +94,25 @@ def test_min_area_pin_metal_counts_and_gaps_split(db):
 
 
 def test_corner_spacing_wide(db):
-    #            +--B--+     B's lower-left corner dx = dy from A's upper-right
-    #            +-----+
+    #            +--B--+     B's lower-left corner dx = dy from A's upper-right;
+    #            +-----+     the spacing region is a square: max(dx, dy) < 250
     # +---A---+
     # | 1000  |
     # +-------+
     a = ("M5", 0, 0, 1000, 1000, 1)
-    assert check(db, [a, ("M5", 1177, 1177, 1677, 1677, 2)]) == []  # 250.3 away
-    assert check(db, [a, ("M5", 1176, 1176, 1676, 1676, 2)]) == [
-        ("CornerSpacing", "M5", (1000, 1000, 1176, 1176), (1, 2))
+    assert check(db, [a, ("M5", 1250, 1250, 1750, 1750, 2)]) == []  # 250 away
+    assert check(db, [a, ("M5", 1249, 1249, 1749, 1749, 2)]) == [
+        ("CornerSpacing", "M5", (1000, 1000, 1249, 1249), (1, 2))
     ]
-    assert check(db, [a, ("M5", 1176, 1176, 1676, 1676, -1)]) == [
-        ("CornerSpacing", "M5", (1000, 1000, 1176, 1176), (1, -1))
+    assert check(db, [a, ("M5", 1249, 1249, 1749, 1749, -1)]) == [
+        ("CornerSpacing", "M5", (1000, 1000, 1249, 1249), (1, -1))
     ]
 
 
 def test_corner_spacing_narrow_and_except_eol(db):
     a = ("M5", 0, 0, 200, 1000, 1)  # width 200: 150; its 200-long top edge is no line end
-    assert check(db, [a, ("M5", 307, 1107, 507, 1607, 2)]) == []  # 151.3 away
-    assert check(db, [a, ("M5", 306, 1106, 506, 1606, 2)]) == [("CornerSpacing", "M5", (200, 1000, 306, 1106), (1, 2))]
+    assert check(db, [a, ("M5", 350, 1150, 550, 1650, 2)]) == []  # 150 away
+    assert check(db, [a, ("M5", 349, 1100, 549, 1600, 2)]) == [("CornerSpacing", "M5", (200, 1000, 349, 1100), (1, 2))]
     # 100-wide wires: both corners belong to line ends, exempt.
     assert check(db, [("M5", 0, 0, 100, 1000, 1), ("M5", 200, 1100, 300, 1600, 2)]) == []
 
@@ -179,8 +179,9 @@ def test_skip_fixed_pairs(db):
     small = [("M1", 0, 0, 100, 100, 1)]
     assert check(db, small, origins=[PIN], skip_fixed_pairs=True) == []
     assert check(db, small, origins=[VIA], skip_fixed_pairs=True) == [("MinArea", "M1", (0, 0, 100, 100), (1, -1))]
-    # A wire joined to a small pin makes the conductor new: reported.
-    joined = [("M1", 0, 0, 100, 100, 1), ("M1", 100, 0, 200, 100, 1)]
+    # A wire covering a small pin makes the conductor new: reported (a pin
+    # sticking out of its wire exempts the conductor: test_drc_reading.py).
+    joined = [("M1", 0, 0, 100, 100, 1), ("M1", 0, 0, 200, 100, 1)]
     assert check(db, joined, origins=[PIN, WIRE], skip_fixed_pairs=True) == [("MinArea", "M1", (0, 0, 200, 100), (1, -1))]
 
 

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "db/database.hpp"
+#include "bindings/marker_list.hpp"
 #include "drc/drc.hpp"
 
 namespace nb = nanobind;
@@ -21,19 +22,6 @@ namespace {
 
 using ShapeArray = nb::ndarray<const int32_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using OriginArray = nb::ndarray<const int32_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-
-nb::list markerList(const Tech& tech, const std::vector<Marker>& markers) {
-  nb::list out;
-  for (const Marker& m : markers) {
-    nb::dict d;
-    d["type"] = std::string(markerTypeName(m.type));
-    d["layer"] = tech.layer(m.layer).name;
-    d["box"] = nb::make_tuple(m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi);
-    d["nets"] = nb::make_tuple(m.net1, m.net2);
-    out.append(d);
-  }
-  return out;
-}
 
 DrcOptions makeOptions(bool skipFixed, const std::optional<std::tuple<int, int, int, int>>& window) {
   DrcOptions o;

@@ -3,15 +3,18 @@
 // plain dicts. The work runs without the GIL.
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/optional.h>
 
 #include <string>
 #include <vector>
 
+#include "bindings/marker_list.hpp"
 #include "db/database.hpp"
 #include "drc/drc.hpp"
 #include "verify/connectivity.hpp"
 #include "verify/drc_report.hpp"
 #include "verify/metrics.hpp"
+#include "verify/scoring.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -106,6 +109,62 @@ void bindVerify(nb::module_& m) {
       "Routing metrics of the regular nets: {wirelength_dbu (sum of wire piece lengths, extensions not\n"
       "counted), wirelength_um, wirelength_by_layer {routing layer: DBU}, vias (instances),\n"
       "vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.");
+  cls.def(
+      "check_routing",
+      [](const Database& db, bool skip_fixed_pairs) {
+        ConnectivityReport conn;
+        RoutingMetrics metrics;
+        GuideTrackFigures figures;
+        std::vector<Marker> markers;
+        {
+          nb::gil_scoped_release release;
+          conn = checkConnectivity(db.tech, db.design);
+          metrics = computeMetrics(db.tech, db.design);
+          figures = computeGuideTrackFigures(db.tech, db.design);
+          DrcOptions options;
+          options.skipFixedPairs = skip_fixed_pairs;
+          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design), options);
+        }
+        const int dbu = db.design.dbuPerMicron > 0 ? db.design.dbuPerMicron : db.tech.dbuPerMicron;
+        auto um = [&](int64_t v) { return dbu > 0 ? double(v) / dbu : 0.0; };
+        nb::dict d;
+        d["opens"] = conn.openNets;
+        d["connectivity"] = connectivityDict(db, conn);
+        d["markers"] = markerList(db.tech, markers);
+        d["wirelength_dbu"] = metrics.wirelength;
+        d["wirelength_um"] = metrics.wirelengthMicrons;
+        d["vias"] = metrics.vias;
+        d["wrong_way_wirelength_dbu"] = figures.wrongWayWirelength;
+        d["wrong_way_wirelength_um"] = um(figures.wrongWayWirelength);
+        d["off_track_wirelength_dbu"] = figures.offTrackWirelength;
+        d["off_track_wirelength_um"] = um(figures.offTrackWirelength);
+        d["off_track_vias"] = figures.offTrackVias;
+        d["has_guides"] = figures.hasGuides;
+        if (figures.hasGuides) {
+          d["out_of_guide_wirelength_dbu"] = figures.outOfGuideWirelength;
+          d["out_of_guide_wirelength_um"] = um(figures.outOfGuideWirelength);
+          d["out_of_guide_vias"] = figures.outOfGuideVias;
+        } else {
+          d["out_of_guide_wirelength_dbu"] = nb::none();
+          d["out_of_guide_wirelength_um"] = nb::none();
+          d["out_of_guide_vias"] = nb::none();
+        }
+        return d;
+      },
+      "skip_fixed_pairs"_a = true,
+      "Everything a routed design is judged on, in one call (the engine side of `xroute check`).\n\n"
+      "Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens\n"
+      "(open nets), connectivity (check_connectivity's dict), markers (check_drc's list),\n"
+      "wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/\n"
+      "_um, off_track_vias, has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None\n"
+      "without a guide file)}. A wire piece (from != to; length |to - from|, extensions not counted) is\n"
+      "wrong-way when it runs across its layer's DIRECTION; off-track when its centre line lies on no\n"
+      "track line of its layer parallel to it (TRACKS Y lines for a horizontal piece, TRACKS X for a\n"
+      "vertical one; a layer with no such lines counts none); out-of-guide for the part of its centre\n"
+      "line outside the union of its net's guides on its layer (closed rects). A via is off-track when\n"
+      "its point is off the preferred-direction tracks of its bottom or top metal layer (y on a TRACKS Y\n"
+      "line of a horizontal layer, x on a TRACKS X line of a vertical one), and out-of-guide when no\n"
+      "guide of its net on its bottom metal, or none on its top metal, contains its point.");
   cls.def(
       "write_drc_report",
       [](const Database& db, const std::string& path, bool skip_fixed_pairs) {

@@ -187,6 +187,24 @@ class Database:
         vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.
         """
 
+    def check_routing(self, skip_fixed_pairs: bool = True) -> dict:
+        """
+        Everything a routed design is judged on, in one call (the engine side of `xroute check`).
+
+        Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens
+        (open nets), connectivity (check_connectivity's dict), markers (check_drc's list),
+        wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/
+        _um, off_track_vias, has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None
+        without a guide file)}. A wire piece (from != to; length |to - from|, extensions not counted) is
+        wrong-way when it runs across its layer's DIRECTION; off-track when its centre line lies on no
+        track line of its layer parallel to it (TRACKS Y lines for a horizontal piece, TRACKS X for a
+        vertical one; a layer with no such lines counts none); out-of-guide for the part of its centre
+        line outside the union of its net's guides on its layer (closed rects). A via is off-track when
+        its point is off the preferred-direction tracks of its bottom or top metal layer (y on a TRACKS Y
+        line of a horizontal layer, x on a TRACKS X line of a vertical one), and out-of-guide when no
+        guide of its net on its bottom metal, or none on its top metal, contains its point.
+        """
+
     def write_drc_report(self, path: str, skip_fixed_pairs: bool = True) -> dict:
         """
         Design-rule check of the whole design (as check_drc), written to `path` atomically: a header
