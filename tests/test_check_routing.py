@@ -11,7 +11,7 @@ import pytest
 
 from drawn import write_design
 from test_drc_rules import TECH_LEF
-from xroute_cli import _engine
+from xroute import _engine
 
 # M1 HORIZONTAL, M2 VERTICAL (test_drc_rules' technology), 1000 DBU/um.
 # Tracks on both layers, both orientations: lines at 100 + 200 k.
