@@ -16,6 +16,7 @@ from typer.core import TyperGroup
 
 from xroute.cli.commands import (
     batch,
+    check,
     evaluate,
     export,
     global_route,
@@ -82,6 +83,7 @@ app.command(name="batch")(batch.batch)
 app.command(name="report")(report.report)
 app.command(name="plot-region")(plot_region.plot_region)
 app.command(name="global-route")(global_route.global_route)
+app.command(name="check")(check.check)
 
 
 def main() -> None:
