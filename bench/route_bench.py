@@ -33,15 +33,16 @@ REPO_ROOT = Path(__file__).resolve().parent.parent
 CHILD = r"""
 import json, sys, time
 t0 = time.perf_counter()
-from xroute import load_design
+from xroute import prepare_design
 from xroute.outputs import write_route_outputs
+from xroute.policies import get_policy
 from xroute.router import route_design
 a = json.loads(sys.argv[1])
 t1 = time.perf_counter()
-d = load_design(a["testcase"])
+d = prepare_design(a["testcase"])
 t2 = time.perf_counter()
 r = route_design(d, region_size=a["region_size"], iterations=a["iterations"], threads=a["threads"],
-                 policy=a["policy"], seed=a["seed"])
+                 policy=get_policy(a["policy"], a["seed"]), seed=a["seed"])
 t3 = time.perf_counter()
 o = write_route_outputs(d, r, a["out"], started=t1)
 t4 = time.perf_counter()

@@ -1,0 +1,123 @@
+"""The quality table: every testcase present routed by xroute and judged by `xroute check`, beside
+the reference routes that are present (another router's routed DEFs, judged by the same check).
+
+    python bench/quality.py [TESTCASE ...] [--threads 2] [--iterations N] [--markdown]
+
+For each testcase found on the search path (default: the demo and the seven contest testcases),
+one fresh process runs `xroute route TESTCASE --threads T --json` (the pipeline: built-in global
+routing when there is no guide); its wall time and peak RSS come from the kernel (wait4). Then
+`xroute check` reads the routed DEF back with the testcase's LEF and guide: opens, violations by
+type, wirelength, vias, off-track vias, out-of-guide wire and the contest score before
+violations. Reference routes: `../shared/reference_routes/<name>.<router>.def.gz`, unpacked to a
+temporary file and checked the same way (their wall time and memory are not ours to measure;
+the reference folder's README has the figures its router reported).
+
+Prints a table (markdown with --markdown); the README's status table comes from it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parent.parent
+REFERENCES = REPO_ROOT.parent / "shared" / "reference_routes"
+DEFAULT = ["demo", "ispd18_sample", "ispd18_sample2", "ispd18_sample3", "ispd19_sample4", "ispd18_test1",
+           "ispd19_test1", "ispd19_test3"]
+
+
+def run_with_rss(cmd: list[str]) -> tuple[subprocess.CompletedProcess, float, float]:
+    start = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    out = proc.stdout.read() if proc.stdout else ""
+    err = proc.stderr.read() if proc.stderr else ""
+    _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.perf_counter() - start
+    code = os.waitstatus_to_exitcode(status)
+    return subprocess.CompletedProcess(cmd, code, out, err), wall, usage.ru_maxrss / 1024
+
+
+def check(xroute: str, testcase: str, def_path: Path, out: Path) -> dict:
+    proc = subprocess.run([xroute, "check", testcase, "--def", str(def_path), "--out", str(out), "--json"],
+                          capture_output=True, text=True)
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"xroute check {testcase} failed: {proc.stderr.strip()}")
+    return json.loads(proc.stdout)
+
+
+def row(name: str, router: str, doc: dict, wall: float | None, rss: float | None) -> dict:
+    return {"testcase": name, "router": router, "wall_s": wall, "rss_mb": rss, "wl_um": doc["wirelength_um"],
+            "vias": doc["vias"], "violations": doc["violations"], "by_type": doc["violations_by_type"],
+            "opens": doc["opens"], "off_track_vias": doc["off_track_vias"],
+            "out_of_guide_um": doc["out_of_guide_wirelength_um"], "score": doc["score"]}
+
+
+def fmt(r: dict) -> list[str]:
+    by = ", ".join(f"{k} {v:,}" for k, v in r["by_type"].items() if v)
+    viol = f"{r['violations']:,}" + (f" ({by})" if by else "")
+    wall = f"{r['wall_s']:.1f} s" if r["wall_s"] is not None else "—"
+    rss = f"{r['rss_mb']:.0f} MB" if r["rss_mb"] is not None else "—"
+    score = f"{r['score']:,.0f}" if r["score"] is not None else "—"
+    oog = f"{r['out_of_guide_um']:,.0f}" if r["out_of_guide_um"] is not None else "—"
+    return [r["testcase"], r["router"], f"{r['wl_um']:,.1f}", f"{r['vias']:,}", viol, str(r["opens"]),
+            f"{r['off_track_vias']:,}", oog, score, wall, rss]
+
+
+HEADER = ["testcase", "router", "WL µm", "vias", "violations", "opens", "off-track vias", "out-of-guide µm",
+          "score", "wall", "peak RSS"]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("testcases", nargs="*", default=DEFAULT)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--iterations", type=int, default=None)
+    ap.add_argument("--markdown", action="store_true")
+    args = ap.parse_args()
+    xroute = shutil.which("xroute") or sys.exit("xroute is not installed (pip install .)")
+    from xroute.errors import TestcaseNotFound
+    from xroute.testcases import find_testcase
+
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="quality_") as tmp:
+        for name in args.testcases:
+            try:
+                find_testcase(name)
+            except TestcaseNotFound:
+                print(f"# {name}: not on the search path, skipped", file=sys.stderr)
+                continue
+            out = Path(tmp) / name
+            cmd = [xroute, "route", name, "--threads", str(args.threads), "--out", str(out), "--json"]
+            if args.iterations:
+                cmd += ["--iterations", str(args.iterations)]
+            proc, wall, rss = run_with_rss(cmd)
+            if proc.returncode not in (0, 1):
+                raise SystemExit(f"xroute route {name} failed: {proc.stderr.strip()}")
+            design = json.loads(proc.stdout)["design"]
+            rows.append(row(name, "xroute", check(xroute, name, out / f"{design}.routed.def", out / "check"), wall, rss))
+            print(" | ".join(fmt(rows[-1])), file=sys.stderr)
+            for ref in sorted(REFERENCES.glob(f"{name}.*.def.gz")):
+                router = ref.name[len(name) + 1: -len(".def.gz")]
+                plain = Path(tmp) / f"{name}.{router}.def"
+                plain.write_bytes(gzip.decompress(ref.read_bytes()))
+                rows.append(row(name, router, check(xroute, name, plain, Path(tmp) / f"{router}-check"), None, None))
+                print(" | ".join(fmt(rows[-1])), file=sys.stderr)
+    if args.markdown:
+        print("| " + " | ".join(HEADER) + " |")
+        print("|" + "---|" * len(HEADER))
+        for r in rows:
+            print("| " + " | ".join(fmt(r)) + " |")
+    else:
+        print(json.dumps(rows, indent=2))
+
+
+if __name__ == "__main__":
+    main()
