@@ -150,6 +150,7 @@ def route(
     from policies.registry import get_policy
     from xroute_cli.outputs import clean_stale_temporaries, write_route_outputs
     from xroute_cli.router import route_design
+    from xroute_cli.safe_paths import safe_stem
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
@@ -161,7 +162,7 @@ def route(
     design = load_design_args(testcase, lef, def_, guide)
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
-    out_dir = out if out is not None else Path("out") / design.name
+    out_dir = out if out is not None else Path("out") / safe_stem(design.name)
     out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
     clean_stale_temporaries(out_dir)  # left by a run that was killed while writing
 
