@@ -40,8 +40,28 @@ class XrouteGroup(TyperGroup):
         try:
             return super().invoke(ctx)
         except USER_ERRORS as exc:
+            _debug_traceback(exc)
             print_error(exc)
             ctx.exit(EXIT_USER_ERROR)
+        except Exception as exc:  # an exception raised inside a user's policy: one line naming it
+            from xroute_cli.policy_guard import policy_failure_line
+
+            line = policy_failure_line(exc)
+            if line is None:
+                raise  # anything else is a bug: its traceback
+            _debug_traceback(exc)
+            typer.echo("error: " + line, err=True)
+            ctx.exit(EXIT_USER_ERROR)
+
+
+DEBUG = {"on": False}  # set by --debug
+
+
+def _debug_traceback(exc: BaseException) -> None:
+    if DEBUG["on"]:
+        import traceback
+
+        traceback.print_exception(exc)
 
 
 app = typer.Typer(
@@ -52,6 +72,14 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     help="xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy.",
 )
+@app.callback()
+def _options(
+    debug: bool = typer.Option(False, "--debug", help="Show the traceback of an error (e.g. one raised in a policy)."),
+) -> None:
+    """xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy."""
+    DEBUG["on"] = debug
+
+
 app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)

@@ -20,6 +20,7 @@ import json
 import os
 import shutil
 import time
+from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,7 +77,7 @@ def plan_jobs(cfg: BatchConfig) -> list[Job]:
                 name = entry.name if entry else "default"
                 jobs.append(Job(f"{testcase}__{label}__{name}", testcase, label, name, base, cfg.base.cost))
     ids = [j.id for j in jobs]
-    dupes = sorted({i for i in ids if ids.count(i) > 1})
+    dupes = sorted(i for i, n in Counter(ids).items() if n > 1)  # linear: a 300 x 300 matrix is instant
     if dupes:
         from xroute_cli.config_schema import ConfigError
 

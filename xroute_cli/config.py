@@ -149,6 +149,8 @@ class PolicySection:
 
     policy: str = setting("heuristic", check="policy")
     seed: int = setting(1, min=0, max=2**64 - 1)
+    call_timeout: float = setting(300.0, min=0.0, max=86400.0, unit="seconds",
+                                  help="time limit of one order() call of a policy file (0: none)")
 
 
 @dataclass(frozen=True)
@@ -202,6 +204,7 @@ class RunSettings:
     seed: int
     schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
     net_loop: int = 1
+    policy_timeout: float | None = None  # seconds per policy call (None: the default)
 
     def route_kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :func:`xroute_cli.router.route_design` (without the policy)."""
@@ -210,6 +213,8 @@ class RunSettings:
         kwargs: dict[str, Any] = {"region_size": self.region_size, "iterations": self.iterations,
                                   "threads": self.threads, "seed": self.seed,
                                   "schedule": list(self.schedule) if self.schedule else None}
+        if self.policy_timeout is not None:
+            kwargs["policy_timeout"] = self.policy_timeout
         RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
                       seed=self.seed, schedule=self.schedule or None)  # RouteArgumentError when invalid
         if self.net_loop != 1:
@@ -237,6 +242,7 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         seed=seed if seed is not None else cfg.policy.seed,
         schedule=tuple(schedule),
         net_loop=cfg.router.net_loop,
+        policy_timeout=cfg.policy.call_timeout,
     )
 
 

@@ -26,6 +26,8 @@ if TYPE_CHECKING:
 DEFAULT_REGION_SIZE = 5  # GCells per region side: measured best on ispd18_test1 (3: more violations, 7: slower)
 DEFAULT_ITERATIONS = 10  # the flow stops earlier when an iteration ends with zero violations
 MAX_ITERATIONS = 64
+MAX_REGION_SIZE = 1000  # GCells (as the config files allow); larger values would overflow the engine's ints
+MAX_THREADS = 1024
 
 VIOLATION_TYPES: tuple[str, ...] = (
     "Short",
@@ -68,6 +70,9 @@ class RouteSettings:
                 size, offset = step
                 if size < 1:
                     raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
+                if size > MAX_REGION_SIZE:
+                    raise RouteArgumentError(f"schedule step {i}: region size must be at most {MAX_REGION_SIZE} GCells, "
+                                             f"got {size}")
                 if not 0 <= offset < size:
                     raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
         for name in ("region_size", "iterations", "threads", "seed"):
@@ -76,10 +81,14 @@ class RouteSettings:
                 raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
         if self.region_size < 1:
             raise RouteArgumentError(f"region size must be at least 1 GCell, got {self.region_size}")
+        if self.region_size > MAX_REGION_SIZE:
+            raise RouteArgumentError(f"region size must be at most {MAX_REGION_SIZE} GCells, got {self.region_size}")
         if not 1 <= self.iterations <= MAX_ITERATIONS:
             raise RouteArgumentError(f"iterations must be between 1 and {MAX_ITERATIONS}, got {self.iterations}")
         if self.threads < 1:
             raise RouteArgumentError(f"threads must be at least 1, got {self.threads}")
+        if self.threads > MAX_THREADS:
+            raise RouteArgumentError(f"threads must be at most {MAX_THREADS}, got {self.threads}")
         if not 0 <= self.seed < 2**64:
             raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {self.seed}")
 
@@ -204,15 +213,22 @@ class _PolicyCallback:
     """The engine's policy_fn for a Python policy: calls ``policy.order``, checks its result and
     adds up the time spent in it (the check included)."""
 
-    def __init__(self, policy: NetOrderPolicy) -> None:
+    def __init__(self, policy: NetOrderPolicy, timeout: float | None = None) -> None:
+        from xroute_cli.policy_guard import DEFAULT_CALL_TIMEOUT, Watchdog
+
         self.policy = policy
         self.seconds = 0.0  # wall time in order() and the check
         self.calls = 0
+        limit = DEFAULT_CALL_TIMEOUT if timeout is None else timeout
+        self.watchdog = Watchdog(limit, policy) if limit > 0 else None  # per-call time limit
 
     def __call__(self, region: dict[str, Any], features: Any) -> list[int]:
+        from xroute_cli.policy_guard import call_policy
+
         start = time.perf_counter()
         try:
-            return check_order(self.policy.order(region, features), len(features), self.policy.name)
+            order = call_policy(self.policy, region, features, self.watchdog)  # SystemExit -> PolicyError
+            return check_order(order, len(features), self.policy.name)
         finally:
             self.seconds += time.perf_counter() - start
             self.calls += 1
@@ -228,6 +244,7 @@ def route_design(
     seed: int = 1,
     schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
+    policy_timeout: float | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
@@ -261,7 +278,7 @@ def route_design(
         kwargs["policy"] = "random"
         kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
     else:
-        callback = _PolicyCallback(pol)
+        callback = _PolicyCallback(pol, policy_timeout)  # policy_timeout: seconds per call (None: default, 0: none)
         kwargs["policy_fn"] = callback
         # A policy that declares needs_region = True finds the region being routed (an
         # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
@@ -291,6 +308,9 @@ def route_design(
         if "grid nodes exceeds" in str(exc):  # the region size is too large for this design
             raise RouteArgumentError(str(exc)) from exc
         raise
+    finally:
+        if callback is not None and callback.watchdog is not None:
+            callback.watchdog.close()
     seconds = time.perf_counter() - start
     reports = tuple(IterationReport.from_engine(d) for d in out["iterations"])
     return RouteResult(
