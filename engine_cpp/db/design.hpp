@@ -216,6 +216,7 @@ struct Design {
   // Odd but routable things found while reading, "file:line: message" (also in warningCount).
   std::vector<std::string> warnings;
   int dieLine = 0;  // line of DIEAREA in the DEF (0: none read)
+  int gcellLine = 0;  // line of the first GCELLGRID (0: none)
   int endLine = 0;  // line of END DESIGN
 
   int pinCount(NetId n) const { return netPinStart[*n + 1] - netPinStart[*n]; }

@@ -38,6 +38,11 @@ constexpr std::string_view kSkippedSections[] = {
 constexpr std::string_view kSkippedStatements[] = {"TECHNOLOGY", "HISTORY", "NAMESCASESENSITIVE",
                                                     "NAMEMAPSTRINGS"};
 
+// Far above any real design (ISPD 2019's largest: about 20,000 tracks and 600 GCell lines per
+// axis), low enough that the grids built from them fit in memory.
+constexpr int64_t kMaxTracks = 10000000;
+constexpr int64_t kMaxGCellLines = 1000000;
+
 template <size_t N>
 bool contains(const std::string_view (&list)[N], std::string_view w) {
   return std::find(std::begin(list), std::end(list), w) != std::end(list);
@@ -315,7 +320,9 @@ void DefParser::readTracks() {
   lex_.expect("DO");
   const Token countTok = lex_.peek();
   const int64_t count = lex_.integer();
-  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad track count " + quoteToken(countTok.text));
+  if (count < 1 || count > kMaxTracks) {
+    lex_.failAt(countTok, "bad track count " + quoteToken(countTok.text) + " (1.." + std::to_string(kMaxTracks) + ")");
+  }
   pat.count = static_cast<int>(count);
   lex_.expect("STEP");
   const Token stepTok = lex_.peek();
@@ -347,11 +354,14 @@ void DefParser::readGCellGrid() {
   if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
   GCellPattern g;
   g.isX = axis.text == "X";
+  if (design_.gcellLine == 0) design_.gcellLine = axis.line;
   g.start = lex_.dbu();
   lex_.expect("DO");
   const Token countTok = lex_.peek();
   const int64_t count = lex_.integer();
-  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad GCELLGRID count " + quoteToken(countTok.text));
+  if (count < 1 || count > kMaxGCellLines) {
+    lex_.failAt(countTok, "bad GCELLGRID count " + quoteToken(countTok.text) + " (1.." + std::to_string(kMaxGCellLines) + ")");
+  }
   g.count = static_cast<int>(count);
   lex_.expect("STEP");
   const Token stepTok = lex_.peek();

@@ -4,6 +4,10 @@
 
 namespace xroute {
 
+namespace {
+constexpr int64_t kMaxGCells = 25000000;  // ISPD 2019's largest design has about 400,000
+}  // namespace
+
 void validateTech(const Tech& tech, const std::vector<std::string>& lefPaths) {
   const std::string first = lefPaths.empty() ? std::string("LEF") : lefPaths.front();
   if (tech.dbuPerMicron <= 0) throw InputError(first, 0, "no UNITS DATABASE MICRONS in the LEF");
@@ -34,6 +38,13 @@ void validateDesign(const Tech& tech, Design& design, const std::string& defPath
     // Nothing placed and nothing to route (an empty design) needs no die; anything else does.
     if (design.components.empty() && design.ioPins.empty() && design.nets.empty() && design.specialNets.empty()) return;
     throw InputError(defPath, design.endLine, "no DIEAREA in the DEF");
+  }
+  int64_t linesX = 0, linesY = 0;
+  for (const GCellPattern& g : design.gcellGrid) (g.isX ? linesX : linesY) += g.count;
+  if (linesX > 1 && linesY > 1 && (linesX - 1) * (linesY - 1) > kMaxGCells) {
+    throw InputError(defPath, design.gcellLine,
+                     "GCELLGRID makes " + std::to_string(linesX - 1) + " x " + std::to_string(linesY - 1) +
+                         " GCells; at most " + std::to_string(kMaxGCells) + " are supported");
   }
   const Rect& die = design.dieArea;
   const std::string dieText = "(" + std::to_string(die.xlo) + " " + std::to_string(die.ylo) + " " +
