@@ -43,6 +43,11 @@ class XrouteGroup(TyperGroup):
             _debug_traceback(exc)
             print_error(exc)
             ctx.exit(EXIT_USER_ERROR)
+        except MemoryError as exc:  # e.g. std::bad_alloc in the engine on an absurdly large input
+            _debug_traceback(exc)
+            typer.echo(f"error: out of memory ({exc or 'MemoryError'}): the input or the settings ask for too much",
+                       err=True)
+            ctx.exit(EXIT_USER_ERROR)
         except Exception as exc:  # an exception raised inside a user's policy: one line naming it
             from xroute_cli.policy_guard import policy_failure_line
 

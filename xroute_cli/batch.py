@@ -171,6 +171,13 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     except (XrouteError, OSError) as exc:
         shutil.rmtree(tmp, ignore_errors=True)
         record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
+    except Exception as exc:
+        from xroute_cli.policy_guard import policy_failure_line
+
+        shutil.rmtree(tmp, ignore_errors=True)
+        if (line := policy_failure_line(exc)) is None:
+            raise
+        record.update(status="error", seconds=time.perf_counter() - started, message=line)  # the user's policy raised
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
