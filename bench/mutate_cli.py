@@ -227,6 +227,50 @@ def die_variants(text: bytes) -> list[tuple[str, bytes]]:
     return out
 
 
+def structural_variants(rng: random.Random, files: dict[str, bytes]) -> str:
+    """Grid and technology extremes that parse but stress the router: GCell grids of one line,
+    huge or tiny steps, grids outside the die, tracks of one line or outside the die, pitches,
+    widths and spacings far too large or small, a database unit of 1."""
+    d, lef = files["d.def"].decode(), files["d.lef"].decode()
+    m = re.search(r"DIEAREA \( (-?\d+) (-?\d+) \) \( (-?\d+) (-?\d+) \)", d)
+    w = int(m.group(3)) if m else 10000
+
+    def gcell(rep: str) -> str:
+        return re.sub(r"(?m)^GCELLGRID.*\n", "", d).replace("COMPONENTS", rep + "COMPONENTS", 1)
+
+    variants = {
+        "gcell one line": lambda: gcell("GCELLGRID X 0 DO 1 STEP 100 ;\nGCELLGRID Y 0 DO 1 STEP 100 ;\n"),
+        "gcell huge step": lambda: gcell("GCELLGRID X 0 DO 2 STEP 100000000 ;\nGCELLGRID Y 0 DO 2 STEP 100000000 ;\n"),
+        "gcell step 1": lambda: gcell(f"GCELLGRID X 0 DO {w + 1} STEP 1 ;\nGCELLGRID Y 0 DO {w + 1} STEP 1 ;\n"),
+        "gcell outside": lambda: gcell("GCELLGRID X 90000000 DO 3 STEP 3000 ;\nGCELLGRID Y 90000000 DO 3 STEP 3000 ;\n"),
+        "gcell x only": lambda: gcell("GCELLGRID X 0 DO 5 STEP 3000 ;\n"),
+        "no gcell": lambda: gcell(""),
+        "no tracks": lambda: re.sub(r"(?m)^TRACKS.*\n", "", d),
+        "tracks count 1": lambda: re.sub(r"(TRACKS [XY] -?\d+) DO \d+", r"\1 DO 1", d),
+        "tracks outside": lambda: re.sub(r"(TRACKS [XY]) -?\d+", r"\1 90000000", d),
+        "tracks step 1": lambda: re.sub(r"(TRACKS [XY] -?\d+) DO \d+ STEP \d+", rf"\1 DO {w} STEP 1", d),
+        "no nets": lambda: re.sub(r"(?s)\nNETS \d+ ;.*END NETS", "\nNETS 0 ;\nEND NETS", d),
+        "no components": lambda: re.sub(r"(?s)\nCOMPONENTS \d+ ;.*?END COMPONENTS", "\nCOMPONENTS 0 ;\nEND COMPONENTS", d),
+    }
+    lef_variants = {
+        "pitch huge": lambda: re.sub(r"PITCH [\d.]+", "PITCH 900000", lef, count=1),
+        "pitch tiny": lambda: re.sub(r"PITCH [\d.]+", "PITCH 0.0005", lef),
+        "width huge": lambda: re.sub(r"WIDTH [\d.]+ ;", "WIDTH 900000 ;", lef, count=1),
+        "spacing huge": lambda: re.sub(r"SPACING [\d.]+ ;", "SPACING 900000 ;", lef, count=1),
+        "area huge": lambda: re.sub(r"AREA [\d.]+ ;", "AREA 1e12 ;", lef, count=1),
+        "no vias": lambda: re.sub(r"(?s)\nVIA .*?\nEND \S+", "", lef),
+        "dbu 1": lambda: re.sub(r"DATABASE MICRONS \d+", "DATABASE MICRONS 1", lef),
+    }
+    name = rng.choice(sorted(variants) + sorted(lef_variants))
+    if name in variants:
+        files["d.def"] = variants[name]().encode()
+    else:
+        files["d.lef"] = lef_variants[name]().encode()
+        if name == "dbu 1":
+            files["d.def"] = re.sub(r"MICRONS \d+", "MICRONS 1", d).encode()
+    return name
+
+
 def guide_variants(rng: random.Random, guide: bytes) -> tuple[str, bytes]:
     lines = guide.split(b"\n")
     rect_lines = [i for i, ln in enumerate(lines) if len(ln.split()) == 5]
@@ -342,9 +386,12 @@ def make_case(rng: random.Random, route_share: float) -> Case:
         files[target] = truncate(rng, files[target]) if rng.random() < 0.7 else b""
         kind = f"truncated {target[2:]}"
         guide = guide or target == "d.guide"
-    elif r < 0.63:
+    elif r < 0.58:
         name, files["d.def"] = rng.choice(die_variants(files["d.def"]))
         kind = f"DIEAREA {name}"
+    elif r < 0.63:
+        kind = "structure " + structural_variants(rng, files)
+        command = "route" if rng.random() < 0.7 else command
     elif r < 0.71:
         kind, files["d.guide"] = guide_variants(rng, files["d.guide"])
         guide = True
