@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Fuzzes the LEF, DEF and guide readers with libFuzzer (clang + AddressSanitizer).
+# Fuzzes the LEF, DEF and guide readers with libFuzzer (clang + AddressSanitizer), and the
+# YAML configs (route --config, batch) with bench/fuzz_yaml.py (atheris when installed,
+# `pip install atheris`; a built-in mutator otherwise).
 #
 #   bash bench/fuzz.sh [SECONDS_PER_TARGET]     (default 60)
 #
-# Needs clang with its libFuzzer runtime. On Debian/Ubuntu:
-#   apt-get install clang-14 libclang-rt-14-dev
+# Needs clang (15 or later) with its libFuzzer runtime. On Debian/Ubuntu:
+#   apt-get install clang-16 libclang-rt-16-dev
 # (CXX_FUZZ=/path/to/clang++ picks another clang.)
 #
 # Seeds (rebuilt each run in build/fuzz/seeds/<target>/): the ispd18_sample and
@@ -24,14 +26,15 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 secs=${1:-60}
 data=${XROUTE_TESTCASES:-$root/../shared/testcases}
 data=${data%%:*}
-cxx=${CXX_FUZZ:-$(command -v clang++ || command -v clang++-14 || true)}
-[ -n "$cxx" ] || { echo "fuzz.sh: clang++ not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 2; }
+# clang 15 or later: clang 14 rejects a lambda capturing a structured binding (engine_cpp/drc).
+cxx=${CXX_FUZZ:-$(command -v clang++-16 || command -v clang++-15 || command -v clang++ || true)}
+[ -n "$cxx" ] || { echo "fuzz.sh: clang++ not found (apt-get install clang-16 libclang-rt-16-dev)" >&2; exit 2; }
 [ -d "$data/ispd18_sample" ] || { echo "fuzz.sh: testcases not found in $data" >&2; exit 2; }
 
 build=$root/build/fuzz
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DXROUTE_PYTHON=OFF -DXROUTE_FUZZ=ON >/dev/null
-ninja -C "$build" fuzz_lef fuzz_def fuzz_guide >/dev/null
+  -DXROUTE_PYTHON=OFF -DXROUTE_FUZZ=ON -DCMAKE_CXX_SCAN_FOR_MODULES=OFF >/dev/null
+ninja -C "$build" -j "${FUZZ_BUILD_JOBS:-2}" fuzz_lef fuzz_def fuzz_guide >/dev/null
 
 s=$data/ispd18_sample/ispd18_sample.input
 s2=$data/ispd18_sample2/ispd18_sample2.input
@@ -40,7 +43,9 @@ mkdir -p "$build"/seeds/{lef,def,guide} "$build"/corpus/{lef,def,guide} "$build/
 cp "$s.lef" "$s2.lef" "$root"/tests/data/lef/*.lef "$build/seeds/lef/"
 cp "$s.def" "$s2.def" "$build/seeds/def/"
 cp "$s.guide" "$build/seeds/guide/"
-for t in lef def guide; do
+mkdir -p "$build"/seeds/yaml "$build"/corpus/yaml
+cp "$root"/configs/*.yaml "$build/seeds/yaml/"
+for t in lef def guide yaml; do
   if [ -d "$root/tests/fuzz_regressions/$t" ]; then
     find "$root/tests/fuzz_regressions/$t" -maxdepth 1 -type f -exec cp {} "$build/seeds/$t/" \;
   fi
@@ -85,4 +90,33 @@ for t in lef def guide; do
     grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5 | sed 's/^/       /'
   fi
 done
+# The YAML-config target (Python, same columns).
+py=${PYTHON:-python3}
+log=$build/fuzz_yaml.log
+{ printf '"%s"\n' "<<: " "&a " "*a" "!!python/name:" "!tag " "[" "]" "{" "}" ": " "- " "---" "2147483648" \
+    "99999999999999999999" ".inf" ".nan" "2020-13-45" "null" "~"
+  grep -ohE '^ *[a-z_]+:' "$root"/configs/*.yaml | tr -d ' :' | sort -u | sed 's/.*/"&: "/'
+} >"$build/yaml.dict"
+if "$py" -c "import atheris" 2>/dev/null; then
+  how=atheris
+  set +e
+  PYTHONPATH=$root "$py" "$root/bench/fuzz_yaml.py" "$build/corpus/yaml" "$build/seeds/yaml" -dict="$build/yaml.dict" \
+    -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+    -artifact_prefix="$build/artifacts/yaml-" >"$log" 2>&1
+  rc=$?
+  set -e
+else
+  how=plain
+  set +e
+  PYTHONPATH=$root "$py" "$root/bench/fuzz_yaml.py" --plain "$secs" "$build"/seeds/yaml/* >"$log" 2>&1
+  rc=$?
+  set -e
+fi
+if [ $rc -eq 0 ]; then result="no crash ($how)"; else status=1; result="FOUND SOMETHING (see $log)"; fi
+execs=$(awk '/^stat::number_of_executed_units/ {print $2}' "$log")
+rate=$(awk '/^stat::average_exec_per_sec/ {print $2}' "$log")
+took=$(awk '/^Done [0-9]+ runs in/ {print $5}' "$log")
+printf '%-6s %10s %8s %7s %8s  %s\n' yaml "${execs:-?}" "${rate:-?}" \
+  "$(find "$build/corpus/yaml" -type f | wc -l)" "${took:-?}" "$result"
+if [ $rc -ne 0 ]; then grep -E 'Error|CRASH|Traceback|Test unit written' "$log" | head -5 | sed 's/^/       /'; fi
 exit $status

@@ -31,9 +31,14 @@ def load_policy_file(path: str | Path) -> CallablePolicy:
     sys.modules[module_name] = module
     try:
         spec.loader.exec_module(module)
-    except Exception as exc:  # noqa: BLE001 - the user's file: report it as one line
+    except (Exception, SystemExit) as exc:  # noqa: BLE001 - the user's file: report it as one line
         sys.modules.pop(module_name, None)
-        raise PolicyError(f"policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+        import traceback
+
+        lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename) == p]
+        line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
+        where = f"{p}:{line}: " if line else ""
+        raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
     fn: Any = getattr(module, "order", None)
     if not callable(fn):
         raise PolicyError(f"policy file {p} defines no function order(region, features)")

@@ -41,8 +41,33 @@ class XrouteGroup(TyperGroup):
         try:
             return super().invoke(ctx)
         except USER_ERRORS as exc:
+            _debug_traceback(exc)
             print_error(exc)
             ctx.exit(EXIT_USER_ERROR)
+        except MemoryError as exc:  # e.g. std::bad_alloc in the engine on an absurdly large input
+            _debug_traceback(exc)
+            typer.echo(f"error: out of memory ({exc or 'MemoryError'}): the input or the settings ask for too much",
+                       err=True)
+            ctx.exit(EXIT_USER_ERROR)
+        except Exception as exc:  # an exception raised inside a user's policy: one line naming it
+            from xroute.policy_guard import policy_failure_line
+
+            line = policy_failure_line(exc)
+            if line is None:
+                raise  # anything else is a bug: its traceback
+            _debug_traceback(exc)
+            typer.echo("error: " + line, err=True)
+            ctx.exit(EXIT_USER_ERROR)
+
+
+DEBUG = {"on": False}  # set by --debug
+
+
+def _debug_traceback(exc: BaseException) -> None:
+    if DEBUG["on"]:
+        import traceback
+
+        traceback.print_exception(exc)
 
 
 app = typer.Typer(
@@ -64,11 +89,14 @@ def _print_version(value: bool) -> None:
 
 
 @app.callback()
-def _root(
+def _options(
     version: Annotated[bool, typer.Option("--version", callback=_print_version, is_eager=True,
                                           help="Print the version and exit.")] = False,
+    debug: Annotated[bool, typer.Option("--debug", help="Show the traceback of an error (e.g. one raised in a "
+                                        "policy).")] = False,
 ) -> None:
     """xroute: a VLSI detailed router whose net order is chosen by a pluggable, learnable policy."""
+    DEBUG["on"] = debug
 
 
 app.command(name="info")(info.info)

@@ -20,6 +20,7 @@ import json
 import os
 import shutil
 import time
+from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,7 +77,7 @@ def plan_jobs(cfg: BatchConfig) -> list[Job]:
                 name = entry.name if entry else "default"
                 jobs.append(Job(f"{testcase}__{label}__{name}", testcase, label, name, base, cfg.base.cost))
     ids = [j.id for j in jobs]
-    dupes = sorted({i for i in ids if ids.count(i) > 1})
+    dupes = sorted(i for i, n in Counter(ids).items() if n > 1)  # linear: a 300 x 300 matrix is instant
     if dupes:
         from xroute.config_schema import ConfigError
 
@@ -170,6 +171,13 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     except (XrouteError, OSError) as exc:
         shutil.rmtree(tmp, ignore_errors=True)
         record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
+    except Exception as exc:
+        from xroute.policy_guard import policy_failure_line
+
+        shutil.rmtree(tmp, ignore_errors=True)
+        if (line := policy_failure_line(exc)) is None:
+            raise
+        record.update(status="error", seconds=time.perf_counter() - started, message=line)  # the user's policy raised
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise

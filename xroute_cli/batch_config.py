@@ -17,6 +17,7 @@ the base config (``config:``, a file like configs/default.yaml; defaults without
 from __future__ import annotations
 
 import os
+from collections import Counter
 from dataclasses import dataclass
 
 from xroute.config import CHECKS, ScheduleEntry, XrouteConfig, load_config
@@ -74,7 +75,7 @@ class BatchFile:
 
     def __post_init__(self) -> None:
         names = [s.name for s in self.settings]
-        dupes = sorted({n for n in names if names.count(n) > 1})
+        dupes = sorted(n for n, k in Counter(names).items() if k > 1)  # linear in the entries
         if dupes:
             raise ValueError(f"settings names must be unique, repeated: {', '.join(dupes)}")
 

@@ -204,8 +204,10 @@ def run_dir_inputs(folder: Path) -> tuple[list[str], Path, str | None, Path | No
         design = m["design"]
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise InputError(f"not a metrics JSON written by xroute: {exc}", str(found[0]), 0) from exc
-    def_path = folder / f"{design}.routed.def"
-    drc = folder / f"{design}.drc.rpt"
+    from xroute.safe_paths import safe_stem
+
+    def_path = folder / f"{safe_stem(str(design))}.routed.def"
+    drc = folder / f"{safe_stem(str(design))}.drc.rpt"
     if not def_path.is_file():
         raise InputError("routed DEF not found", str(def_path), 0)
     return lef, def_path, guide if guide and Path(guide).is_file() else None, drc if drc.is_file() else None

@@ -220,6 +220,14 @@ void bindDatabase(nb::module_& m) {
       .def_prop_ro("warning_count", [](const Database& d) { return d.tech.warningCount + d.design.warningCount; },
                    "Warnings raised while reading (LEF + DEF).")
       .def(
+          "warnings",
+          [](const Database& d) {
+            std::vector<std::string> all = d.tech.warnings;
+            all.insert(all.end(), d.design.warnings.begin(), d.design.warnings.end());
+            return all;
+          },
+          "Odd but routable things found after reading, one 'file:line: message' each.")
+      .def(
           "layers", [](const Database& d) {
             nb::list out;
             for (const Layer& l : d.tech.layers) out.append(layerDict(l));

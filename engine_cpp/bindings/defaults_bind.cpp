@@ -18,6 +18,8 @@ void bindDefaults(nb::module_& m) {
   d["region_size"] = router.regionSize;
   d["iterations"] = router.iterations;
   d["max_iterations"] = kMaxIterations;
+  d["max_region_size"] = kMaxRegionSize;
+  d["max_threads"] = kMaxThreads;
   d["threads"] = router.threads;
   d["access_points_per_pin"] = pa.maxPointsPerPin;
   d["marker_penalty"] = router.markerPenalty;

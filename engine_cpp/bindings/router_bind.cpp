@@ -117,11 +117,15 @@ void bindRouter(nb::module_& m) {
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
          nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs,
          const std::optional<std::vector<std::pair<int, int>>>& schedule) {
-        if (region_size < 1) throw nb::value_error("region_size must be >= 1");
+        if (region_size < 1 || region_size > kMaxRegionSize) {
+          throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
+        }
         if (iterations < 1 || iterations > kMaxIterations) {
           throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
         }
-        if (threads < 1) throw nb::value_error("threads must be >= 1");
+        if (threads < 1 || threads > kMaxThreads) {
+          throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
+        }
         std::unique_ptr<NetOrderPolicy> p;
         if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region);
         else if (policy == "heuristic") p = makeHeuristicPolicy();

@@ -1,6 +1,7 @@
 #include "db/database.hpp"
 
 #include "io/readers.hpp"
+#include "io/validate.hpp"
 
 namespace xroute {
 
@@ -11,7 +12,9 @@ Database loadDatabase(const std::vector<std::string>& lefPaths, const std::strin
   db.defPath = defPath;
   db.guidePath = guidePath;
   for (const std::string& lef : lefPaths) readLef(lef, db.tech);
+  validateTech(db.tech, lefPaths);
   readDef(defPath, db.tech, db.design);
+  validateDesign(db.tech, db.design, defPath);
   if (!guidePath.empty()) readGuides(guidePath, db.tech, db.design);
   return db;
 }

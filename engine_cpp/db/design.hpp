@@ -213,6 +213,11 @@ struct Design {
   // Sections and statements the reader skipped, by keyword.
   std::vector<std::pair<std::string, int>> skippedStatements;
   int warningCount = 0;
+  // Odd but routable things found while reading, "file:line: message" (also in warningCount).
+  std::vector<std::string> warnings;
+  int dieLine = 0;  // line of DIEAREA in the DEF (0: none read)
+  int gcellLine = 0;  // line of the first GCELLGRID (0: none)
+  int endLine = 0;  // line of END DESIGN
 
   int pinCount(NetId n) const { return netPinStart[*n + 1] - netPinStart[*n]; }
   bool hasGuides() const { return !guideStart.empty(); }

@@ -78,6 +78,10 @@ struct Layer {
   int routingIndex = -1;     // 0.. over routing layers only (z), -1 if not routing
   int cutIndex = -1;         // 0.. over cut layers only, -1 if not cut
 
+  // Where the LAYER statement is (for errors found after reading).
+  std::string path;
+  int line = 0;
+
   // Routing layers.
   Direction direction = Direction::None;
   Dbu pitchX = 0, pitchY = 0;     // DBU ("PITCH p" sets both)
@@ -194,6 +198,8 @@ struct Tech {
   // Statements the reader did not understand and skipped, by keyword.
   std::vector<std::pair<std::string, int>> skippedStatements;
   int warningCount = 0;
+  // Odd but routable things found while reading, "file:line: message" (also in warningCount).
+  std::vector<std::string> warnings;
 
   const Layer& layer(LayerId id) const { return layers[*id]; }
   LayerId findLayer(std::string_view name) const;

@@ -26,7 +26,9 @@ struct ScheduleStep {
   int offset = 0;                  // GCells, 0 <= offset < regionSize
 };
 
-inline constexpr int kMaxIterations = 64;  // the most iterations one run may ask for
+inline constexpr int kMaxIterations = 64;     // the most iterations one run may ask for
+inline constexpr int kMaxRegionSize = 1000;   // GCells per region side at most (larger overflows int math)
+inline constexpr int kMaxThreads = 1024;      // worker threads at most
 
 struct RouterSettings {
   int regionSize = 5;              // GCells per region side (C); 5 measured best on ispd18_test1

@@ -10,12 +10,14 @@
 
 #include "db/compare.hpp"
 #include "fuzz_context.hpp"
+#include "io/validate.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const xroute::Tech& tech = xroute::fuzz::context().tech;
   xroute::Design design;
   try {
     xroute::readDefText("fuzz.def", std::string(reinterpret_cast<const char*>(data), size), tech, design);
+    xroute::validateDesign(tech, design, "fuzz.def");  // the checks run after reading (die area, ...)
   } catch (const xroute::InputError&) {
     return 0;
   }
@@ -23,6 +25,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   xroute::Design again;
   try {
     xroute::readDefText("written.def", text, tech, again);
+    xroute::validateDesign(tech, again, "written.def");
   } catch (const xroute::InputError& e) {
     std::fprintf(stderr, "written DEF does not re-read: %s\n%s\n", e.what(), text.c_str());
     std::abort();

@@ -38,6 +38,11 @@ constexpr std::string_view kSkippedSections[] = {
 constexpr std::string_view kSkippedStatements[] = {"TECHNOLOGY", "HISTORY", "NAMESCASESENSITIVE",
                                                     "NAMEMAPSTRINGS"};
 
+// Far above any real design (ISPD 2019's largest: about 20,000 tracks and 600 GCell lines per
+// axis), low enough that the grids built from them fit in memory.
+constexpr int64_t kMaxTracks = 10000000;
+constexpr int64_t kMaxGCellLines = 1000000;
+
 template <size_t N>
 bool contains(const std::string_view (&list)[N], std::string_view w) {
   return std::find(std::begin(list), std::end(list), w) != std::end(list);
@@ -177,6 +182,7 @@ void DefParser::parse() {
     if (t.quoted) unexpected(t, "a DEF statement");
     const std::string_view k = t.text;
     if (k == "END") {
+      design_.endLine = t.line;
       lex_.expect("DESIGN");
       if (!named) lex_.failAt(t, "missing DESIGN statement before END DESIGN");
       ended = true;
@@ -253,8 +259,20 @@ void DefParser::readDieArea() {
   while (!peekIs(";")) pts.push_back(readPoint());
   lex_.next();
   if (pts.size() < 2) lex_.fail(line, "DIEAREA needs at least 2 points");
+  if (design_.dieLine > 0) lex_.fail(line, "second DIEAREA (the first is at line " + std::to_string(design_.dieLine) + ")");
+  if (pts.size() == 2 && (pts[0].x > pts[1].x || pts[0].y > pts[1].y)) {
+    lex_.fail(line, "DIEAREA corners are inverted: the first point must be the lower left (" +
+                        std::to_string(pts[0].x) + " " + std::to_string(pts[0].y) + " is above or right of " +
+                        std::to_string(pts[1].x) + " " + std::to_string(pts[1].y) + ")");
+  }
   Rect box = Rect::fromCorners(pts[0], pts[1]);
   for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  if (box.xhi <= box.xlo || box.yhi <= box.ylo) {
+    lex_.fail(line, "DIEAREA has zero " + std::string(box.xhi <= box.xlo ? "width" : "height") + " (" +
+                        std::to_string(box.xlo) + " " + std::to_string(box.ylo) + " to " + std::to_string(box.xhi) +
+                        " " + std::to_string(box.yhi) + ")");
+  }
+  design_.dieLine = line;
   design_.dieArea = box;
   design_.diePolygon = std::move(pts);
 }
@@ -302,10 +320,18 @@ void DefParser::readTracks() {
   lex_.expect("DO");
   const Token countTok = lex_.peek();
   const int64_t count = lex_.integer();
-  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad track count " + quoteToken(countTok.text));
+  if (count < 1 || count > kMaxTracks) {
+    lex_.failAt(countTok, "bad track count " + quoteToken(countTok.text) + " (1.." + std::to_string(kMaxTracks) + ")");
+  }
   pat.count = static_cast<int>(count);
   lex_.expect("STEP");
+  const Token stepTok = lex_.peek();
   pat.step = lex_.dbu();
+  if (pat.step <= 0) lex_.failAt(stepTok, "TRACKS STEP must be positive, found " + quoteToken(stepTok.text));
+  if (static_cast<int64_t>(pat.start) + static_cast<int64_t>(pat.step) * (pat.count - 1) >
+      std::numeric_limits<Dbu>::max()) {
+    lex_.failAt(stepTok, "TRACKS run past the largest coordinate");
+  }
   if (lex_.accept("MASK")) {
     lex_.integer();
     lex_.accept("SAMEMASK");
@@ -328,14 +354,23 @@ void DefParser::readGCellGrid() {
   if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
   GCellPattern g;
   g.isX = axis.text == "X";
+  if (design_.gcellLine == 0) design_.gcellLine = axis.line;
   g.start = lex_.dbu();
   lex_.expect("DO");
   const Token countTok = lex_.peek();
   const int64_t count = lex_.integer();
-  if (count < 1 || count > 100000000) lex_.failAt(countTok, "bad GCELLGRID count " + quoteToken(countTok.text));
+  if (count < 1 || count > kMaxGCellLines) {
+    lex_.failAt(countTok, "bad GCELLGRID count " + quoteToken(countTok.text) + " (1.." + std::to_string(kMaxGCellLines) + ")");
+  }
   g.count = static_cast<int>(count);
   lex_.expect("STEP");
+  const Token stepTok = lex_.peek();
   g.step = lex_.dbu();
+  if (g.step <= 0) lex_.failAt(stepTok, "GCELLGRID STEP must be positive, found " + quoteToken(stepTok.text));
+  if (static_cast<int64_t>(g.start) + static_cast<int64_t>(g.step) * (g.count - 1) >
+      std::numeric_limits<Dbu>::max()) {
+    lex_.failAt(stepTok, "GCELLGRID runs past the largest coordinate");
+  }
   lex_.expect(";");
   design_.gcellGrid.push_back(g);
 }

@@ -19,7 +19,16 @@ struct GuideRow {
   LayerId layer;
 };
 
+std::string rectText(Dbu x1, Dbu y1, Dbu x2, Dbu y2) {
+  return std::to_string(x1) + " " + std::to_string(y1) + " " + std::to_string(x2) + " " + std::to_string(y2);
+}
+
 void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
+  if (lex.atEnd()) lex.fail(1, "empty guide file (no net)");
+  const Rect& die = design.dieArea;
+  const bool haveDie = design.dieLine > 0 && die.xhi > die.xlo && die.yhi > die.ylo;
+  int partlyOutside = 0;
+  int firstPartlyOutside = 0;
   std::vector<GuideRow> rows;
   std::vector<int32_t> perNet(design.nets.size(), 0);
   while (!lex.atEnd()) {
@@ -36,6 +45,7 @@ void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
         lex.next();
         break;
       }
+      const Token first = lex.peek();
       const Dbu x1 = lex.dbu();
       const Dbu y1 = lex.dbu();
       const Dbu x2 = lex.dbu();
@@ -46,9 +56,32 @@ void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
       if (tech.layer(layer).type != LayerType::Routing) {
         lex.failAt(layerTok, "guide layer " + quoteToken(layerTok.text) + " is not a routing layer");
       }
+      if (x1 > x2 || y1 > y2) {
+        lex.failAt(first, "guide rectangle is inverted (" + rectText(x1, y1, x2, y2) +
+                              "): the first corner must be the lower left");
+      }
+      if (x1 == x2 || y1 == y2) {
+        lex.failAt(first, "guide rectangle has zero " + std::string(x1 == x2 ? "width" : "height") + " (" +
+                              rectText(x1, y1, x2, y2) + ")");
+      }
+      if (haveDie) {
+        if (x2 <= die.xlo || x1 >= die.xhi || y2 <= die.ylo || y1 >= die.yhi) {
+          lex.failAt(first, "guide rectangle (" + rectText(x1, y1, x2, y2) + ") lies outside the die area (" +
+                                rectText(die.xlo, die.ylo, die.xhi, die.yhi) + ")");
+        }
+        if (x1 < die.xlo || y1 < die.ylo || x2 > die.xhi || y2 > die.yhi) {
+          if (partlyOutside++ == 0) firstPartlyOutside = first.line;
+        }
+      }
       rows.push_back({*net, Rect::fromCorners({x1, y1}, {x2, y2}), layer});
       ++perNet[*net];
     }
+  }
+  if (partlyOutside > 0) {
+    design.warnings.push_back(lex.path() + ":" + std::to_string(firstPartlyOutside) + ": " +
+                              std::to_string(partlyOutside) + " guide rectangle(s) reach past the die area (" +
+                              rectText(die.xlo, die.ylo, die.xhi, die.yhi) + "); the first is here");
+    ++design.warningCount;
   }
   // Counting sort by net id: stable, so file order is kept within a net.
   design.guideStart.assign(design.nets.size() + 1, 0);

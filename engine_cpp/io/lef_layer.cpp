@@ -26,6 +26,8 @@ void LefParser::parseLayer(const Token& opener) {
   Scope scope(*this, "LAYER", n.text, opener.line);
   Layer layer;
   layer.name = std::string(n.text);
+  layer.path = lex_.path();
+  layer.line = n.line;
   bool hasType = false;
   while (true) {
     const Token kw = keyword("LAYER");
@@ -54,7 +56,7 @@ void LefParser::parseLayer(const Token& opener) {
       failAt(kw, std::string(k) + " before TYPE in LAYER " + quoteToken(layer.name));
     }
     if ((routing || cut) && k == "WIDTH") {
-      layer.width = dist();
+      layer.width = positiveDist("WIDTH of LAYER " + quoteToken(layer.name));
       endStatement();
     } else if (routing && k == "DIRECTION") {
       const Token d = name("HORIZONTAL or VERTICAL");
@@ -70,10 +72,12 @@ void LefParser::parseLayer(const Token& opener) {
       }
       endStatement();
     } else if (routing && (k == "PITCH" || k == "OFFSET")) {
-      const Dbu a = dist();
-      const Dbu b = peekIs(";") ? a : dist();
+      const bool pitch = k == "PITCH";
+      const std::string what = std::string(k) + " of LAYER " + quoteToken(layer.name);
+      const Dbu a = pitch ? positiveDist(what) : nonNegativeDist(what);
+      const Dbu b = peekIs(";") ? a : (pitch ? positiveDist(what) : nonNegativeDist(what));
       endStatement();
-      if (k == "PITCH") {
+      if (pitch) {
         layer.pitchX = a;
         layer.pitchY = b;
       } else {
@@ -81,10 +85,12 @@ void LefParser::parseLayer(const Token& opener) {
         layer.offsetY = b;
       }
     } else if (routing && k == "MINWIDTH") {
-      layer.minWidth = dist();
+      layer.minWidth = positiveDist("MINWIDTH of LAYER " + quoteToken(layer.name));
       endStatement();
     } else if (routing && k == "AREA") {
+      const Token at = peek();
       layer.minArea = area();
+      if (layer.minArea < 0) failAt(at, "AREA of LAYER " + quoteToken(layer.name) + " must not be negative");
       endStatement();
     } else if (routing && k == "SPACING") {
       parseRoutingSpacing(layer, kw);
@@ -127,7 +133,7 @@ void LefParser::parseLayer(const Token& opener) {
 // SPACING s ENDOFLINE w WITHIN d [PARALLELEDGE p WITHIN q [TWOEDGES]] ;
 // Any other form is skipped whole and counted as "LAYER.SPACING.<WORD>".
 void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
-  const Dbu space = dist();
+  const Dbu space = nonNegativeDist("SPACING of LAYER " + quoteToken(layer.name));
   if (accept(";")) {
     layer.spacings.push_back({space, false, 0, 0, false});
     return;
@@ -179,7 +185,7 @@ void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
 // counted as "LAYER.SPACING.<WORD>".
 void LefParser::parseCutSpacing(Layer& layer, const Token& kw) {
   CutSpacingRule r;
-  r.space = dist();
+  r.space = nonNegativeDist("SPACING of LAYER " + quoteToken(layer.name));
   r.centerToCenter = accept("CENTERTOCENTER");
   r.sameNet = accept("SAMENET");
   if (accept("ADJACENTCUTS")) {
@@ -233,7 +239,7 @@ void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
                            " spacing values, expected " + std::to_string(table.prls.size()) +
                            " (one per PARALLELRUNLENGTH)");
       }
-      table.spacing.push_back(dist());
+      table.spacing.push_back(nonNegativeDist("SPACINGTABLE spacing of LAYER " + quoteToken(layer.name)));
     }
   }
   if (table.widths.empty()) failAt(kw, "SPACINGTABLE PARALLELRUNLENGTH without a WIDTH row");

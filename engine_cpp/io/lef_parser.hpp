@@ -39,6 +39,9 @@ class LefParser {
   bool accept(std::string_view word);
   void expect(std::string_view word);
   void endStatement();  // expects ';'
+  // A length that must be > 0 (positive) or >= 0; `what` names it in the error.
+  Dbu positiveDist(const std::string& what);
+  Dbu nonNegativeDist(const std::string& what);
   // A name being defined or referenced: not ';', not a number.
   Token name(std::string_view what);
   // The first token of a statement: must look like a keyword.

@@ -103,6 +103,20 @@ Dbu LefParser::dist() {
   return lex_.microns(tech_.dbuPerMicron);
 }
 
+Dbu LefParser::positiveDist(const std::string& what) {
+  const Token t = peek();
+  const Dbu v = dist();
+  if (v <= 0) failAt(t, what + " must be positive, found " + quoteToken(t.text));
+  return v;
+}
+
+Dbu LefParser::nonNegativeDist(const std::string& what) {
+  const Token t = peek();
+  const Dbu v = dist();
+  if (v < 0) failAt(t, what + " must not be negative, found " + quoteToken(t.text));
+  return v;
+}
+
 Area LefParser::area() {
   const Token t = peek();
   if (tech_.dbuPerMicron <= 0) {
@@ -327,9 +341,9 @@ void LefParser::parseSite(const Token& opener) {
     } else if (k == "SYMMETRY") {
       site.symmetry = restOfStatement();
     } else if (k == "SIZE") {
-      site.width = dist();
+      site.width = positiveDist("SITE SIZE width");
       expect("BY");
-      site.height = dist();
+      site.height = positiveDist("SITE SIZE height");
       endStatement();
     } else {
       skipStatement("SITE", kw);
@@ -343,11 +357,13 @@ void LefParser::parseSite(const Token& opener) {
 
 void readLef(const std::string& path, Tech& tech) {
   Lexer lex = Lexer::fromFile(path);
+  if (lex.atEnd()) lex.fail(1, "empty LEF file (no statement)");
   LefParser(lex, tech).parse();
 }
 
 void readLefText(const std::string& name, std::string text, Tech& tech) {
   Lexer lex(name, std::move(text));
+  if (lex.atEnd()) lex.fail(1, "empty LEF file (no statement)");
   LefParser(lex, tech).parse();
 }
 

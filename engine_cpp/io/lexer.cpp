@@ -10,6 +10,58 @@ namespace xroute {
 
 namespace {
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+// Offset of the first byte of `s` that is not part of valid UTF-8 (s.size() if none).
+// Names end up as Python str objects: a token that is not UTF-8 is an input error.
+size_t invalidUtf8At(std::string_view s) {
+  size_t i = 0;
+  const size_t n = s.size();
+  while (i < n) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    size_t len = 0;
+    uint32_t cp = 0;
+    if (c >= 0xC2 && c <= 0xDF) {
+      len = 2;
+      cp = c & 0x1F;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      len = 3;
+      cp = c & 0x0F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      len = 4;
+      cp = c & 0x07;
+    } else {
+      return i;
+    }
+    if (i + len > n) return i;
+    for (size_t k = 1; k < len; ++k) {
+      const unsigned char cc = static_cast<unsigned char>(s[i + k]);
+      if ((cc & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    if ((len == 3 && (cp < 0x800 || (cp >= 0xD800 && cp <= 0xDFFF))) || (len == 4 && (cp < 0x10000 || cp > 0x10FFFF))) {
+      return i;
+    }
+    i += len;
+  }
+  return n;
+}
+
+void checkUtf8(const Lexer& lex, const Token& t) {
+  for (unsigned char c : t.text) {
+    if (c >= 0x80 || c == 0) {
+      const size_t at = invalidUtf8At(t.text);
+      bool nul = false;
+      for (unsigned char d : t.text) nul = nul || d == 0;
+      if (at < t.text.size()) lex.failAt(t, "invalid UTF-8 in " + quoteToken(t.text));
+      if (nul) lex.failAt(t, "NUL byte in " + quoteToken(t.text));
+      return;
+    }
+  }
+}
 }  // namespace
 
 std::string quoteToken(std::string_view text) {
@@ -74,6 +126,7 @@ void Lexer::scan() {
     lookahead_ = Token{std::string_view(text_).substr(start, pos_ - start), startLine, true};
     ++pos_;  // closing quote
     hasLookahead_ = true;
+    checkUtf8(*this, lookahead_);
     return;
   }
   const size_t start = pos_;
@@ -86,6 +139,7 @@ void Lexer::scan() {
   }
   lookahead_ = Token{tok, startLine, false};
   hasLookahead_ = true;
+  checkUtf8(*this, lookahead_);
 }
 
 bool Lexer::atEnd() {

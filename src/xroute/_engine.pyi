@@ -52,6 +52,11 @@ class Database:
     def warning_count(self) -> int:
         """Warnings raised while reading (LEF + DEF)."""
 
+    def warnings(self) -> list[str]:
+        """
+        Odd but routable things found after reading, one 'file:line: message' each.
+        """
+
     def layers(self) -> list:
         """Every LEF layer in order, as dicts (lengths in DBU, areas in DBU^2)."""
 

@@ -149,6 +149,8 @@ class PolicySection:
 
     policy: str = setting("heuristic", check="policy")
     seed: int = setting(1, min=0, max=2**64 - 1)
+    call_timeout: float = setting(300.0, min=0.0, max=86400.0, unit="seconds",
+                                  help="time limit of one order() call of a policy file (0: none)")
 
 
 @dataclass(frozen=True)
@@ -209,6 +211,7 @@ class RunSettings:
     seed: int
     schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
     net_loop: int = 1
+    policy_timeout: float | None = None  # seconds per policy call (None: the default)
 
     def route_settings(self) -> RouteSettings:
         """The detailed router's settings (validated: RouteArgumentError when invalid)."""
@@ -216,7 +219,7 @@ class RunSettings:
             raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
                               "once per visit; net_loop > 1 applies to the training environments only")
         return RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
-                             seed=self.seed, schedule=self.schedule or None)
+                             seed=self.seed, schedule=self.schedule or None, policy_timeout=self.policy_timeout)
 
     def to_dict(self) -> dict[str, Any]:
         return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
@@ -238,6 +241,7 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         seed=seed if seed is not None else cfg.policy.seed,
         schedule=tuple(schedule),
         net_loop=cfg.router.net_loop,
+        policy_timeout=cfg.policy.call_timeout,
     )
 
 

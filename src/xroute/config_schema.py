@@ -67,15 +67,21 @@ class Context:
 
 def compose_file(path: str | os.PathLike[str]) -> yaml.Node | None:
     """The YAML node tree of a file. Raises ConfigError for unreadable files and bad YAML."""
+    from xroute.safe_yaml import YamlProblem, compose_text, read_text_limited
+
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        text = read_text_limited(str(p))
+    except YamlProblem as exc:
+        raise ConfigError(exc.message, str(p), exc.line) from None
     except OSError as exc:
         raise ConfigError(f"cannot read config file: {exc.strerror or exc}", str(p), 0) from exc
     except UnicodeDecodeError as exc:
         raise ConfigError("config file is not UTF-8 text", str(p), 0) from exc
     try:
-        return yaml.compose(text, Loader=yaml.SafeLoader)
+        return compose_text(text)  # no custom tags or merge keys; depth and size limited
+    except YamlProblem as exc:
+        raise ConfigError(exc.message, str(p), exc.line) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark is not None else 0
@@ -88,7 +94,10 @@ _CONSTRUCTOR = yaml.SafeLoader("")  # turns scalar nodes into Python values (int
 
 
 def scalar_value(node: yaml.ScalarNode) -> Any:
-    return _CONSTRUCTOR.construct_object(node, deep=True)
+    try:
+        return _CONSTRUCTOR.construct_object(node, deep=True)
+    except (ValueError, OverflowError, yaml.YAMLError):  # e.g. a date-like "2020-13-45": keep the text
+        return str(node.value)
 
 
 def _type_name(tp: Any) -> str:

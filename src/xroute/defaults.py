@@ -13,6 +13,8 @@ _D: dict = dict(_engine.DEFAULTS)
 REGION_SIZE: int = int(_D["region_size"])  # GCells per region side (measured best on ispd18_test1)
 ITERATIONS: int = int(_D["iterations"])  # iteration limit; the flow stops earlier at zero violations
 MAX_ITERATIONS: int = int(_D["max_iterations"])
+MAX_REGION_SIZE: int = int(_D["max_region_size"])  # GCells per region side at most
+MAX_THREADS: int = int(_D["max_threads"])
 ACCESS_POINTS_PER_PIN: int = int(_D["access_points_per_pin"])
 MAX_REGION_NODES: int = int(_D["max_region_nodes"])  # grid nodes of one region at most
 

@@ -70,9 +70,12 @@ def clean_stale_temporaries(folder: Path) -> list[Path]:
     """Removes the temporary files that a killed run left in ``folder`` (``.NAME.PID.XXXX.tmp``
     from :func:`atomic_write_text`, ``NAME.tmp.PID`` from the engine's DEF writer) when their
     process is gone; returns the removed paths."""
+    from xroute.output_set import clean_leftovers
+
     removed: list[Path] = []
     if not folder.is_dir():
         return removed
+    removed += clean_leftovers(folder)  # staging folders and incomplete output sets (xroute.output_set)
     for p in folder.iterdir():
         parts = p.name.split(".")
         pid = None
@@ -108,11 +111,14 @@ class RouteOutputs:
 
 
 def output_paths(out_dir: Path, design_name: str) -> tuple[Path, Path, Path]:
-    """(routed DEF, metrics JSON, DRC report) paths for a design in ``out_dir``."""
+    """(routed DEF, metrics JSON, DRC report) paths for a design in ``out_dir``: the stem is the
+    design name made safe (:func:`xroute.safe_paths.safe_stem`), each path checked to lie in ``out_dir``."""
+    from xroute.safe_paths import output_file
+
     return (
-        out_dir / f"{design_name}.routed.def",
-        out_dir / f"{design_name}.metrics.json",
-        out_dir / f"{design_name}.drc.rpt",
+        output_file(out_dir, design_name, ".routed.def"),
+        output_file(out_dir, design_name, ".metrics.json"),
+        output_file(out_dir, design_name, ".drc.rpt"),
     )
 
 
@@ -128,17 +134,34 @@ def write_route_outputs(
     ``started`` is the ``time.perf_counter()`` of the start of the whole run (loading included),
     for the runtime figure; by default the routing time is used.
     """
-    from xroute.design import load_design
+    import shutil
+
+    from xroute.output_set import make_stage
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     def_path, metrics_path, drc_path = output_paths(out, design.name)
-    design.write_def(def_path)
+    # Everything is written and checked in a fresh staging folder, then published as one set.
+    stage = make_stage(out)
+    try:
+        return _write_staged(design, result, out, stage, started, (def_path, metrics_path, drc_path))
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
 
-    written = load_design(lef=design.lef_paths, def_=def_path)  # check the file, not the memory
+
+def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, started: float | None,
+                  final: tuple[Path, Path, Path]) -> RouteOutputs:
+    from xroute.design import load_design
+    from xroute.output_set import file_sha256, new_run_id, publish
+
+    def_path, metrics_path, drc_path = final
+    staged_def, staged_metrics, staged_drc = (stage / p.name for p in final)
+    design.write_def(staged_def)
+
+    written = load_design(lef=design.lef_paths, def_=staged_def)  # check the file, not the memory
     conn = written.engine.check_connectivity()
     measured = written.engine.metrics()
-    drc = {str(k): int(v) for k, v in written.engine.write_drc_report(str(drc_path)).items()}
+    drc = {str(k): int(v) for k, v in written.engine.write_drc_report(str(staged_drc)).items()}
 
     counts = design.counts()
     runtime = time.perf_counter() - started if started is not None else result.seconds
@@ -188,5 +211,8 @@ def write_route_outputs(
             "vias_by_cut_layer": {str(k): int(v) for k, v in measured["vias_by_cut_layer"].items()},
         },
     }
-    atomic_write_text(metrics_path, json.dumps(metrics, indent=2) + "\n")
+    # The metrics JSON is the run's manifest (published last): its DEF and DRC report, by hash.
+    metrics["run"] = {"id": new_run_id(), "sha256": {"def": file_sha256(staged_def), "drc_report": file_sha256(staged_drc)}}
+    atomic_write_text(staged_metrics, json.dumps(metrics, indent=2) + "\n")
+    publish(out, stage, [(staged_def, def_path), (staged_drc, drc_path), (staged_metrics, metrics_path)])
     return RouteOutputs(def_path=def_path, metrics_path=metrics_path, drc_report_path=drc_path, metrics=metrics)

@@ -57,6 +57,7 @@ def route(
         threads=settings.threads,
         seed=settings.seed,
         schedule=settings.schedule,
+        policy_timeout=settings.policy_timeout,
         policy=policy,
         progress=progress,
     )

@@ -23,10 +23,13 @@ from xroute.errors import PolicyError, RouteArgumentError
 if TYPE_CHECKING:
     from xroute.design import Design
 
-# From the engine's RouterSettings (xroute.defaults): GCells per region side, iteration limit.
+# From the engine's RouterSettings and limits (xroute.defaults): GCells per region side,
+# iteration limit, the largest region side and thread count a run may ask for.
 DEFAULT_REGION_SIZE = defaults.REGION_SIZE
 DEFAULT_ITERATIONS = defaults.ITERATIONS
 MAX_ITERATIONS = defaults.MAX_ITERATIONS
+MAX_REGION_SIZE = defaults.MAX_REGION_SIZE
+MAX_THREADS = defaults.MAX_THREADS
 
 VIOLATION_TYPES: tuple[str, ...] = (
     "Short",
@@ -52,6 +55,8 @@ class RouteSettings:
     # per-iteration (region_size, offset) in GCells, cycled over the iterations; None: region_size
     # every iteration with the offset shifted by a third of a region (0, C/3, 2C/3, 0, ...)
     schedule: tuple[tuple[int, int], ...] | None = None
+    # seconds a Python policy's order() may take per call (None: xroute.policy_guard's default, 0: no limit)
+    policy_timeout: float | None = None
 
     def __post_init__(self) -> None:
         if self.schedule is not None:
@@ -65,6 +70,9 @@ class RouteSettings:
                 size, offset = step
                 if size < 1:
                     raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
+                if size > MAX_REGION_SIZE:
+                    raise RouteArgumentError(f"schedule step {i}: region size must be at most {MAX_REGION_SIZE} GCells, "
+                                             f"got {size}")
                 if not 0 <= offset < size:
                     raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
         for name in ("region_size", "iterations", "threads", "seed"):
@@ -73,10 +81,14 @@ class RouteSettings:
                 raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
         if self.region_size < 1:
             raise RouteArgumentError(f"region size must be at least 1 GCell, got {self.region_size}")
+        if self.region_size > MAX_REGION_SIZE:
+            raise RouteArgumentError(f"region size must be at most {MAX_REGION_SIZE} GCells, got {self.region_size}")
         if not 1 <= self.iterations <= MAX_ITERATIONS:
             raise RouteArgumentError(f"iterations must be between 1 and {MAX_ITERATIONS}, got {self.iterations}")
         if self.threads < 1:
             raise RouteArgumentError(f"threads must be at least 1, got {self.threads}")
+        if self.threads > MAX_THREADS:
+            raise RouteArgumentError(f"threads must be at most {MAX_THREADS}, got {self.threads}")
         if not 0 <= self.seed < 2**64:
             raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {self.seed}")
 
@@ -202,16 +214,23 @@ class _PolicyCallback:
     """The engine's policy_fn for a Python policy: calls ``policy.order``, checks its result and
     adds up the time spent in it (the check included)."""
 
-    def __init__(self, policy: NetOrderPolicy) -> None:
+    def __init__(self, policy: NetOrderPolicy, timeout: float | None = None) -> None:
+        from xroute.policy_guard import DEFAULT_CALL_TIMEOUT, Watchdog
+
         self.policy = policy
         self.name = policy.name  # the engine names the policy by it in its errors
         self.seconds = 0.0  # wall time in order() and the check
         self.calls = 0
+        limit = DEFAULT_CALL_TIMEOUT if timeout is None else timeout
+        self.watchdog = Watchdog(limit, policy) if limit > 0 else None  # per-call time limit
 
     def __call__(self, region: dict[str, Any], features: Any) -> list[int]:
+        from xroute.policy_guard import call_policy
+
         start = time.perf_counter()
         try:
-            return check_order(self.policy.order(region, features), len(features), self.policy.name)
+            order = call_policy(self.policy, region, features, self.watchdog)  # SystemExit -> PolicyError
+            return check_order(order, len(features), self.policy.name)
         finally:
             self.seconds += time.perf_counter() - start
             self.calls += 1
@@ -227,6 +246,7 @@ def route_design(
     seed: int = 1,
     schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
+    policy_timeout: float | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
@@ -260,7 +280,7 @@ def route_design(
         kwargs["policy"] = "random"
         kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
     else:
-        callback = _PolicyCallback(pol)
+        callback = _PolicyCallback(pol, policy_timeout)  # policy_timeout: seconds per call (None: default, 0: none)
         kwargs["policy_fn"] = callback
         # A policy that declares needs_region = True finds the region being routed (an
         # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
@@ -277,14 +297,18 @@ def route_design(
     start = time.perf_counter()
     # The engine raises PolicyError (not a permutation: the Python wrapper checks first) and
     # RouteArgumentError (a region too large for this design) itself.
-    out = _engine().route(
-        design.engine,
-        region_size=settings.region_size,
-        iterations=settings.iterations,
-        threads=settings.threads,
-        schedule=list(settings.schedule) if settings.schedule is not None else None,
-        **kwargs,
-    )
+    try:
+        out = _engine().route(
+            design.engine,
+            region_size=settings.region_size,
+            iterations=settings.iterations,
+            threads=settings.threads,
+            schedule=list(settings.schedule) if settings.schedule is not None else None,
+            **kwargs,
+        )
+    finally:
+        if callback is not None and callback.watchdog is not None:
+            callback.watchdog.close()
     seconds = time.perf_counter() - start
     reports = tuple(IterationReport.from_engine(d) for d in out["iterations"])
     return RouteResult(

@@ -142,6 +142,9 @@ def batch(
     out_root = out if out is not None else Path(cfg.batch.out_dir)
     (out_root / "jobs").mkdir(parents=True, exist_ok=True)
     clean_stale_job_folders(out_root)
+    from xroute.outputs import clean_stale_temporaries
+
+    clean_stale_temporaries(out_root)  # e.g. .summary.json.<pid>.<hex>.tmp of a killed batch
     workers = jobs if jobs is not None else cfg.batch.jobs
 
     console = stdout_console()

@@ -57,7 +57,9 @@ def global_route(
         design = load_design(testcase, use_guide=False)
     else:
         design = load_design(lef=lefs, def_=def_)
-    path = out if out is not None else Path("out") / design.name / f"{design.name}.guide"
+    from xroute.safe_paths import safe_stem
+
+    path = out if out is not None else Path("out") / safe_stem(design.name) / f"{safe_stem(design.name)}.guide"
     path.parent.mkdir(parents=True, exist_ok=True)
     stats = run_global_route(design, path, iterations=iterations, capacity_percent=capacity, slack=slack)
     if as_json:

@@ -93,6 +93,7 @@ def summarize(design: Design) -> dict[str, Any]:
         "routing_layers": counts["routing_layers"],
         "layers": layers,
         "warnings": design.warning_count,
+        "warning_messages": list(design.engine.warnings()),
         "skipped_statements": design.skipped_statements(),
         "counts": counts,
     }
@@ -184,3 +185,5 @@ def info(
     console.print(_layer_table(summary))
     if summary["skipped_statements"]:
         console.print(_skipped_table(summary["skipped_statements"]))
+    for message in summary["warning_messages"]:
+        typer.echo(f"warning: {message}")

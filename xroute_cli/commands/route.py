@@ -147,6 +147,7 @@ def route(
 
     from xroute import pipeline
     from xroute.policies import get_policy
+    from xroute.safe_paths import safe_stem
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
@@ -158,7 +159,7 @@ def route(
     design = prepare_design_args(testcase, lef, def_, guide)
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
-    out_dir = out if out is not None else Path("out") / design.name
+    out_dir = out if out is not None else Path("out") / safe_stem(design.name)
     out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
     if design.global_route_stats is not None and mode in ("rich", "lines"):
         typer.echo(f"no route guide for {design.name}: guides from the built-in global router "

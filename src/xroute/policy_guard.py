@@ -1,0 +1,168 @@
+"""Guards around calls into a user's net-order policy: failures named, hangs ended.
+
+* :func:`call_policy` runs ``policy.order`` for the router. A ``SystemExit`` raised inside it
+  becomes a :class:`PolicyCallError` (a policy cannot end the run with a "success"); any other
+  exception propagates unchanged (library callers see their own exception) but is tagged with
+  where in the policy it was raised, so the command line prints one line
+  ``error: <policy file>:<line>: policy '<name>' raised <Type>: <message>`` (see
+  :func:`policy_failure_line`; the traceback only with ``--debug``).
+* :class:`Watchdog` enforces a per-call time limit (``policy.call_timeout`` in the config,
+  :data:`DEFAULT_CALL_TIMEOUT` by default). When a call runs past it, the watchdog raises
+  :class:`PolicyTimeout` inside the policy's thread (delivered at the policy's next Python
+  instruction); a call still stuck :data:`GRACE_SECONDS` later (blocked in C code, e.g. a long
+  ``time.sleep``) ends the process with the same error line and exit status 2. Nothing has been
+  written yet at that point: the outputs are written only after routing.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import threading
+import time
+import traceback
+from pathlib import Path
+from typing import Any
+
+from xroute.policy import PolicyError
+
+DEFAULT_CALL_TIMEOUT = 300.0  # seconds per order() call: generous (the built-in policies take milliseconds)
+GRACE_SECONDS = 5.0  # after the limit, before a call blocked outside Python ends the process
+EXIT_USER_ERROR = 2
+_TAG = "_xroute_policy_failure"
+
+
+class PolicyCallError(PolicyError):
+    """A policy's order() failed in a way that must end the run (SystemExit, time limit)."""
+
+
+class PolicyTimeout(PolicyCallError):
+    """A policy's order() call ran past the time limit."""
+
+
+def policy_source(policy: Any) -> str | None:
+    """The file that defines a policy's order function (None for built-ins and C++)."""
+    fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None)
+    code = getattr(fn, "__code__", None)
+    return code.co_filename if code is not None else None
+
+
+def _where(exc: BaseException, source: str | None) -> tuple[str, int]:
+    """(file, line) of the innermost frame of ``exc`` in the policy's file (else the innermost frame)."""
+    frames = traceback.extract_tb(exc.__traceback__)
+    if not frames:
+        return (source or "policy", 0)
+    if source is not None:
+        try:
+            src = str(Path(source).resolve())
+            for fr in reversed(frames):
+                if str(Path(fr.filename).resolve()) == src:
+                    return (fr.filename, fr.lineno or 0)
+        except OSError:
+            pass
+    fr = frames[-1]
+    return (fr.filename, fr.lineno or 0)
+
+
+def tag_failure(exc: BaseException, policy: Any) -> None:
+    """Marks ``exc`` as raised by ``policy`` with the file and line where it was raised."""
+    file, line = _where(exc, policy_source(policy))
+    try:
+        setattr(exc, _TAG, (str(getattr(policy, "name", "policy")), file, line))
+    except (AttributeError, TypeError):  # exceptions without a __dict__
+        pass
+
+
+def policy_failure_line(exc: BaseException) -> str | None:
+    """``<file>:<line>: policy '<name>' raised <Type>: <message>`` for an exception tagged by
+    :func:`call_policy`; None for any other exception."""
+    tag = getattr(exc, _TAG, None)
+    if tag is None:
+        return None
+    name, file, line = tag
+    where = f"{file}:{line}" if line else file
+    message = " ".join(str(exc).split())
+    return f"{where}: policy '{name}' raised {type(exc).__name__}" + (f": {message}" if message else "")
+
+
+class Watchdog:
+    """Ends policy calls that run longer than ``limit`` seconds (one watchdog per routing run)."""
+
+    def __init__(self, limit: float, policy: Any) -> None:
+        self.limit = float(limit)
+        self.policy = policy
+        self.name = str(getattr(policy, "name", "policy"))
+        self._lock = threading.Lock()
+        self._calls: dict[int, float] = {}  # thread id -> start (monotonic)
+        self._fired: dict[int, float] = {}  # thread id -> when the timeout was raised there
+        self._thread: threading.Thread | None = None
+        self._stop = threading.Event()
+        message = (f"policy '{self.name}' ({policy_source(policy) or 'built-in'}): an order() call ran longer than "
+                   f"{self.limit:g} s (policy.call_timeout)")
+        self.message = message
+
+        class _Timeout(PolicyTimeout):
+            def __init__(self, *args: Any) -> None:
+                super().__init__(message)
+
+        self._timeout_class = _Timeout
+
+    def begin(self) -> None:
+        with self._lock:
+            self._calls[threading.get_ident()] = time.monotonic()
+            if self._thread is None:
+                self._thread = threading.Thread(target=self._run, name="xroute-policy-watchdog", daemon=True)
+                self._thread.start()
+
+    def end(self) -> None:
+        tid = threading.get_ident()
+        with self._lock:
+            self._calls.pop(tid, None)
+            fired = self._fired.pop(tid, None)
+        if fired is not None:
+            ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(tid), None)  # not delivered yet: cancel
+            raise self._timeout_class()
+
+    def close(self) -> None:
+        self._stop.set()
+
+    def _run(self) -> None:
+        tick = min(0.1, max(self.limit / 10, 0.005))
+        while not self._stop.wait(tick):
+            now = time.monotonic()
+            with self._lock:
+                for tid, start in list(self._calls.items()):
+                    if tid in self._fired:
+                        if now - self._fired[tid] > GRACE_SECONDS:
+                            sys.stderr.write(f"error: {self.message}; it did not stop, ending the run\n")
+                            sys.stderr.flush()
+                            os._exit(EXIT_USER_ERROR)
+                    elif now - start > self.limit:
+                        self._fired[tid] = now
+                        ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(tid),
+                                                                   ctypes.py_object(self._timeout_class))
+
+
+def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | None) -> Any:
+    """``policy.order(region, features)`` under the guards described in the module doc."""
+    if watchdog is not None:
+        watchdog.begin()
+    try:
+        try:
+            return policy.order(region, features)
+        finally:
+            if watchdog is not None:
+                watchdog.end()
+    except PolicyTimeout:
+        raise
+    except SystemExit as exc:
+        file, line = _where(exc, policy_source(policy))
+        where = f"{file}:{line}" if line else file
+        raise PolicyCallError(f"{where}: policy '{getattr(policy, 'name', 'policy')}' called sys.exit({exc.code!r}) "
+                              "inside order(): a policy cannot end the run") from None
+    except KeyboardInterrupt:
+        raise
+    except Exception as exc:
+        tag_failure(exc, policy)
+        raise
