@@ -163,6 +163,39 @@ def make_region(
         raise RegionError("give either a GCell location (with a size) or a box")
     d = design if design is not None else load_design(testcase)
     session = open_session(d)
+    box = _checked_box(d, session, location, size, box)
+
+    region = session.open_region(box)
+    rows = np.asarray(region.candidates)
+    grid_nodes = int((region.grid()["flags"] != 0).sum())
+    region.route_rest("heuristic")
+    region.commit()
+
+    nets = _region_nets(d, rows, box)
+    def_text = Path(d.def_path).read_text()
+    comp_entries = _entries(_section(def_text, "COMPONENTS"))
+    keep, die = _kept_components(d, comp_entries, nets, box)
+    region_def, boundary = _region_def(d, def_text, comp_entries, keep, nets, die)
+
+    summary = RegionSummary(Path(out_dir), d.name, box, tuple(die), size if location else None,
+                            tuple(location) if location else None, len(nets),
+                            sum(len(p) for _, p, _ in nets), boundary, grid_nodes, [n for n, _, _ in nets])
+    if not nets:
+        raise RegionError(f"no net to route in box {box} of {d.name}")
+    _write_atomically(Path(out_dir), {
+        "region.def": region_def,
+        "region.guide": _region_guides(d, nets, die),
+        REGION_YAML: yaml.safe_dump(summary.to_yaml(), sort_keys=False),
+    }, lef=Path(d.lef_paths[0]))
+    return summary
+
+
+RegionNet = tuple[str, list[tuple[str, str]], list[tuple[str, int, int]]]  # name, (comp, pin) inside, boundary points
+
+
+def _checked_box(d: Any, session: Any, location: tuple[int, int] | None, size: int,
+                 box: tuple[int, int, int, int] | None) -> tuple[int, int, int, int]:
+    """The region's box in DBU (from a GCell location and size, or as given), inside the die."""
     xs, ys = (np.asarray(a) for a in session.gcell_lines)
     if location is not None:
         box = region_box(xs, ys, location, size)
@@ -171,14 +204,13 @@ def make_region(
     die0 = d.die_area
     if not (xlo < xhi and ylo < yhi) or xlo < die0[0] or ylo < die0[1] or xhi > die0[2] or yhi > die0[3]:
         raise RegionError(f"box {xlo},{ylo},{xhi},{yhi} is empty or not inside the die {tuple(die0)}")
-    box = (xlo, ylo, xhi, yhi)
+    return (xlo, ylo, xhi, yhi)
 
-    region = session.open_region(box)
-    rows = np.asarray(region.candidates)
-    grid_nodes = int((region.grid()["flags"] != 0).sum())
-    region.route_rest("heuristic")
-    region.commit()
 
+def _region_nets(d: Any, rows: np.ndarray, box: tuple[int, int, int, int]) -> list[RegionNet]:
+    """The candidates with two or more terminals in the box: pins whose access points (the
+    router's) lie in it, and the points where the net's routing crosses the box edge."""
+    xlo, ylo, xhi, yhi = box
     pa = d.engine.pin_access()
     points, start = np.asarray(pa["points"]), np.asarray(pa["start"])
     pin_start = np.asarray(d.net_pin_start)
@@ -187,28 +219,36 @@ def make_region(
         p = points[start[pin_ref]:start[pin_ref + 1]]
         return bool(((p[:, 0] >= xlo) & (p[:, 0] <= xhi) & (p[:, 1] >= ylo) & (p[:, 1] <= yhi)).any())
 
-    def_text = Path(d.def_path).read_text()
-    io_entries = _entries(_section(def_text, "PINS"))
-    layer_width = {layer.name: int(layer.width) for layer in d.routing_layers}
-    nets: list[tuple[str, list[tuple[str, str]], list[tuple[str, int, int]]]] = []
+    nets: list[RegionNet] = []
     for net in sorted(int(n) for n in rows[:, 0]):
         pins = [cp for k, cp in enumerate(d.net_pins(net)) if inside(int(pin_start[net]) + k)]
         bnd = _boundary_points(d, net, box)
         if len(pins) + len(bnd) >= 2:
             nets.append((d.net_names[net], pins, bnd))
+    return nets
 
+
+def _kept_components(d: Any, comp_entries: dict[str, str], nets: list[RegionNet],
+                     box: tuple[int, int, int, int]) -> tuple[set[str], list[int]]:
+    """(components kept: those with a region pin or touching the box, the region's die: the box
+    grown over them and clipped to the design's die)."""
     sizes: dict[str, tuple[int, int]] = {}
     keep = {c for _, pins, _ in nets for c, _ in pins if c != "PIN"}
-    comp_entries = _entries(_section(def_text, "COMPONENTS"))
     die = list(box)
     for name in comp_entries:
-        comp = d.component(name)
-        cb = _component_box(d, comp, sizes)
+        cb = _component_box(d, d.component(name), sizes)
         if name in keep or _touches(cb, box):
             keep.add(name)
             die = [min(die[0], cb[0]), min(die[1], cb[1]), max(die[2], cb[2]), max(die[3], cb[3])]
-    die = [max(die[0], die0[0]), max(die[1], die0[1]), min(die[2], die0[2]), min(die[3], die0[3])]
+    die0 = d.die_area
+    return keep, [max(die[0], die0[0]), max(die[1], die0[1]), min(die[2], die0[2]), min(die[3], die0[3])]
 
+
+def _region_def(d: Any, def_text: str, comp_entries: dict[str, str], keep: set[str], nets: list[RegionNet],
+                die: list[int]) -> tuple[str, int]:
+    """(the region's DEF text, the number of boundary pins it got)."""
+    io_entries = _entries(_section(def_text, "PINS"))
+    layer_width = {layer.name: int(layer.width) for layer in d.routing_layers}
     pin_lines, net_lines, boundary = [], [], 0
     for name, pins, bnd in nets:
         conns = [f"( {'PIN' if c == 'PIN' else c} {p} )" for c, p in pins]
@@ -222,7 +262,7 @@ def make_region(
             conns.append(f"( PIN {pin} )")
         net_lines.append(f"- {name}\n  " + " ".join(conns) + "\n ;")
 
-    out = [f"VERSION 5.8 ;", 'DIVIDERCHAR "/" ;', 'BUSBITCHARS "[]" ;', f"DESIGN {d.name}_region ;",
+    out = ["VERSION 5.8 ;", 'DIVIDERCHAR "/" ;', 'BUSBITCHARS "[]" ;', f"DESIGN {d.name}_region ;",
            f"UNITS DISTANCE MICRONS {d.dbu_per_micron} ;", "",
            f"DIEAREA ( {die[0]} {die[1]} ) ( {die[2]} {die[3]} ) ;", ""]
     out += [line.strip() for line in def_text.splitlines() if line.strip().startswith("TRACKS ")]
@@ -234,8 +274,12 @@ def make_region(
     out += [f"COMPONENTS {len(comps)} ;", *comps, "END COMPONENTS", ""]
     out += [f"PINS {len(pin_lines)} ;", *pin_lines, "END PINS", ""]
     out += [f"NETS {len(net_lines)} ;", *net_lines, "END NETS", "", "END DESIGN", ""]
+    return "\n".join(out), boundary
 
-    guide_lines = []
+
+def _region_guides(d: Any, nets: list[RegionNet], die: list[int]) -> str:
+    """The region nets' guides clipped to the region's die (empty without guides)."""
+    guide_lines: list[str] = []
     gstart, grects, glayers = np.asarray(d.guide_start), np.asarray(d.guide_rects), np.asarray(d.guide_layers)
     layer_names = [layer.name for layer in d.layers]
     if d.has_guides:
@@ -248,18 +292,7 @@ def make_region(
                 if c[0] < c[2] and c[1] < c[3]:
                     rects.append(f"{c[0]} {c[1]} {c[2]} {c[3]} {layer_names[glayers[g]]}")
             guide_lines += [name, "(", *rects, ")"]
-
-    summary = RegionSummary(Path(out_dir), d.name, box, tuple(die), size if location else None,
-                            tuple(location) if location else None, len(nets),
-                            sum(len(p) for _, p, _ in nets), boundary, grid_nodes, [n for n, _, _ in nets])
-    if not nets:
-        raise RegionError(f"no net to route in box {box} of {d.name}")
-    _write_atomically(Path(out_dir), {
-        "region.def": "\n".join(out),
-        "region.guide": "\n".join(guide_lines) + "\n",
-        REGION_YAML: yaml.safe_dump(summary.to_yaml(), sort_keys=False),
-    }, lef=Path(d.lef_paths[0]))
-    return summary
+    return "\n".join(guide_lines) + "\n"
 
 
 def _write_atomically(out_dir: Path, files: dict[str, str], lef: Path) -> None:

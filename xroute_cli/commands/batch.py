@@ -123,28 +123,18 @@ def batch(
 
     Example (CI): CI=true xroute batch configs/ci-smoke.yaml --jobs 2
     """
-    from xroute.cli.batch import BatchProgress, clean_stale_job_folders, completed_record, plan_jobs, run_local
+    from xroute.cli.batch import BatchProgress, completed_record
     from xroute.cli.batch_config import load_batch_config
-    from xroute.cli.batch_summary import baseline_doc, check_gates, job_row, load_baseline, write_summary
+    from xroute.cli.batch_summary import baseline_doc, load_baseline, write_summary
     from xroute.outputs import atomic_write_text
 
     if backend not in ("local", "ray"):
         raise typer.BadParameter("use local or ray", param_hint="--backend")
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
-    job_list = plan_jobs(cfg)
-    from xroute.policies.registry import get_policy
-
-    for job in job_list:  # settings and policies checked before the first job starts
-        job.run.route_settings()
-    for spec in dict.fromkeys(job.run.policy for job in job_list):
-        get_policy(spec)
+    job_list = _checked_jobs(cfg)
     out_root = out if out is not None else Path(cfg.batch.out_dir)
-    (out_root / "jobs").mkdir(parents=True, exist_ok=True)
-    clean_stale_job_folders(out_root)
-    from xroute.outputs import clean_stale_temporaries
-
-    clean_stale_temporaries(out_root)  # e.g. .summary.json.<pid>.<hex>.tmp of a killed batch
+    _prepare_out(out_root)
     workers = jobs if jobs is not None else cfg.batch.jobs
 
     console = stdout_console()
@@ -158,12 +148,57 @@ def batch(
                    f"backend {backend} -> {out_root}")
     with display:
         progress = BatchProgress(on_start=display.on_start, on_event=display.on_event, on_done=display.on_done)
-        if backend == "ray":
-            from xroute.cli.batch_ray import run_ray
+        records = _run(backend, todo, out_root, workers, progress, ray_address)
 
-            records = run_ray(todo, out_root, workers, progress, ray_address)
-        else:
-            records = run_local(todo, out_root, workers, progress)
+    doc = summary_doc(batch_file, out_root, backend, time.perf_counter() - wall, cfg, job_list, resumed, records,
+                      baseline)
+    paths = write_summary(out_root, doc)
+    if write_baseline is not None:
+        atomic_write_text(write_baseline, json.dumps(baseline_doc(doc), indent=2) + "\n")
+    _print_summary(console, mode, batch_file, doc, paths)
+    if not doc["passed"]:
+        raise typer.Exit(EXIT_FAILED)
+
+
+def _checked_jobs(cfg: Any) -> list[Any]:
+    """The batch's jobs; every job's settings and every policy checked before the first job starts."""
+    from xroute.cli.batch import plan_jobs
+    from xroute.policies import get_policy
+
+    job_list = plan_jobs(cfg)
+    for job in job_list:
+        job.run.route_settings()
+    for spec in dict.fromkeys(job.run.policy for job in job_list):
+        get_policy(spec)
+    return job_list
+
+
+def _prepare_out(out_root: Path) -> None:
+    """Creates OUT/jobs and removes what killed batches left (partial job folders, temporaries such
+    as .summary.json.<pid>.<hex>.tmp)."""
+    from xroute.cli.batch import clean_stale_job_folders
+    from xroute.outputs import clean_stale_temporaries
+
+    (out_root / "jobs").mkdir(parents=True, exist_ok=True)
+    clean_stale_job_folders(out_root)
+    clean_stale_temporaries(out_root)
+
+
+def _run(backend: str, todo: list[Any], out_root: Path, workers: int, progress: Any,
+         ray_address: str | None) -> dict[str, Any]:
+    if backend == "ray":
+        from xroute.cli.batch_ray import run_ray
+
+        return run_ray(todo, out_root, workers, progress, ray_address)
+    from xroute.cli.batch import run_local
+
+    return run_local(todo, out_root, workers, progress)
+
+
+def summary_doc(batch_file: Path, out_root: Path, backend: str, wall_seconds: float, cfg: Any, job_list: list[Any],
+                resumed: dict[str, Any], records: dict[str, Any], baseline: Any) -> dict[str, Any]:
+    """summary.json: one row per job (resumed or run now) with its gate failures, the counts."""
+    from xroute.cli.batch_summary import check_gates, job_row
 
     rows = []
     for job in job_list:
@@ -172,31 +207,31 @@ def batch(
         rows.append(row)
     failed = [r for r in rows if r["gate_failures"]]
     errors = [r for r in rows if r["status"] != "done"]
-    doc = {
+    return {
         "format": 1,
         "batch": str(batch_file),
         "out_dir": str(out_root),
         "backend": backend,
-        "wall_seconds": time.perf_counter() - wall,
+        "wall_seconds": wall_seconds,
         "counts": {"jobs": len(rows), "failed": len(failed), "errors": len(errors), "resumed": len(resumed)},
         "passed": not failed and not errors,
         "jobs": rows,
     }
-    paths = write_summary(out_root, doc)
-    if write_baseline is not None:
-        atomic_write_text(write_baseline, json.dumps(baseline_doc(doc), indent=2) + "\n")
 
+
+def _print_summary(console: Any, mode: str, batch_file: Path, doc: dict[str, Any], paths: dict[str, Path]) -> None:
+    rows = doc["jobs"]
+    failed = [r for r in rows if r["gate_failures"]]
+    errors = [r for r in rows if r["status"] != "done"]
     if mode == "json":
         print_json(doc)
     elif mode != "quiet":
         console.print(summary_table(doc))
     if mode != "json":
         typer.echo(f"batch {batch_file}: {len(rows)} jobs, {len(failed)} failed gates, {len(errors)} errors, "
-                   f"{len(resumed)} resumed, {doc['wall_seconds']:.1f} s -> {paths['md']}, {paths['junit']}")
+                   f"{doc['counts']['resumed']} resumed, {doc['wall_seconds']:.1f} s -> {paths['md']}, {paths['junit']}")
     for r in errors:
         typer.echo(f"job failed: {r['id']}: {r['message']}", err=True)
     for r in failed:
         for message in r["gate_failures"]:
             typer.echo(f"gate failed: {message}", err=True)
-    if failed or errors:
-        raise typer.Exit(EXIT_FAILED)

@@ -95,9 +95,8 @@ def evaluate(
 
     Example: xroute evaluate --policy bench/python_heuristic_policy.py ispd18_sample --iterations 3
     """
-    from xroute.config import load_config, run_settings
+    from xroute.config import load_config
     from xroute.outputs import atomic_write_text
-    from xroute.router import RouteSettings
     from xroute.cli.runs import policy_label, route_testcase, run_summary
 
     cfg = load_config(config)
@@ -105,17 +104,8 @@ def evaluate(
     if name is None:
         raise typer.BadParameter("give a testcase name (or testcase_name in --config)", param_hint="TESTCASE")
     specs = {"policy": policy, "baseline": baseline}
-    settings = {k: run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=v, seed=seed)
-                for k, v in specs.items()}
-    from xroute.policies.registry import get_policy
-
-    for rs in settings.values():  # every setting and both policies checked before the first route
-        RouteSettings(region_size=rs.region_size, iterations=rs.iterations, threads=rs.threads, seed=rs.seed)
-        rs.route_settings()
-        get_policy(rs.policy, rs.seed)
-    from xroute.testcases.registry import find_testcase
-
-    find_testcase(name)
+    settings = _checked_settings(cfg, specs, name, region_size=region_size, iterations=iterations,
+                                 threads=threads, seed=seed)
     if out is None:
         out = Path(cfg.output.out_dir) if cfg.output.out_dir else Path("out") / "evaluate" / name
     out.mkdir(parents=True, exist_ok=True)
@@ -131,13 +121,40 @@ def evaluate(
             outputs = route_testcase(name, rs, folder, progress=display)
         runs[label] = {"spec": specs[label], **run_summary(outputs, cfg.cost)}
 
+    doc = evaluation_doc(name, settings["policy"], cfg.cost, runs)
+    path = out / "evaluation.json"
+    atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
+    _print_evaluation(console, mode, doc, policy, baseline, path)
     pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
-    doc = {
+    if pf["open_nets"] or bf["open_nets"]:
+        typer.echo(f"open nets: policy {pf['open_nets']}, baseline {bf['open_nets']}", err=True)
+        raise typer.Exit(1)
+
+
+def _checked_settings(cfg: Any, specs: dict[str, str], name: str, **flags: Any) -> dict[str, Any]:
+    """Each run's settings (config overridden by the flags); the settings, both policies and the
+    testcase are checked before the first route."""
+    from xroute.config import run_settings
+    from xroute.policies import get_policy
+    from xroute.testcases.registry import find_testcase
+
+    settings = {k: run_settings(cfg, policy=v, **flags) for k, v in specs.items()}
+    for rs in settings.values():
+        rs.route_settings()
+        get_policy(rs.policy, rs.seed)
+    find_testcase(name)
+    return settings
+
+
+def evaluation_doc(name: str, settings: Any, cost: Any, runs: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """evaluation.json: the settings, the cost weights, both runs and their differences."""
+    pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
+    return {
         "format": EVALUATION_FORMAT,
         "testcase": name,
-        "settings": {k: v for k, v in settings["policy"].to_dict().items() if k != "policy"},
-        "cost_weights": {"wirelength_um": cfg.cost.wirelength_weight, "via": cfg.cost.via_weight,
-                         "violation": cfg.cost.drv_weight},
+        "settings": {k: v for k, v in settings.to_dict().items() if k != "policy"},
+        "cost_weights": {"wirelength_um": cost.wirelength_weight, "via": cost.via_weight,
+                         "violation": cost.drv_weight},
         "runs": runs,
         "comparison": {
             "cost_delta": pf["cost"] - bf["cost"],  # policy minus baseline (negative: the policy is better)
@@ -147,21 +164,20 @@ def evaluate(
             "route_seconds_ratio": pf["route_seconds"] / bf["route_seconds"] if bf["route_seconds"] > 0 else None,
         },
     }
-    path = out / "evaluation.json"
-    atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
 
+
+def _print_evaluation(console: Any, mode: str, doc: dict[str, Any], policy: str, baseline: str, path: Path) -> None:
+    runs = doc["runs"]
+    pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
     c = doc["comparison"]
-    verdict = (f"{name}: policy {policy} cost {pf['cost']:,.1f} vs baseline {baseline} {bf['cost']:,.1f} "
+    verdict = (f"{doc['testcase']}: policy {policy} cost {pf['cost']:,.1f} vs baseline {baseline} {bf['cost']:,.1f} "
                f"(delta {c['cost_delta']:+,.1f}; DRVs {pf['violations']} vs {bf['violations']}) -> {path}")
     if mode == "json":
         print_json(doc)
     elif mode == "quiet":
         typer.echo(verdict)
     else:
-        console.print(comparison_table(name, runs))
+        console.print(comparison_table(doc["testcase"], runs))
         for label in runs:
             typer.echo(policy_share_line(label, runs[label]["final"]))
         typer.echo(verdict)
-    if pf["open_nets"] or bf["open_nets"]:
-        typer.echo(f"open nets: policy {pf['open_nets']}, baseline {bf['open_nets']}", err=True)
-        raise typer.Exit(1)
