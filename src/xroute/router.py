@@ -236,6 +236,19 @@ class _PolicyCallback:
             self.calls += 1
 
 
+def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[str, Any], _PolicyCallback | None]:
+    """The engine's policy arguments: a built-in's name (run in C++), or a checked, timed callback."""
+    builtin = _builtin(pol)
+    if builtin == "heuristic":
+        return {"policy": "heuristic"}, None
+    if builtin == "random":
+        return {"policy": "random", "seed": pol.seed if isinstance(pol, RandomPolicy) else settings.seed}, None
+    callback = _PolicyCallback(pol, settings.policy_timeout)  # seconds per call (None: default, 0: none)
+    # A policy that declares needs_region = True finds the region being routed (an _engine.Region
+    # lent for the call: grid views, candidates, route_net) in region["engine_region"].
+    return {"policy_fn": callback, "policy_needs_region": bool(getattr(pol, "needs_region", False))}, callback
+
+
 def route_design(
     design: Design,
     *,
@@ -269,22 +282,10 @@ def route_design(
         threads=threads,
         seed=seed,
         schedule=tuple(tuple(step) for step in schedule) if schedule is not None else None,
+        policy_timeout=policy_timeout,
     )
     pol = resolve_policy(policy, seed)
-    builtin = _builtin(pol)
-    kwargs: dict[str, Any] = {}
-    callback: _PolicyCallback | None = None
-    if builtin == "heuristic":
-        kwargs["policy"] = "heuristic"
-    elif builtin == "random":
-        kwargs["policy"] = "random"
-        kwargs["seed"] = pol.seed if isinstance(pol, RandomPolicy) else settings.seed
-    else:
-        callback = _PolicyCallback(pol, policy_timeout)  # policy_timeout: seconds per call (None: default, 0: none)
-        kwargs["policy_fn"] = callback
-        # A policy that declares needs_region = True finds the region being routed (an
-        # _engine.Region lent for the call: grid views, candidates, route_net) in region["engine_region"].
-        kwargs["policy_needs_region"] = bool(getattr(pol, "needs_region", False))
+    kwargs, callback = _policy_kwargs(pol, settings)
     if progress is not None:
 
         def on_progress(report: dict[str, Any], done: int, total: int) -> None:
