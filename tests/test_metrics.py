@@ -141,3 +141,16 @@ def test_drc_report_write_failure_leaves_nothing(tmp_path):
     with pytest.raises(InputError):
         db.write_drc_report(str(tmp_path / "missing" / "drc.rpt"))
     assert sorted(os.listdir(tmp_path)) == sorted(before + ["a_dir"])
+
+
+def test_route_outputs_figures_are_typed(tmp_path) -> None:
+    """RouteOutputs.figures: the metrics JSON's final figures as a typed record."""
+    from xroute import RouteSettings, prepare_design, route_to_outputs
+    from xroute.outputs import FinalFigures
+
+    outputs = route_to_outputs(prepare_design("demo"), tmp_path, RouteSettings(iterations=1))
+    figures = outputs.figures
+    assert isinstance(figures, FinalFigures)
+    assert (figures.wirelength_um, figures.vias, figures.violations, figures.open_nets) == (
+        outputs.final["wirelength_um"], outputs.final["vias"], outputs.final["violations"], 0)
+    assert figures.violations == sum(figures.violations_by_type.values())

@@ -93,6 +93,27 @@ def clean_stale_temporaries(folder: Path) -> list[Path]:
 
 
 @dataclass(frozen=True)
+class FinalFigures:
+    """The checked figures of a written DEF (the metrics JSON's ``final``, typed)."""
+
+    wirelength_um: float
+    vias: int
+    violations: int
+    violations_by_type: dict[str, int]  # marker type -> count
+    nets: int
+    nets_routed: int
+    open_nets: int
+    iterations_run: int
+    route_seconds: float  # the router's wall time
+    runtime_seconds: float  # the whole run's (loading and output checks included)
+    peak_rss_mb: float
+
+    @classmethod
+    def from_metrics(cls, final: dict[str, Any]) -> FinalFigures:
+        return cls(**{f: final[f] for f in cls.__dataclass_fields__})
+
+
+@dataclass(frozen=True)
 class RouteOutputs:
     """Where the outputs went and the checked figures of the written DEF."""
 
@@ -104,6 +125,11 @@ class RouteOutputs:
     @property
     def final(self) -> dict[str, Any]:
         return self.metrics["final"]
+
+    @property
+    def figures(self) -> FinalFigures:
+        """The final figures, typed."""
+        return FinalFigures.from_metrics(self.final)
 
     @property
     def open_nets(self) -> int:
