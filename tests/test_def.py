@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import STANDINS, require_testcase, sample_lef
 from xroute.testcases import find_testcase
 from xroute import load_design
 from xroute import errors
@@ -92,6 +93,19 @@ def test_counts(name: str) -> None:
     assert _text_counts(found.def_, found.guide) == EXPECTED[name]
     # Flat net -> pin array is consistent with the per-net counts.
     d = _design(name)
+    assert len(d.net_pin_start) == counts["nets"] + 1
+    assert int(d.net_pin_start[-1]) == counts["net_pins"]
+
+
+@pytest.mark.parametrize("name", sorted(STANDINS))
+def test_counts_of_generated_designs_match_their_text(name: str) -> None:
+    """test_counts' check of the reader against the text, on the generated stand-ins (no contest data needed)."""
+    found = require_testcase(name)
+    d = load_design(lef=found.lef, def_=found.def_, guide=found.guide)
+    counts = d.counts()
+    assert tuple(counts[k] for k in KEYS) == _text_counts(found.def_, found.guide)
+    assert counts["nets"] > 10 and counts["io_pins"] > 0 and counts["special_nets"] == 2
+    assert (counts["guides"] > 0) == (found.guide is not None)
     assert len(d.net_pin_start) == counts["nets"] + 1
     assert int(d.net_pin_start[-1]) == counts["net_pins"]
 
@@ -305,10 +319,10 @@ END DESIGN
 
 
 def test_skipped_statements_counted(tmp_path: Path) -> None:
-    found = _found("ispd18_sample")
+    lef = sample_lef()  # ispd18_sample's, or our LEF with its names
     path = tmp_path / "skippy.def"
     path.write_text(SKIPPY_DEF)
-    d = load_design(lef=found.lef, def_=path)
+    d = load_design(lef=lef, def_=path)
     skipped = d.skipped_statements()
     for key, count in {
         "NAMESCASESENSITIVE": 1, "TECHNOLOGY": 1, "HISTORY": 1, "PROPERTYDEFINITIONS": 1, "ROW.PROPERTY": 1,
@@ -326,4 +340,4 @@ def test_skipped_statements_counted(tmp_path: Path) -> None:
     lonely = d.io_pin("lonely")
     assert lonely["net"] == "not_in_nets" and lonely["net_id"] == -1
     out = d.write_def(tmp_path / "out.def")
-    assert load_design(lef=found.lef, def_=out).compare(d) == []
+    assert load_design(lef=lef, def_=out).compare(d) == []
