@@ -140,7 +140,7 @@ def contest(name: str):
     return load_contest(name)
 
 
-@pytest.mark.parametrize("name", ["ispd18_sample", "ispd18_sample2", "ispd18_test1"])
+@pytest.mark.parametrize("name", ["ispd18_sample", "ispd18_sample2", "ispd18_test1", "standin_sample4"])
 def test_unrouted_contest_design_has_no_new_violation(name):
     db = contest(name)
     # Unrouted: every shape is a pin, an OBS or special wiring.

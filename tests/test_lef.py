@@ -1,28 +1,21 @@
 """LEF reader on the seven contest LEFs: counts and exact values, checked by
-hand against the files with grep/awk. Skipped when the testcases are absent
-(../shared/testcases from the repository root, or $XROUTE_TESTCASES).
+hand against the files with grep/awk. Skipped when the testcases are not on the
+search path (../shared/testcases, $XROUTE_TESTCASES, ...: see xroute.testcases).
 
 All lengths are DBU (LEF microns x UNITS DATABASE MICRONS), areas DBU^2.
 """
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
 
+from conftest import require_testcase
 from xroute import _engine
-
-# ../shared/testcases seen from the repository root, unless $XROUTE_TESTCASES says otherwise.
-TESTCASES = Path(os.environ.get("XROUTE_TESTCASES", Path(__file__).resolve().parents[2] / "shared" / "testcases"))
 
 
 def contest_lef(name: str) -> str:
-    path = TESTCASES / name / f"{name}.input.lef"
-    if not path.is_file():
-        pytest.skip(f"contest testcase {name} not found under {TESTCASES} (set XROUTE_TESTCASES)")
-    return str(path)
+    """The contest testcase's LEF from the search path, or skip the test."""
+    return str(require_testcase(name).lef)
 
 
 def layers_by_name(db) -> dict:
