@@ -40,7 +40,7 @@ SAMPLE_NAMES_LEF = Path(__file__).resolve().parent / "data" / "lef" / "sample_na
 
 # Generated stand-ins: name -> (cells, seed, with a guide file). All are small (seconds to route).
 STANDINS: dict[str, tuple[int, int, bool]] = {
-    "standin_sample": (20, 1, True),  # a few dozen nets on a die of a few GCells, like ispd18_sample
+    "standin_sample": (18, 1, True),  # 10 nets on a die of 3 x 3 GCells (one region), like ispd18_sample
     "standin_sample2": (40, 2, True),
     "standin_sample4": (120, 3, True),  # several regions at region size 5, IO pins and power rails
     "standin_noguide": (60, 4, False),  # no guide file, like ispd19_test3
