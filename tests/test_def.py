@@ -104,7 +104,7 @@ def test_counts_of_generated_designs_match_their_text(name: str) -> None:
     d = load_design(lef=found.lef, def_=found.def_, guide=found.guide)
     counts = d.counts()
     assert tuple(counts[k] for k in KEYS) == _text_counts(found.def_, found.guide)
-    assert counts["nets"] > 10 and counts["io_pins"] > 0 and counts["special_nets"] == 2
+    assert counts["nets"] >= 10 and counts["io_pins"] > 0 and counts["special_nets"] == 2
     assert (counts["guides"] > 0) == (found.guide is not None)
     assert len(d.net_pin_start) == counts["nets"] + 1
     assert int(d.net_pin_start[-1]) == counts["net_pins"]
