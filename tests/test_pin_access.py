@@ -295,9 +295,12 @@ def test_fallback_and_class_counts(loaded_design: Any, name: str, fallback: int,
 
 def test_one_class_same_relative_points(loaded_design: Any) -> None:
     # Components of one macro and orientation at the same track phase
-    # (ispd18_test1: x tracks every 400, y every 380), away from the die
-    # edge, have the same points relative to their location.
-    db, r = access(loaded_design, "ispd18_test1")
+    # (ispd18_test1: x tracks every 400, y every 380; its stand-in: x every 380,
+    # y every 280), away from the die edge, have the same points relative to
+    # their location.
+    name = pick("ispd18_test1")
+    db, r = access(loaded_design, name)
+    px, py, margin, enough = (400, 380, 5000, 100) if name == "ispd18_test1" else (380, 280, 3000, 5)
     start, points, vias = r["start"], r["points"], r["via"]
     die = db.die_area
     comps: dict[str, dict[str, Any]] = {}
@@ -306,18 +309,20 @@ def test_one_class_same_relative_points(loaded_design: Any) -> None:
     for net in range(len(net_start) - 1):
         for local, (comp, pin) in enumerate(db.net_pins(net)):
             ref = int(net_start[net]) + local
+            if comp == "PIN":  # an IO pin (the stand-in has some; ispd18_test1 none)
+                continue
             c = comps.setdefault(comp, db.component(comp))
             x, y = c["location"]
-            if not (die[0] + 5000 < x < die[2] - 10000 and die[1] + 5000 < y < die[3] - 10000):
+            if not (die[0] + margin < x < die[2] - 2 * margin and die[1] + margin < y < die[3] - 2 * margin):
                 continue
-            key = (c["macro"], c["orient"], pin, x % 400, y % 380)
+            key = (c["macro"], c["orient"], pin, x % px, y % py)
             rel = tuple(
                 (int(p[0]) - x, int(p[1]) - y, *map(int, p[2:]), int(vias[start[ref] + k]))
                 for k, p in enumerate(points[start[ref]:start[ref + 1]])
             )
             groups[key].append(rel)
     shared = [g for g in groups.values() if len(g) >= 2]
-    assert len(shared) > 100
+    assert len(shared) > enough
     for g in shared:
         assert all(rel == g[0] for rel in g)
 
