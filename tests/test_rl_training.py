@@ -165,3 +165,19 @@ def test_cli_train_on_sample_regions_then_export_then_route_with_the_onnx_policy
     result = route_design(design, region_size=2, iterations=1, policy=policy)
     assert result.policy == "m.onnx" and result.iterations[0].regions > 1
     assert design.engine.check_connectivity()["open_nets"] == 0
+
+
+@pytest.mark.xfail(strict=True, reason="known bug: `xroute train` makes xroute/NetOrdering-v0 after importing "
+                   "xroute.policies.rl, which does not register the env IDs (xroute.envs does); in a fresh process "
+                   "gymnasium raises NamespaceNotFound (the in-process CLI tests pass only because an earlier "
+                   "test imported xroute.envs)")
+def test_cli_train_in_a_fresh_process(tmp_path: Path) -> None:
+    import os
+    import subprocess
+    import sys
+
+    proc = subprocess.run([sys.executable, "-m", "xroute", "train", "dqn", "--testcase", "demo", "--episodes", "1",
+                           "--region-size", "2", "--out", str(tmp_path / "run"), "--json"],
+                          capture_output=True, text=True, timeout=300, cwd=tmp_path, env={**os.environ, "CI": "true"})
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert json.loads(proc.stdout)["episodes"]
