@@ -25,12 +25,11 @@ names the tests' hand-written DEFs use) when the contest data is missing.
 
 from __future__ import annotations
 
-from pathlib import Path
-from typing import Any, Callable
-
 import os
 import shutil
 import tempfile
+from pathlib import Path
+from typing import Any, Callable
 
 import pytest
 from typer.testing import CliRunner
