@@ -1,5 +1,5 @@
 """Helpers for tests that draw tiny designs: LEF/DEF text written to a temporary folder and
-loaded, contest inputs loaded straight from ../shared/testcases, and int32 shape rows.
+loaded, contest inputs (found on the testcase search path) loaded without guide, and int32 shape rows.
 
 Imported as ``from drawn import ...`` (pytest puts tests/ on ``sys.path``).
 """
@@ -10,11 +10,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pytest
-
 from xroute import _engine
-
-TESTCASES = Path(__file__).resolve().parents[1].parent / "shared" / "testcases"
 
 
 def write_design(tmp_path: Path, lef_text: str, def_text: str, stem: str = "tiny",
@@ -34,10 +30,13 @@ def load_drawn(tmp_path: Path, lef_text: str, def_text: str, stem: str = "tiny",
 
 
 def contest_input(name: str) -> Path:
-    """``<testcases>/<name>/<name>.input`` (add .lef, .def), or skip the test when its DEF is missing."""
-    base = TESTCASES / name / f"{name}.input"
-    if not Path(str(base) + ".def").exists():
-        pytest.skip(f"{name} not available")
+    """The testcase's files without their .lef / .def suffix (``<folder>/<name>.input`` for contest
+    files, ``<folder>/<name>`` for generated ones) from the search path, or skip the test."""
+    from conftest import require_testcase
+
+    found = require_testcase(name)
+    base = found.def_.with_suffix("")
+    assert found.lef == base.with_suffix(base.suffix + ".lef")
     return base
 
 

@@ -13,6 +13,7 @@ from typer.testing import CliRunner
 
 import xroute.cli
 from xroute.testcases import ENV_VAR, find_testcase
+from conftest import nets_of, pick, sample_lef
 from xroute.cli.app import app
 from xroute.cli.console import error_line
 from xroute.errors import InputError
@@ -54,49 +55,72 @@ def test_no_arguments_shows_help(runner: CliRunner) -> None:
 # -- info ---------------------------------------------------------------------------------------
 
 
+def def_figures(path: Path) -> tuple[int, tuple[int, ...]]:
+    """(components, die area) from a DEF's text, for a generated stand-in."""
+    import re
+
+    text = path.read_text()
+    die = re.search(r"^DIEAREA \( (\d+) (\d+) \) \( (\d+) (\d+) \) ;", text, re.M)
+    return int(re.search(r"^COMPONENTS (\d+) ;", text, re.M).group(1)), tuple(int(v) for v in die.groups())
+
+
 def test_info_table_of_ispd18_sample(runner: CliRunner, testcase) -> None:
-    testcase("ispd18_sample")
-    result = runner.invoke(app, ["info", "ispd18_sample"], env=WIDE)
+    name = pick("ispd18_sample")  # without the contest data: its stand-in, with figures read from its DEF
+    found = testcase(name)
+    result = runner.invoke(app, ["info", name], env=WIDE)
     assert result.exit_code == 0, result.output + result.stderr
     out = result.output
+    assert "2000" in _line(out, "DBU per micron")
+    assert "Metal1" in out and "ROUTING" in out
+    if name != "ispd18_sample":
+        comps, (x0, y0, x1, y1) = def_figures(found.def_)
+        assert str(comps) in _line(out, "components") and str(nets_of(name)) in _line(out, "nets")
+        assert f"({x0}, {y0}) - ({x1}, {y1})" in _line(out, "die area (DBU)")
+        return
     assert "22" in _line(out, "components")
     assert "11" in _line(out, "nets")
-    assert "2000" in _line(out, "DBU per micron")
     assert "(83600, 71820) - (104400, 91200)" in _line(out, "die area (DBU)")
     assert "10.4 x 9.69" in _line(out, "die area (µm)")
-    assert "Metal1" in out and "ROUTING" in out
     assert "49" in _line(out, "warnings")
 
 
 def test_info_json_of_ispd18_sample(runner: CliRunner, testcase) -> None:
-    found = testcase("ispd18_sample")
-    result = runner.invoke(app, ["info", "ispd18_sample", "--json"])
+    name = pick("ispd18_sample")  # without the contest data: its stand-in, with figures read from its DEF
+    found = testcase(name)
+    result = runner.invoke(app, ["info", name, "--json"])
     assert result.exit_code == 0, result.output + result.stderr
     data = json.loads(result.stdout)
-    assert data["components"] == 22
-    assert data["nets"] == 11
-    assert data["design"] == "ispd18_sample"
+    assert data["design"] == name
     assert data["dbu_per_micron"] == 2000
-    assert data["die_area"]["dbu"] == [83600, 71820, 104400, 91200]
     assert data["files"]["def"] == str(found.def_)
-    assert data["io_pins"] == 0
-    assert data["routing_layers"] == 9
     assert sum(data["pins"]["histogram"].values()) == data["nets"]
     assert data["pins"]["total"] == data["counts"]["net_pins"]
     assert isinstance(data["guides"], int) and data["guides"] > 0
     assert [layer["name"] for layer in data["layers"] if layer["type"] == "ROUTING"][0] == "Metal1"
+    if name != "ispd18_sample":
+        comps, die = def_figures(found.def_)
+        assert (data["components"], data["nets"], tuple(data["die_area"]["dbu"])) == (comps, nets_of(name), die)
+        assert data["routing_layers"] == 6  # the generator's technology
+        return
+    assert data["components"] == 22
+    assert data["nets"] == 11
+    assert data["die_area"]["dbu"] == [83600, 71820, 104400, 91200]
+    assert data["io_pins"] == 0
+    assert data["routing_layers"] == 9
     # LEF: USEMINSPACING 1 + FOREIGN 16 + PIN SHAPE 32 skipped, each a warning.
     assert data["warnings"] == 49
     assert data["skipped_statements"] == {"LEF.USEMINSPACING": 1, "MACRO.FOREIGN": 16, "PIN.SHAPE": 32}
 
 
 def test_info_without_guide_says_so(runner: CliRunner, testcase) -> None:
-    testcase("ispd19_test3")
-    result = runner.invoke(app, ["info", "ispd19_test3", "--json"])
+    name = pick("ispd19_test3")  # without the contest data: a generated design without guide
+    testcase(name)
+    result = runner.invoke(app, ["info", name, "--json"])
     assert result.exit_code == 0, result.output + result.stderr
     data = json.loads(result.stdout)
     assert data["guides"] is None and data["files"]["guide"] is None
-    assert (data["components"], data["nets"], data["io_pins"]) == (8283, 8953, 57)
+    if name == "ispd19_test3":
+        assert (data["components"], data["nets"], data["io_pins"]) == (8283, 8953, 57)
     assert data["gcell_grid"] is not None
 
 
@@ -121,7 +145,7 @@ def test_info_missing_def_file(runner: CliRunner, tmp_path: Path) -> None:
 
 
 def test_info_malformed_def_names_file_and_line(runner: CliRunner, testcase, tmp_path: Path) -> None:
-    lef = testcase("ispd18_sample").lef
+    lef = sample_lef()
     bad = tmp_path / "bad.def"
     bad.write_text(
         "VERSION 5.8 ;\n"

@@ -8,17 +8,20 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from conftest import pick
 from xroute.cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
 PY_POLICY = REPO / "bench" / "python_heuristic_policy.py"
+# The contest samples, or their generated stand-ins when the contest data is missing.
+SAMPLE, SAMPLE4 = pick("ispd18_sample"), pick("ispd19_sample4")
 
 
 
 def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, tmp_path: Path) -> None:
-    testcase("ispd19_sample4")
+    testcase(SAMPLE4)
     out = tmp_path / "ev"
-    result = runner.invoke(app, ["evaluate", "--policy", str(PY_POLICY), "ispd19_sample4", "--iterations", "3",
+    result = runner.invoke(app, ["evaluate", "--policy", str(PY_POLICY), SAMPLE4, "--iterations", "3",
                                  "--out", str(out)])
     assert result.exit_code == 0, result.stdout + result.stderr
     doc = json.loads((out / "evaluation.json").read_text())
@@ -33,8 +36,8 @@ def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, t
     assert f["policy_seconds"] is not None and 0 <= f["policy_share"] < 1
     assert base["final"]["policy_seconds"] is None  # built-in: runs in C++
     for sub in ("policy-python_heuristic_policy", "baseline-heuristic"):
-        assert (out / sub / "ispd19_sample4.routed.def").is_file()
-        assert (out / sub / "ispd19_sample4.metrics.json").is_file()
+        assert (out / sub / f"{SAMPLE4}.routed.def").is_file()
+        assert (out / sub / f"{SAMPLE4}.metrics.json").is_file()
     # the table: one row per iteration, then final and cost
     for row in ("0 │", "1 │", "2 │", "final │", "cost │"):
         assert row in result.stdout
@@ -42,8 +45,8 @@ def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, t
 
 
 def test_evaluate_json_is_one_document(runner: CliRunner, testcase, tmp_path: Path) -> None:
-    testcase("ispd18_sample")
-    result = runner.invoke(app, ["evaluate", "--policy", "random", "--seed", "3", "ispd18_sample", "--json",
+    testcase(SAMPLE)
+    result = runner.invoke(app, ["evaluate", "--policy", "random", "--seed", "3", SAMPLE, "--json",
                                  "--out", str(tmp_path)])
     assert result.exit_code == 0, result.stderr
     doc = json.loads(result.stdout)

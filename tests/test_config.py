@@ -11,6 +11,7 @@ import pytest
 import yaml
 from typer.testing import CliRunner
 
+from conftest import pick
 from xroute.cli.app import app
 from xroute.config import CostSection, RouterSection, XrouteConfig, load_config, run_settings
 from xroute.config_schema import ConfigError
@@ -136,6 +137,10 @@ def test_paper_parameters_and_cost() -> None:
     assert RouterSection().iteration_count == 10
 
 
+# The contest samples, or their generated stand-ins when the contest data is missing.
+SAMPLE, SAMPLE4 = pick("ispd18_sample"), pick("ispd19_sample4")
+
+
 def test_route_bad_config_is_one_line_exit_2(runner: CliRunner, tmp_path: Path) -> None:
     p = write(tmp_path, "router:\n  iteration_count: 99\n")
     result = runner.invoke(app, ["route", "ispd18_sample", "--config", str(p), "--out", str(tmp_path / "o")])
@@ -146,15 +151,15 @@ def test_route_bad_config_is_one_line_exit_2(runner: CliRunner, tmp_path: Path) 
 
 
 def test_route_config_values_and_flag_overrides(runner: CliRunner, testcase, tmp_path: Path) -> None:
-    testcase("ispd18_sample")
-    p = write(tmp_path, "testcase: {testcase_name: ispd18_sample}\nregion: {region_size: 3}\n"
+    testcase(SAMPLE)
+    p = write(tmp_path, f"testcase: {{testcase_name: {SAMPLE}}}\nregion: {{region_size: 3}}\n"
                         "router: {iteration_count: 2}\npolicy: {policy: random, seed: 5}\n"
                         f"output: {{out_dir: {tmp_path / 'out'}}}\n")
     result = runner.invoke(app, ["route", "--config", str(p), "--seed", "9", "--json"])
     assert result.exit_code == 0, result.stdout + result.stderr
     settings = json.loads(result.stdout)["settings"]
     assert settings == {"region_size": 3, "iterations": 2, "threads": 1, "seed": 9, "schedule": None, "policy": "random"}
-    assert (tmp_path / "out" / "ispd18_sample.metrics.json").is_file()
+    assert (tmp_path / "out" / f"{SAMPLE}.metrics.json").is_file()
 
 
 def test_net_loop_above_one_is_refused_by_route(runner: CliRunner, tmp_path: Path) -> None:
@@ -165,16 +170,16 @@ def test_net_loop_above_one_is_refused_by_route(runner: CliRunner, tmp_path: Pat
 
 
 def test_iteration_schedule_from_the_config_reaches_the_router(runner: CliRunner, testcase, tmp_path: Path) -> None:
-    testcase("ispd19_sample4")
+    testcase(SAMPLE4)
     p = write(tmp_path, "router:\n  iteration_count: 3\n  iteration_schedule:\n    - {region_size: 2, offset: 0}\n"
                         "    - {region_size: 3, offset: 1}\n")
-    result = runner.invoke(app, ["route", "ispd19_sample4", "--config", str(p), "--json", "--out", str(tmp_path / "o")])
+    result = runner.invoke(app, ["route", SAMPLE4, "--config", str(p), "--json", "--out", str(tmp_path / "o")])
     assert result.exit_code == 0, result.stderr
     data = json.loads(result.stdout)
     assert data["settings"]["schedule"] == [[2, 0], [3, 1]]
     steps = [(it["region_size"], it["offset"]) for it in data["iterations"]]
     assert steps == [(2, 0), (3, 1), (2, 0)][: len(steps)]
     # a --schedule flag overrides the config's schedule
-    result = runner.invoke(app, ["route", "ispd19_sample4", "--config", str(p), "--json", "--schedule", "4:1",
+    result = runner.invoke(app, ["route", SAMPLE4, "--config", str(p), "--json", "--schedule", "4:1",
                                  "--out", str(tmp_path / "o")])
     assert json.loads(result.stdout)["settings"]["schedule"] == [[4, 1]]

@@ -1,4 +1,6 @@
-"""DEF reader on the contest testcases: counts and exact placed geometry.
+"""DEF reader on the contest testcases: counts and exact placed geometry (without the contest
+data: the counts of generated designs, and the geometry on drawn DEFs holding the statements the
+comments quote).
 
 Every count in EXPECTED was taken from the DEF/guide text with grep/awk (not
 from xroute), e.g. for COMPONENTS:
@@ -17,6 +19,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import STANDINS, contest_found, require_testcase, sample_lef, standin_root
 from xroute.testcases import find_testcase
 from xroute import load_design
 from xroute import errors
@@ -50,6 +53,86 @@ def _design(name: str):
         _found(name)
         _designs[name] = load_design(name)
     return _designs[name]
+
+
+# Without the contest data, tests of geometry that their comments derive by hand from one
+# statement of a contest DEF run on a drawn DEF holding those statements, with
+# tests/data/lef/sample_names.lef (our LEF giving the cells involved the size and pin RECT the
+# comments quote).
+DRAWN_HEAD = """VERSION 5.8 ;
+DIVIDERCHAR "/" ;
+BUSBITCHARS "[]" ;
+DESIGN {name} ;
+UNITS DISTANCE MICRONS 2000 ;
+DIEAREA {die} ;
+"""
+DRAWN = {
+    "ispd18_sample": DRAWN_HEAD.format(name="drawn_sample", die="( 83600 71820 ) ( 104400 91200 )") + """\
+COMPONENTS 2 ;
+- inst2908 OR4X1 + PLACED ( 85600 75240 ) FS ;
+- inst2015 NAND3X2 + PLACED ( 88000 78660 ) N ;
+END COMPONENTS
+NETS 1 ;
+- net1 ( inst2908 D ) ( inst2015 A ) ;
+END NETS
+END DESIGN
+""",
+    "ispd19_test3": DRAWN_HEAD.format(name="drawn_pads", die="( 0 0 ) ( 390600 390000 )") + """\
+COMPONENTS 5 ;
+- inst6961 PDIDGZ + PLACED ( 0 292333 ) E ;
+- inst6993 PDIDGZ + PLACED ( 157456 343000 ) S ;
+- inst8014 PDIDGZ + PLACED ( 343600 56883 ) W ;
+- inst8048 PDIDGZ + FIXED ( 0 100000 ) E ;
+- inst4169 PDIDGZ + PLACED ( 343600 300000 ) W ;
+END COMPONENTS
+PINS 3 ;
+- pin9 + NET net5719 + DIRECTION OUTPUT + USE SIGNAL
+  + LAYER Metal2 ( -180 0 ) ( 180 260 ) + PLACED ( 390600 311200 ) W ;
+- pin8 + NET net2 + DIRECTION INPUT + USE SIGNAL
+  + LAYER Metal2 ( -180 0 ) ( 180 260 ) + PLACED ( 0 313200 ) E ;
+- pin7 + NET net3 + DIRECTION INPUT + USE SIGNAL
+  + LAYER Metal2 ( -180 0 ) ( 180 260 ) + PLACED ( 246100 390000 ) S ;
+END PINS
+NETS 3 ;
+- net5719 ( PIN pin9 ) ( inst4169 PAD ) ;
+- net2 ( PIN pin8 ) ( inst6961 PAD ) ;
+- net3 ( PIN pin7 ) ( inst6993 PAD ) ;
+END NETS
+END DESIGN
+""",
+    "ispd18_sample3": DRAWN_HEAD.format(name="drawn_io", die="( 0 0 ) ( 2000000 2000000 )") + """\
+PINS 1 ;
+- iopin5 + NET ionet5 + DIRECTION INPUT + USE SIGNAL
+  + LAYER Metal2 ( -70 0 ) ( 70 140 ) + PLACED ( 0 1810944 ) E ;
+END PINS
+NETS 2 ;
+- ionet1 ;
+- ionet5 ( PIN iopin5 ) ;
+END NETS
+END DESIGN
+""",
+    "ispd19_sample4": DRAWN_HEAD.format(name="drawn_grid", die="( 0 0 ) ( 390600 390000 )") + """\
+TRACKS X 200 DO 976 STEP 400 LAYER Metal2 ;
+TRACKS Y 190 DO 1026 STEP 380 LAYER Metal1 ;
+GCELLGRID X 390100 DO 2 STEP 500 ;
+GCELLGRID X 100 DO 196 STEP 2000 ;
+GCELLGRID X 0 DO 2 STEP 100 ;
+GCELLGRID Y 0 DO 196 STEP 2000 ;
+END DESIGN
+""",
+}
+
+
+def _design_or_drawn(name: str):
+    """The contest design, or without the contest data its drawn stand-in (DRAWN) with our LEF."""
+    if contest_found(name):
+        return _design(name)
+    key = f"drawn:{name}"
+    if key not in _designs:
+        path = standin_root() / f"{key.replace(':', '_')}.def"
+        path.write_text(DRAWN[name])
+        _designs[key] = load_design(lef=sample_lef(), def_=path)
+    return _designs[key]
 
 
 def _section_lines(lines: list[str], section: str) -> list[str]:
@@ -92,6 +175,19 @@ def test_counts(name: str) -> None:
     assert _text_counts(found.def_, found.guide) == EXPECTED[name]
     # Flat net -> pin array is consistent with the per-net counts.
     d = _design(name)
+    assert len(d.net_pin_start) == counts["nets"] + 1
+    assert int(d.net_pin_start[-1]) == counts["net_pins"]
+
+
+@pytest.mark.parametrize("name", sorted(STANDINS))
+def test_counts_of_generated_designs_match_their_text(name: str) -> None:
+    """test_counts' check of the reader against the text, on the generated stand-ins (no contest data needed)."""
+    found = require_testcase(name)
+    d = load_design(lef=found.lef, def_=found.def_, guide=found.guide)
+    counts = d.counts()
+    assert tuple(counts[k] for k in KEYS) == _text_counts(found.def_, found.guide)
+    assert counts["nets"] >= 10 and counts["io_pins"] > 0 and counts["special_nets"] == 2
+    assert (counts["guides"] > 0) == (found.guide is not None)
     assert len(d.net_pin_start) == counts["nets"] + 1
     assert int(d.net_pin_start[-1]) == counts["net_pins"]
 
@@ -139,7 +235,7 @@ def test_lef_wrappers() -> None:
 
 
 def test_placed_pin_fs_and_n() -> None:
-    d = _design("ispd18_sample")
+    d = _design_or_drawn("ispd18_sample")
     # OR4X1: SIZE 1.4 BY 1.71 -> 2800 x 3420 DBU (2000/um), ORIGIN 0 0.
     # PIN D first RECT 0.06 0.59 0.16 0.795 -> (120 1180 320 1590).
     # inst2908 FS at (85600 75240): FS maps (x, y) -> (x, h - y):
@@ -151,7 +247,7 @@ def test_placed_pin_fs_and_n() -> None:
 
 
 def test_placed_pin_e_w_s() -> None:
-    d = _design("ispd19_test3")
+    d = _design_or_drawn("ispd19_test3")
     # PDIDGZ: SIZE 4 BY 23.5 -> w 8000, h 47000; PIN PAD RECT 1.877 0 2.224 0.136
     # -> (3754 0 4448 272) on Metal1 (and Metal2).
     # E: (x, y) -> (y, w - x): x 0..272, y 8000-4448 .. 8000-3754 = 3552..4246.
@@ -168,7 +264,7 @@ def test_placed_pin_e_w_s() -> None:
 
 
 def test_io_pin_orientation() -> None:
-    d = _design("ispd19_test3")
+    d = _design_or_drawn("ispd19_test3")
     # "- pin9 + NET net5719 ... + LAYER Metal2 ( -180 0 ) ( 180 260 ) + PLACED ( 390600 311200 ) W":
     # oriented about the pin point, W maps (x, y) -> (-y, x): (-180 0)->(0 -180), (180 260)->(-260 180)
     # -> x -260..0, y -180..180 -> (390340 311020 390600 311380).
@@ -243,7 +339,7 @@ def test_generated_def_vias() -> None:
 
 
 def test_gcell_grid_and_tracks() -> None:
-    d = _design("ispd19_sample4")
+    d = _design_or_drawn("ispd19_sample4")
     # GCELLGRID X 390100 DO 2 STEP 500 ; X 100 DO 196 STEP 2000 ; X 0 DO 2 STEP 100
     xs = d.gcell_lines("x")
     assert xs[0] == 0 and xs[1] == 100 and xs[-1] == 390600
@@ -253,7 +349,7 @@ def test_gcell_grid_and_tracks() -> None:
 
 
 def test_io_pin_nets_resolved() -> None:
-    d = _design("ispd18_sample3")
+    d = _design_or_drawn("ispd18_sample3")
     p = d.io_pin("iopin5")
     assert p["net"] == "ionet5" and p["net_id"] == d.net_id("ionet5")
     assert p["orient"] == "E" and p["location"] == (0, 1810944)
@@ -305,10 +401,10 @@ END DESIGN
 
 
 def test_skipped_statements_counted(tmp_path: Path) -> None:
-    found = _found("ispd18_sample")
+    lef = sample_lef()  # ispd18_sample's, or our LEF with its names
     path = tmp_path / "skippy.def"
     path.write_text(SKIPPY_DEF)
-    d = load_design(lef=found.lef, def_=path)
+    d = load_design(lef=lef, def_=path)
     skipped = d.skipped_statements()
     for key, count in {
         "NAMESCASESENSITIVE": 1, "TECHNOLOGY": 1, "HISTORY": 1, "PROPERTYDEFINITIONS": 1, "ROW.PROPERTY": 1,
@@ -326,4 +422,4 @@ def test_skipped_statements_counted(tmp_path: Path) -> None:
     lonely = d.io_pin("lonely")
     assert lonely["net"] == "not_in_nets" and lonely["net_id"] == -1
     out = d.write_def(tmp_path / "out.def")
-    assert load_design(lef=found.lef, def_=out).compare(d) == []
+    assert load_design(lef=lef, def_=out).compare(d) == []

@@ -7,11 +7,12 @@ from pathlib import Path
 
 import pytest
 
-from xroute.testcases import find_testcase
-from xroute import _engine, errors, load_design
+from conftest import sample_lef
+from xroute import _engine, load_design
 from xroute.errors import InputError
 
-# A small valid design for ispd18_sample's LEF; tests break one line of it.
+# A small valid design for ispd18_sample's LEF (or tests/data/lef/sample_names.lef, which has the
+# same names, when the contest data is missing); tests break one line of it.
 GOOD = [
     "VERSION 5.8 ;",                                                              # 1
     'DIVIDERCHAR "/" ;',                                                          # 2
@@ -42,10 +43,7 @@ GOOD = [
 
 @pytest.fixture(scope="module")
 def lef() -> Path:
-    try:
-        return find_testcase("ispd18_sample").lef
-    except errors.TestcaseNotFound:
-        pytest.skip("testcase ispd18_sample not found on the search path (set XROUTE_TESTCASES)")
+    return sample_lef()
 
 
 def _write(tmp_path: Path, lines: list[str], name: str = "bad.def") -> Path:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import available, pick
 from drawn import load_contest, load_drawn
 from test_drc_rules import TECH_LEF
 
@@ -140,7 +141,7 @@ def contest(name: str):
     return load_contest(name)
 
 
-@pytest.mark.parametrize("name", ["ispd18_sample", "ispd18_sample2", "ispd18_test1"])
+@pytest.mark.parametrize("name", available("ispd18_sample", "ispd18_sample2", "ispd18_test1"))
 def test_unrouted_contest_design_has_no_new_violation(name):
     db = contest(name)
     # Unrouted: every shape is a pin, an OBS or special wiring.
@@ -148,7 +149,7 @@ def test_unrouted_contest_design_has_no_new_violation(name):
 
 
 def test_ispd18_sample_pins_of_different_nets_do_not_short():
-    db = contest("ispd18_sample")
+    db = contest(pick("ispd18_sample"))  # or its generated stand-in without the contest data
     markers = db.check_drc(skip_fixed_pairs=False)
     assert not [m for m in markers if m["type"] == "Short" and m["nets"][1] >= 0]
 

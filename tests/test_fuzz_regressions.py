@@ -2,7 +2,8 @@
 
 Every file under tests/fuzz_regressions/<lef|def|guide>/ goes through the Python
 API: a LEF alone, a DEF with the ispd18_sample LEF, a guide with the ispd18_sample
-LEF and DEF. Each must either load or raise xroute.errors.InputError with the
+LEF and DEF (without the contest data: tests/data/lef/sample_names.lef, a LEF with the same
+names, and the generated stand-in of ispd18_sample for the guides). Each must either load or raise xroute.errors.InputError with the
 fuzz file and a line inside it - never crash, hang or raise anything else. A DEF
 that loads must also survive the round trip the DEF fuzz target checks: written
 back, re-read, and equal.
@@ -21,6 +22,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import pick, require_testcase, sample_lef
 from xroute import _engine
 from xroute.errors import InputError
 
@@ -53,24 +55,24 @@ def test_lef(path: Path) -> None:
 
 
 @pytest.mark.parametrize("path", _files("def"), ids=lambda p: p.name)
-def test_def(path: Path, testcase, tmp_path: Path) -> None:
-    sample = testcase("ispd18_sample")
-    db = _loads_or_input_error(path, lambda: _engine.load([str(sample.lef)], str(path)))
+def test_def(path: Path, tmp_path: Path) -> None:
+    lef = str(sample_lef())
+    db = _loads_or_input_error(path, lambda: _engine.load([lef], str(path)))
     if db is not None:
         out = tmp_path / "written.def"
         db.write_def(str(out))
-        assert db.compare(_engine.load([str(sample.lef)], str(out))) == []
+        assert db.compare(_engine.load([lef], str(out))) == []
 
 
 @pytest.mark.parametrize("path", _files("guide"), ids=lambda p: p.name)
-def test_guide(path: Path, testcase) -> None:
-    sample = testcase("ispd18_sample")
+def test_guide(path: Path) -> None:
+    sample = require_testcase(pick("ispd18_sample"))
     _loads_or_input_error(path, lambda: _engine.load([str(sample.lef)], str(sample.def_), str(path)))
 
 
-def test_fixed_bugs(testcase, tmp_path: Path) -> None:
+def test_fixed_bugs(tmp_path: Path) -> None:
     """The DEF round-trip bugs the fuzzer found, each with its exact outcome now."""
-    lef = str(testcase("ispd18_sample").lef)
+    lef = str(sample_lef())
     # A DEF without DESIGN was read with an empty name and written as "DESIGN  ;".
     with pytest.raises(InputError) as e:
         _engine.load([lef], str(HERE / "def" / "no_design_statement.def"))

@@ -13,8 +13,10 @@ from pathlib import Path
 
 import pytest
 
+from conftest import pick
+
 REPO = Path(__file__).resolve().parent.parent
-DESIGN = "ispd19_sample4"
+DESIGN = pick("ispd19_sample4")  # or its generated stand-in without the contest data
 
 
 def start_route(out: Path, testcases_root: Path) -> subprocess.Popen:

@@ -1,28 +1,21 @@
 """LEF reader on the seven contest LEFs: counts and exact values, checked by
-hand against the files with grep/awk. Skipped when the testcases are absent
-(../shared/testcases from the repository root, or $XROUTE_TESTCASES).
+hand against the files with grep/awk. Skipped when the testcases are not on the
+search path (../shared/testcases, $XROUTE_TESTCASES, ...: see xroute.testcases).
 
 All lengths are DBU (LEF microns x UNITS DATABASE MICRONS), areas DBU^2.
 """
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
 
+from conftest import require_testcase
 from xroute import _engine
-
-# ../shared/testcases seen from the repository root, unless $XROUTE_TESTCASES says otherwise.
-TESTCASES = Path(os.environ.get("XROUTE_TESTCASES", Path(__file__).resolve().parents[2] / "shared" / "testcases"))
 
 
 def contest_lef(name: str) -> str:
-    path = TESTCASES / name / f"{name}.input.lef"
-    if not path.is_file():
-        pytest.skip(f"contest testcase {name} not found under {TESTCASES} (set XROUTE_TESTCASES)")
-    return str(path)
+    """The contest testcase's LEF from the search path, or skip the test."""
+    return str(require_testcase(name).lef)
 
 
 def layers_by_name(db) -> dict:
@@ -231,3 +224,75 @@ def test_ispd18_sample3_sixteen_routing_layers():
     assert m1["pitch"] == (260, 200)  # PITCH 0.13 0.10
     assert m1["spacing_rules"] == [dict(space=100, range=None, same_net=False)]
     assert layers["Metal16"]["routing_index"] == 15
+
+
+# ------------------------------------------------- the generated technology --
+
+
+def _macro_totals_from_text(text: str) -> tuple[int, int, int, int]:
+    """(pins, ports, pin RECTs, OBS RECTs) counted from LEF text, as MACRO_TOTALS was with awk."""
+    pins = ports = pin_rects = obs_rects = 0
+    block = None  # "PIN" or "OBS" inside a MACRO
+    for line in text.splitlines():
+        f = line.split()
+        if not f:
+            continue
+        if f[0] == "MACRO":
+            block = None
+        elif f[0] == "PIN":
+            pins, block = pins + 1, "PIN"
+        elif f[0] == "PORT":
+            ports += 1
+        elif f[0] == "OBS":
+            block = "OBS"
+        elif f[0] == "RECT":
+            if block == "PIN":
+                pin_rects += 1
+            elif block == "OBS":
+                obs_rects += 1
+        elif f[0] == "END" and len(f) > 1 and block == "PIN" and f[1] not in ("PORT",):
+            block = None
+        elif f == ["END"] and block == "OBS":
+            block = None
+    return pins, ports, pin_rects, obs_rects
+
+
+def test_generated_lef_counts_numbering_and_macros(tmp_path):
+    """The checks of the contest-LEF tests above on the generator's LEF (runs without contest data):
+    counts and macro totals against its text, layer numbering (no OVERLAP layer in it)."""
+    import re
+
+    from xroute.testcases.gen_tech import technology_lef
+
+    text = technology_lef()
+    path = tmp_path / "generated.lef"
+    path.write_text(text)
+    db = _engine.load_lef([str(path)])
+    c = db.counts()
+    got = (c["layers"], c["routing_layers"], c["cut_layers"], c["lef_vias"], c["via_rules"], c["macros"], c["sites"])
+    grep = tuple(len(re.findall(p, text, re.M)) for p in
+                 (r"^LAYER ", r"TYPE ROUTING", r"TYPE CUT", r"^VIA ", r"^VIARULE ", r"^MACRO ", r"^SITE "))
+    assert got == grep == (11, 6, 5, 5, 0, 9, 1)
+    assert db.lef_dbu_per_micron == 2000
+    assert db.manufacturing_grid == 10  # 0.005 um
+
+    pins = ports = pin_rects = obs_rects = 0
+    for macro_name in db.macro_names():
+        macro = db.macro(macro_name)
+        for pin in macro["pins"].values():
+            pins += 1
+            ports += pin["port_count"]
+            pin_rects += len(pin["shapes"])
+        obs_rects += len(macro["obstructions"])
+    assert (pins, ports, pin_rects, obs_rects) == _macro_totals_from_text(text)
+    assert pins > 0 and obs_rects > 0
+
+    layers = db.layers()
+    routing = [l for l in layers if l["type"] == "ROUTING"]
+    cuts = [l for l in layers if l["type"] == "CUT"]
+    assert [l["routing_index"] for l in routing] == list(range(len(routing)))
+    assert [l["cut_index"] for l in cuts] == list(range(len(cuts)))
+    assert [l["name"] for l in routing] == [f"Metal{i}" for i in range(1, 7)]
+    assert [l["name"] for l in cuts] == [f"Via{i}" for i in range(1, 6)]
+    assert [l["type"] for l in layers] == ["ROUTING", "CUT"] * len(cuts) + ["ROUTING"]
+    assert all(l["routing_index"] == -1 for l in cuts)

@@ -16,7 +16,9 @@ pytest.importorskip("onnxruntime", reason="onnxruntime (rl extra) is not install
 
 from onnx import TensorProto, helper  # noqa: E402
 
-from conftest import require_testcase  # noqa: E402
+from conftest import pick, require_testcase  # noqa: E402
+
+SAMPLE = pick("ispd18_sample")  # or its generated stand-in without the contest data
 from xroute.policy import PolicyError  # noqa: E402
 from xroute.policies.rl.observation import NET_FEATURES  # noqa: E402
 
@@ -113,7 +115,7 @@ def test_a_model_scoring_minus_the_heuristic_rank_routes_like_the_heuristic(tmp_
     from xroute import load_design
     from xroute.router import route_design
 
-    require_testcase("ispd18_sample")
+    require_testcase(SAMPLE)
     policy = OnnxPolicy(make_model(tmp_path / "h.onnx"))
     calls = []
     scores = policy.scores
@@ -123,8 +125,8 @@ def test_a_model_scoring_minus_the_heuristic_rank_routes_like_the_heuristic(tmp_
         return scores(*args)
 
     policy.scores = counting
-    onnx_result = route_design(load_design("ispd18_sample"), region_size=2, iterations=2, policy=policy)
-    heuristic = route_design(load_design("ispd18_sample"), region_size=2, iterations=2)
+    onnx_result = route_design(load_design(SAMPLE), region_size=2, iterations=2, policy=policy)
+    heuristic = route_design(load_design(SAMPLE), region_size=2, iterations=2)
     assert calls and len(calls) == sum(r.regions for r in onnx_result.iterations)  # one model call per region
     assert onnx_result.policy == "h.onnx"
     assert onnx_result.final.wirelength_dbu == heuristic.final.wirelength_dbu
@@ -132,7 +134,7 @@ def test_a_model_scoring_minus_the_heuristic_rank_routes_like_the_heuristic(tmp_
 
     # The reverse order (+rank) routes differently but completely.
     reverse = OnnxPolicy(make_model(tmp_path / "r.onnx", weight=1.0))
-    d = load_design("ispd18_sample")
+    d = load_design(SAMPLE)
     route_design(d, region_size=100, iterations=1, policy=reverse)
     assert d.engine.check_connectivity()["open_nets"] == 0
 

@@ -8,7 +8,7 @@ import pytest
 
 gym = pytest.importorskip("gymnasium", reason="the rl extra (gymnasium) is not installed")
 
-from conftest import require_testcase  # noqa: E402
+from conftest import nets_of, pick, require_testcase  # noqa: E402
 
 # The contract's net_features space is unbounded on purpose; gymnasium warns about it.
 pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
@@ -37,13 +37,16 @@ def test_envs_are_registered_on_import() -> None:
         assert env_id in gym.registry
 
 
+SAMPLE = pick("ispd18_sample")  # or its generated stand-in (10 nets in one region) without the contest data
+
+
 def test_training_env_passes_check_env_and_walks_regions() -> None:
     from gymnasium.utils.env_checker import check_env
 
     import xroute.envs  # noqa: F401  (registers the environments)
 
-    require_testcase("ispd18_sample")
-    env = gym.make("xroute/NetOrdering-v0", testcase_name="ispd18_sample", region_size=2, max_candidates=8)
+    require_testcase(SAMPLE)
+    env = gym.make("xroute/NetOrdering-v0", testcase_name=SAMPLE, region_size=2, max_candidates=8)
     check_env(env.unwrapped, skip_render_check=True)
     obs, info = env.reset(seed=3)
     assert env.observation_space.contains(obs)
@@ -63,9 +66,9 @@ def test_training_env_passes_check_env_and_walks_regions() -> None:
 def test_training_env_same_seed_same_episode() -> None:
     from xroute.envs.ordering_training import ordering_training_env
 
-    require_testcase("ispd18_sample")
-    a = _rollout(ordering_training_env("ispd18_sample", region_size=2, max_candidates=8), 5, 25)
-    b = _rollout(ordering_training_env("ispd18_sample", region_size=2, max_candidates=8), 5, 25)
+    require_testcase(SAMPLE)
+    a = _rollout(ordering_training_env(SAMPLE, region_size=2, max_candidates=8), 5, 25)
+    b = _rollout(ordering_training_env(SAMPLE, region_size=2, max_candidates=8), 5, 25)
     assert a == b
     assert any(term for _, _, term in a)
 
@@ -74,9 +77,9 @@ def test_reward_is_the_drop_of_the_paper_cost() -> None:
     from xroute.envs.core import CostWeights
     from xroute.envs.ordering_training import ordering_training_env
 
-    require_testcase("ispd18_sample")
+    require_testcase(SAMPLE)
     weights = CostWeights(wirelength_weight=1.0, via_weight=2.0, drv_weight=100.0)
-    env = ordering_training_env("ispd18_sample", region_size=100, max_candidates=16, weights=weights)
+    env = ordering_training_env(SAMPLE, region_size=100, max_candidates=16, weights=weights)
     _, info = env.reset(seed=0)
     cost0 = info["cost"]
     total = 0.0
@@ -88,16 +91,17 @@ def test_reward_is_the_drop_of_the_paper_cost() -> None:
     expected = m["wirelength_dbu"] / 2000 * 1.0 + m["vias"] * 2.0 + m["violations"] * 100.0
     assert step["cost"] == pytest.approx(expected)
     assert total == pytest.approx(cost0 - expected)
-    assert m["nets_routed"] == info["candidates"] == 11
+    assert m["nets_routed"] == info["candidates"] == nets_of(SAMPLE)
 
 
 def test_an_invalid_action_routes_the_first_legal_row() -> None:
     from xroute.envs.ordering_training import ordering_training_env
 
-    require_testcase("ispd18_sample")
-    env = ordering_training_env("ispd18_sample", region_size=100, max_candidates=16)
+    require_testcase(SAMPLE)
+    env = ordering_training_env(SAMPLE, region_size=100, max_candidates=16)
     env.reset(seed=0)
-    _, _, _, _, info = env.step(15)  # row 15 is past the 11 candidates
+    _, _, _, _, info = env.step(15)  # row 15 is past the 11 candidates (10 for the stand-in)
+    assert nets_of(SAMPLE) < 15
     assert info["invalid_action"] and info["candidate"] == 0
     _, _, _, _, info = env.step(0)  # row 0 is routed now
     assert info["invalid_action"] and info["candidate"] == 1
@@ -111,8 +115,8 @@ def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
     from xroute import load_design
     from xroute.router import route_design
 
-    require_testcase("ispd18_sample")
-    env = ordering_evaluation_env("ispd18_sample", region_size=2, iteration_count=3, max_candidates=8,
+    require_testcase(SAMPLE)
+    env = ordering_evaluation_env(SAMPLE, region_size=2, iteration_count=3, max_candidates=8,
                                   out_dir=str(tmp_path))
     check_env(env, skip_render_check=True)
     env.reset(seed=0)
@@ -127,7 +131,7 @@ def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
         steps += 1
     env.close()
     result = info["result"]
-    reference = route_design(load_design("ispd18_sample"), region_size=2, iterations=3)
+    reference = route_design(load_design(SAMPLE), region_size=2, iterations=3)
     assert steps == sum(r.net_routes for r in reference.iterations)
     assert result.final.wirelength_dbu == reference.final.wirelength_dbu
     assert result.final.vias == reference.final.vias
@@ -139,14 +143,14 @@ def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
 def test_region_loop_replays_a_region_from_the_same_state_and_location_pins_it() -> None:
     from xroute.envs.ordering_training import ordering_training_env
 
-    require_testcase("ispd18_sample")
+    require_testcase(SAMPLE)
 
     def finish(env) -> None:
         done = False
         while not done:
             _, _, done, _, _ = env.step(int(np.flatnonzero(env.action_masks())[-1]))
 
-    env = ordering_training_env("ispd18_sample", region_size=2, region_loop=2, max_candidates=8)
+    env = ordering_training_env(SAMPLE, region_size=2, region_loop=2, max_candidates=8)
     obs1, info1 = env.reset(seed=0)
     finish(env)
     obs2, info2 = env.reset()
@@ -156,7 +160,7 @@ def test_region_loop_replays_a_region_from_the_same_state_and_location_pins_it()
     _, info3 = env.reset()
     assert info3["region_location"] != info1["region_location"] and info3["replay"] == 1
 
-    pinned = ordering_training_env("ispd18_sample", region_size=2, region_location=info3["region_location"],
+    pinned = ordering_training_env(SAMPLE, region_size=2, region_location=info3["region_location"],
                                    max_candidates=8)
     first, _ = pinned.reset(seed=1)
     for _ in range(3):

@@ -3,15 +3,18 @@ the writer is deterministic (same database -> same bytes)."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
 
+from conftest import available, pick, require_testcase, sample_lef
 from xroute.testcases import find_testcase
 from xroute import errors, load_design
 
-NAMES = ["ispd18_sample", "ispd18_sample2", "ispd18_sample3", "ispd19_sample4", "ispd18_test1", "ispd19_test1",
-         "ispd19_test3"]
+# The contest designs found, each missing one replaced by its generated stand-in (one without guide).
+NAMES = available("ispd18_sample", "ispd18_sample2", "ispd18_sample3", "ispd19_sample4", "ispd18_test1",
+                  "ispd19_test1", "ispd19_test3")
 
 
 def _found(name: str):
@@ -23,7 +26,7 @@ def _found(name: str):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_roundtrip(name: str, tmp_path: Path) -> None:
-    found = _found(name)
+    found = require_testcase(name)
     d = load_design(name)
     out = d.write_def(tmp_path / f"{name}.def")
     again = load_design(lef=found.lef, def_=out, guide=found.guide)
@@ -38,30 +41,47 @@ def test_roundtrip(name: str, tmp_path: Path) -> None:
 
 
 def test_compare_reports_differences(tmp_path: Path) -> None:
-    found = _found("ispd18_sample")
-    d = load_design("ispd18_sample")
+    name = pick("ispd18_sample")  # without the contest data: its stand-in, edited the same way
+    found = require_testcase(name)
+    d = load_design(name)
     text = found.def_.read_text()
-    changed = text.replace("- inst4189 AOI22X2 + PLACED ( 85200 71820 ) N", "- inst4189 AOI22X2 + PLACED ( 85200 71820 ) FS")
+    if name == "ispd18_sample":
+        k, comp, before, after = 10, "inst4189", "- inst4189 AOI22X2 + PLACED ( 85200 71820 ) N", "FS"
+        die = (83600, 71820, 104400, 91200)
+        first, comp0 = "+ PLACED ( 88000 78660 ) N", "inst2015"
+    else:
+        lines = re.findall(r"^- \S+ \S+ \+ PLACED \( \d+ \d+ \) N ;$", text, re.M)
+        assert len(lines) > 4
+        before = lines[3][:-2]  # a component placed N, without its " ;"
+        comp = before.split()[1]
+        names = re.findall(r"^- (\S+) \S+ \+ PLACED", text, re.M)
+        k = names.index(comp)
+        after = "FS"
+        die = tuple(int(v) for v in re.search(r"^DIEAREA \( (\d+) (\d+) \) \( (\d+) (\d+) \) ;", text, re.M).groups())
+        first, comp0 = lines[0][len(lines[0].split("+")[0]):-2], lines[0].split()[1]  # component 0, placed N
+        assert names[0] == comp0
+    changed = text.replace(before, before[:-1] + after)
     assert changed != text
     path = tmp_path / "changed.def"
     path.write_text(changed)
     other = load_design(lef=found.lef, def_=path)
     diffs = d.compare(other)
-    assert diffs == ["component 10 (inst4189): orient N != FS"]
+    assert diffs == [f"component {k} ({comp}): orient N != FS"]
     # maxDiffs caps the list.
-    moved = text.replace("( 83600 71820 ) ( 104400 91200 )", "( 83600 71820 ) ( 104400 91300 )")
-    moved = moved.replace("+ PLACED ( 88000 78660 ) N", "+ PLACED ( 88000 78660 ) S")
+    x0, y0, x1, y1 = die
+    moved = text.replace(f"( {x0} {y0} ) ( {x1} {y1} )", f"( {x0} {y0} ) ( {x1} {y1 + 100} )")
+    moved = moved.replace(first, first[:-1] + "S")
     path.write_text(moved)
     other = load_design(lef=found.lef, def_=path)
     assert len(d.compare(other, max_diffs=1)) == 1
     assert d.compare(other) == [
-        "design: die area (83600 71820 104400 91200) != (83600 71820 104400 91300)",
-        "design: die polygon [(83600 71820)(104400 91200)] != [(83600 71820)(104400 91300)]",
-        "component 0 (inst2015): orient N != S",
+        f"design: die area ({x0} {y0} {x1} {y1}) != ({x0} {y0} {x1} {y1 + 100})",
+        f"design: die polygon [({x0} {y0})({x1} {y1})] != [({x0} {y0})({x1} {y1 + 100})]",
+        f"component 0 ({comp0}): orient N != S",
     ]
 
 
-# A hand-written design with routing (ispd18_sample's LEF): wires with and without
+# A hand-written design with routing (ispd18_sample's LEF, or tests/data/lef/sample_names.lef): wires with and without
 # extensions, a LEF via changing the layer mid-path, '*' coordinates, a RECT patch.
 ROUTED_DEF = """VERSION 5.8 ;
 DIVIDERCHAR "/" ;
@@ -105,10 +125,10 @@ END DESIGN
 
 
 def test_routed_roundtrip(tmp_path: Path) -> None:
-    found = _found("ispd18_sample")
+    lef = sample_lef()
     src = tmp_path / "routed.def"
     src.write_text(ROUTED_DEF)
-    d = load_design(lef=found.lef, def_=src)
+    d = load_design(lef=lef, def_=src)
     n2 = d.net_id("n2")
     r = d.net_routing(n2)
     # (layer, x1, y1, x2, y2, width (0 = default), ext_from, ext_to (-1 = half width))
@@ -127,7 +147,7 @@ def test_routed_roundtrip(tmp_path: Path) -> None:
     assert d.net_pins("n1") == [("PIN", "in1"), ("u1", "D")]
 
     out = d.write_def(tmp_path / "out.def")
-    again = load_design(lef=found.lef, def_=out)
+    again = load_design(lef=lef, def_=out)
     assert d.compare(again) == []
     assert again.net_routing(again.net_id("n2")) == r
     assert again.def_text() == out.read_text()

@@ -1,0 +1,309 @@
+"""The router's stages on tiny drawn designs, with the exact path expected (DBU).
+
+The technology (UNITS 1000: 1 DBU = 1 nm): M1 horizontal, M2 vertical, M3 horizontal; on every
+layer tracks every 200 from 100 in x and y, wires 60 wide, spacing 70; vias V12 and V23 with a
+60 x 60 cut, metal 100 x 60 along the horizontal layers and 60 x 100 along M2. The cell PIN1
+(200 x 200) has one pin A: a 60 x 60 M1 square at its centre, so a cell placed at (x, y) has its
+pin on the track crossing (x + 100, y + 100). Die 4000 x 4000, GCells of 1000.
+
+Stages (engine_cpp): maze search (route/maze), the grid footprint of fixed shapes
+(grid/footprint), minimum-area repair (route/min_area_fix), clipping of a net's routing at a
+region's boundary (flow/clip) and the crossings that join regions (flow/crossings). Regions are
+opened and routed net by net through ``_engine.RoutingSession(db).open_region(box)``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from drawn import write_design
+from xroute import _engine
+from xroute.design import load_design
+
+LEF = """\
+VERSION 5.8 ;
+BUSBITCHARS "[]" ;
+DIVIDERCHAR "/" ;
+UNITS
+  DATABASE MICRONS 1000 ;
+END UNITS
+MANUFACTURINGGRID 0.001 ;
+LAYER M1
+  TYPE ROUTING ;
+  DIRECTION HORIZONTAL ;
+  PITCH 0.2 ;
+  WIDTH 0.06 ;
+  SPACING 0.07 ;{m1_area}
+END M1
+LAYER V1
+  TYPE CUT ;
+  WIDTH 0.06 ;
+  SPACING 0.08 ;
+END V1
+LAYER M2
+  TYPE ROUTING ;
+  DIRECTION VERTICAL ;
+  PITCH 0.2 ;
+  WIDTH 0.06 ;
+  SPACING 0.07 ;{m2_area}
+END M2
+LAYER V2
+  TYPE CUT ;
+  WIDTH 0.06 ;
+  SPACING 0.08 ;
+END V2
+LAYER M3
+  TYPE ROUTING ;
+  DIRECTION HORIZONTAL ;
+  PITCH 0.2 ;
+  WIDTH 0.06 ;
+  SPACING 0.07 ;
+END M3
+VIA V12 DEFAULT
+  LAYER M1 ;
+    RECT -0.05 -0.03 0.05 0.03 ;
+  LAYER V1 ;
+    RECT -0.03 -0.03 0.03 0.03 ;
+  LAYER M2 ;
+    RECT -0.03 -0.05 0.03 0.05 ;
+END V12
+VIA V23 DEFAULT
+  LAYER M2 ;
+    RECT -0.03 -0.05 0.03 0.05 ;
+  LAYER V2 ;
+    RECT -0.03 -0.03 0.03 0.03 ;
+  LAYER M3 ;
+    RECT -0.05 -0.03 0.05 0.03 ;
+END V23
+MACRO PIN1
+  CLASS CORE ;
+  ORIGIN 0 0 ;
+  SIZE 0.2 BY 0.2 ;
+  PIN A
+    DIRECTION INOUT ;
+    USE SIGNAL ;
+    PORT
+      LAYER M1 ;
+        RECT 0.07 0.07 0.13 0.13 ;
+    END
+  END A
+END PIN1
+END LIBRARY
+"""
+
+AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
+
+
+def drawn(tmp_path: Path, comps: dict[str, tuple[int, int]], nets: dict[str, list[str]], extra: str = "",
+          m1_area: bool = False, m2_area: bool = False) -> Any:
+    """A loaded Design: PIN1 cells at the given locations (N), nets of their pins A, `extra` DEF
+    statements (BLOCKAGES) after the components."""
+    comp_lines = "".join(f"- {c} PIN1 + PLACED ( {x} {y} ) N ;\n" for c, (x, y) in comps.items())
+    net_lines = "".join(f"- {n} " + " ".join(f"( {c} A )" for c in cs) + " ;\n" for n, cs in nets.items())
+    def_text = (
+        'VERSION 5.8 ;\nDIVIDERCHAR "/" ;\nBUSBITCHARS "[]" ;\nDESIGN stages ;\nUNITS DISTANCE MICRONS 1000 ;\n'
+        "DIEAREA ( 0 0 ) ( 4000 4000 ) ;\n"
+        "TRACKS Y 100 DO 20 STEP 200 LAYER M1 M2 M3 ;\n"
+        "TRACKS X 100 DO 20 STEP 200 LAYER M1 M2 M3 ;\n"
+        "GCELLGRID X 0 DO 5 STEP 1000 ;\nGCELLGRID Y 0 DO 5 STEP 1000 ;\n"
+        f"COMPONENTS {len(comps)} ;\n{comp_lines}END COMPONENTS\n{extra}"
+        f"NETS {len(nets)} ;\n{net_lines}END NETS\nEND DESIGN\n"
+    )
+    lef_text = LEF.format(m1_area=AREA if m1_area else "", m2_area=AREA if m2_area else "")
+    lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
+    return load_design(lef=lef, def_=def_)
+
+
+def blockage(layer: str, rect: tuple[int, int, int, int]) -> str:
+    x0, y0, x1, y1 = rect
+    return f"BLOCKAGES 1 ;\n- LAYER {layer} RECT ( {x0} {y0} ) ( {x1} {y1} ) ;\nEND BLOCKAGES\n"
+
+
+def route_die(design: Any) -> tuple[Any, list[dict[str, Any]], dict[str, Any]]:
+    """Opens the whole die as one region, routes every candidate in order and commits:
+    (the session, each route_net result, the region's metrics)."""
+    session = _engine.RoutingSession(design.engine)
+    region = session.open_region(tuple(int(v) for v in design.die_area))
+    results = [region.route_net(i) for i in range(len(region.candidates))]
+    metrics = region.metrics()
+    region.commit()
+    return session, results, metrics
+
+
+# Two cells whose pins lie on the M1 track y = 1100, 2000 apart.
+ROW = {"u1": (400, 1000), "u2": (2400, 1000)}
+
+
+def test_a_two_pin_net_on_one_track_is_one_straight_wire(tmp_path: Path) -> None:
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
+    session = _engine.RoutingSession(d.engine)
+    region = session.open_region((0, 0, 4000, 4000))
+    # net, pins, terminals, access points, bounding box of the access points, pins of the net
+    assert region.candidates.tolist() == [[0, 2, 2, 2, 500, 1100, 2500, 1100, 2]]
+    assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 2000, "vias": 0, "unreached": 0}
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert d.net_routing(0) == {"wires": [("M1", 500, 1100, 2500, 1100, 0, -1, -1)], "vias": [], "patches": []}
+    assert d.engine.check_connectivity()["open_nets"] == 0
+
+
+def test_two_pins_on_one_column_join_on_the_vertical_layer(tmp_path: Path) -> None:
+    d = drawn(tmp_path, {"u1": (400, 1000), "u2": (400, 2400)}, {"n1": ["u1", "u2"]})
+    _, results, metrics = route_die(d)
+    assert results[0]["wirelength_dbu"] == 1400 and results[0]["vias"] == 2 and metrics["violations"] == 0
+    assert d.net_routing(0) == {
+        "wires": [("M2", 500, 1100, 500, 2500, 0, -1, -1)],
+        "vias": [("V12", 500, 1100), ("V12", 500, 2500)],
+        "patches": [],
+    }
+
+
+def test_a_blocked_track_forces_a_detour_with_two_vias(tmp_path: Path) -> None:
+    # M2 blocked over x 0..600 between the pins: the M2 tracks x = 100, 300 and 500 are closed
+    # there, so the net steps on M1 to the next free track, x = 700, at both pins.
+    d = drawn(tmp_path, {"u1": (400, 1000), "u2": (400, 2400)}, {"n1": ["u1", "u2"]},
+              blockage("M2", (0, 1400, 600, 2000)))
+    _, results, metrics = route_die(d)
+    assert results[0]["wirelength_dbu"] == 200 + 1400 + 200 and results[0]["vias"] == 2
+    assert metrics["violations"] == 0
+    assert d.net_routing(0) == {
+        "wires": [("M1", 500, 1100, 700, 1100, 0, -1, -1), ("M2", 700, 1100, 700, 2500, 0, -1, -1),
+                  ("M1", 700, 2500, 500, 2500, 0, -1, -1)],
+        "vias": [("V12", 700, 1100), ("V12", 700, 2500)],
+        "patches": [],
+    }
+
+
+def test_a_blocked_horizontal_track_sends_the_net_up_to_the_next_horizontal_layer(tmp_path: Path) -> None:
+    # M1 blocked across the track between the pins; M2 is vertical: the straight path is on M3,
+    # reached by a via stack (V12, V23) on each pin, with no extra wirelength.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (1400, 1000, 1600, 1200)))
+    _, results, metrics = route_die(d)
+    assert results[0]["wirelength_dbu"] == 2000 and results[0]["vias"] == 4 and metrics["violations"] == 0
+    assert d.net_routing(0) == {
+        "wires": [("M3", 500, 1100, 2500, 1100, 0, -1, -1)],
+        "vias": [("V12", 500, 1100), ("V23", 500, 1100), ("V23", 2500, 1100), ("V12", 2500, 1100)],
+        "patches": [],
+    }
+
+
+def test_a_short_wire_gets_a_centred_min_area_patch(tmp_path: Path) -> None:
+    # M1 AREA 0.02 um^2 = 20000 nm^2. The wire (500,1100)-(700,1100) with its half-width
+    # extensions is 260 x 60 = 15600 (the pins lie inside it). A 60 wide patch needs
+    # ceil(20000 / 60) = 334: it grows the piece by 74, 37 on each side, along M1 (horizontal):
+    # x 470 - 37 = 433 .. 730 + 37 = 767, as wide as the wire.
+    d = drawn(tmp_path, {"u1": (400, 1000), "u2": (600, 1000)}, {"n1": ["u1", "u2"]}, m1_area=True)
+    _, results, metrics = route_die(d)
+    assert results[0]["wirelength_dbu"] == 200 and metrics["violations"] == 0
+    r = d.net_routing(0)
+    assert r["wires"] == [("M1", 500, 1100, 700, 1100, 0, -1, -1)]
+    assert r["patches"] == [("M1", 433, 1070, 767, 1130)]
+    (_, x0, y0, x1, y1), = r["patches"]
+    assert (x1 - x0) * (y1 - y0) >= 20000 > (x1 - x0 - 2) * (y1 - y0)  # the shortest on the manufacturing grid
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
+def test_via_stacks_get_min_area_patches_on_the_middle_layer(tmp_path: Path) -> None:
+    # M2 AREA 0.02 um^2; the M2 metal of each via stack (V12 top and V23 bottom, both 60 x 100 at
+    # the pin) is 6000 nm^2 alone: each grows along M2 (vertical) by 234, 117 on each side:
+    # y 1050 - 117 = 933 .. 1150 + 117 = 1267, 60 wide around x = 500 and x = 2500.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (1400, 1000, 1600, 1200)), m2_area=True)
+    _, _, metrics = route_die(d)
+    assert metrics["violations"] == 0
+    r = d.net_routing(0)
+    assert r["wires"] == [("M3", 500, 1100, 2500, 1100, 0, -1, -1)]
+    assert r["patches"] == [("M2", 470, 933, 530, 1267), ("M2", 2470, 933, 2530, 1267)]
+
+
+def test_a_reopened_region_clips_the_net_at_its_boundary(tmp_path: Path) -> None:
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
+    session, _, _ = route_die(d)
+    # The left half: u1's pin inside, the routed wire leaves the box at x = 2000, where the part
+    # kept outside ends: a boundary terminal on M1 at (2000, 1100).
+    region = session.open_region((0, 0, 2000, 2000))
+    # pins inside 1, terminals 2 (the pin and the boundary point), their bounding box
+    assert region.candidates.tolist() == [[0, 1, 2, 2, 500, 1100, 2000, 1100, 2]]
+    assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 1500, "vias": 0, "unreached": 0}
+    region.commit()
+    assert d.net_routing(0) == {
+        "wires": [("M1", 2000, 1100, 2500, 1100, 0, -1, -1), ("M1", 500, 1100, 2000, 1100, 0, -1, -1)],
+        "vias": [],
+        "patches": [],
+    }
+    assert d.engine.check_connectivity()["open_nets"] == 0
+    assert d.engine.metrics()["wirelength_dbu"] == 2000
+
+
+def claimed(grid: dict[str, Any], key: str, z: int) -> dict[tuple[int, int], int]:
+    """{(x, y): owner} of the nodes on routing layer z whose `key` field has an owner."""
+    xs, ys, field = grid["xs"], grid["ys"], grid[key][z]
+    return {(int(xs[x]), int(ys[y])): int(field[y, x]) for y, x in np.argwhere(field != -1)}
+
+
+def test_footprint_of_a_blockage_and_of_pins(tmp_path: Path) -> None:
+    # A 200 x 200 M1 blockage at (1400,1000)-(1600,1200) on the pins' track (owner -2: an
+    # obstruction; the pins' nodes are owned by their net, 0). Spacing 70:
+    # * a wire node (60 x 60 of metal) is claimed when closer than 70: only (1500, 1100); at
+    #   (1300, 1100) the metal ends at 1330, exactly 70 away;
+    # * a via landing (100 x 60 on M1) at (1300, 1100) or (1700, 1100) comes within 50: claimed;
+    #   at (1500, 900) its metal ends at y = 930, 70 below the blockage: free.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (1400, 1000, 1600, 1200)))
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    g = region.grid()
+    assert claimed(g, "fixed_owner", 0) == {(500, 1100): 0, (1500, 1100): -2, (2500, 1100): 0}
+    assert claimed(g, "via_fixed_owner", 0) == {(500, 1100): 0, (1300, 1100): -2, (1500, 1100): -2,
+                                                (1700, 1100): -2, (2500, 1100): 0}
+    for z in (1, 2):
+        assert claimed(g, "fixed_owner", z) == {} and claimed(g, "via_fixed_owner", z) == {}
+    # node types: the blocked node and the two access points
+    types = region.node_type()
+    assert types[0][list(g["ys"]).index(1100)][list(g["xs"]).index(1500)] == 1
+    assert {(int(g["xs"][x]), int(g["ys"][y])) for z, y, x in np.argwhere(types == 3)} == {(500, 1100), (2500, 1100)}
+
+
+def test_footprint_of_a_blockage_on_the_vertical_layer(tmp_path: Path) -> None:
+    # The same blockage on M2 (vertical): via landings there are 60 x 100 (V12 top, V23 bottom):
+    # they reach 50 towards it from (1500, 900) and (1500, 1300), but from (1300, 1100) end 70 away.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M2", (1400, 1000, 1600, 1200)))
+    g = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000)).grid()
+    assert claimed(g, "fixed_owner", 1) == {(1500, 1100): -2}
+    assert claimed(g, "via_fixed_owner", 1) == {(1500, 900): -2, (1500, 1100): -2, (1500, 1300): -2}
+    assert claimed(g, "fixed_owner", 0) == {(500, 1100): 0, (2500, 1100): 0}
+
+
+def test_a_net_crossing_two_regions_meets_at_the_shared_edge(tmp_path: Path) -> None:
+    from xroute.groute import global_route
+    from xroute.router import route_design
+
+    # Region size 2 GCells: the die is 2 x 2 regions of 2000; the net's pins lie in the two lower
+    # ones. The crossing on their shared edge x = 2000 lies on the pins' track y = 1100: each
+    # region routes its half straight to that point, on the same layer.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
+    global_route(d)
+    result = route_design(d, region_size=2, iterations=1)
+    assert [(it.regions, it.net_routes) for it in result.iterations] == [(2, 2)]
+    r = d.net_routing(0)
+    assert len(r["wires"]) == 2
+    ends = [{(w[1], w[2]), (w[3], w[4])} for w in r["wires"]]
+    assert ends == [{(500, 1100), (2000, 1100)}, {(2500, 1100), (2000, 1100)}]
+    assert r["wires"][0][0] == r["wires"][1][0]  # one layer on both sides of the edge
+    assert d.engine.metrics()["wirelength_dbu"] == 2000
+    assert d.engine.check_connectivity()["open_nets"] == 0 and result.violations == 0
+
+
+@pytest.mark.parametrize("order", [(0, 1), (1, 0)])
+def test_two_nets_on_neighbouring_tracks_stay_straight_in_either_order(tmp_path: Path, order: tuple[int, int]) -> None:
+    # Tracks 200 apart hold two 60 wide wires 140 apart (> 70): no net disturbs the other.
+    comps = {**ROW, "u3": (400, 1200), "u4": (2400, 1200)}
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]})
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    for i in order:
+        region.route_net(i)
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert d.net_routing(d.net_id("n1"))["wires"] == [("M1", 500, 1100, 2500, 1100, 0, -1, -1)]
+    assert d.net_routing(d.net_id("n2"))["wires"] == [("M1", 500, 1300, 2500, 1300, 0, -1, -1)]
