@@ -158,8 +158,13 @@ void addCounts(std::map<std::string, int>& into, const std::vector<std::pair<std
 
 using namespace xroute;
 
-void bindDatabase(nb::module_& m) {
-  nb::class_<Database>(m, "Database", "A loaded design: technology (LEF) + design (DEF) + guides.")
+namespace {
+
+using DatabaseClass = nb::class_<Database>;
+
+// Database: files, units, die, counts, warnings.
+void bindDatabaseSummary(DatabaseClass& cls) {
+  cls
       .def_prop_ro("design_name", [](const Database& d) { return d.design.name; }, "DESIGN name from the DEF.")
       .def_prop_ro("lef_paths", [](const Database& d) { return d.lefPaths; }, "LEF files read, in order.")
       .def_prop_ro("def_path", [](const Database& d) { return d.defPath; }, "DEF file read.")
@@ -226,7 +231,12 @@ void bindDatabase(nb::module_& m) {
             all.insert(all.end(), d.design.warnings.begin(), d.design.warnings.end());
             return all;
           },
-          "Odd but routable things found after reading, one 'file:line: message' each.")
+          "Odd but routable things found after reading, one 'file:line: message' each.");
+}
+
+// Database: layers, tracks, GCell grid.
+void bindDatabaseTechnology(DatabaseClass& cls) {
+  cls
       .def(
           "layers", [](const Database& d) {
             nb::list out;
@@ -257,7 +267,12 @@ void bindDatabase(nb::module_& m) {
             std::vector<Dbu> lines = gcellLines(d.design, axis == "x");
             return ownedInt32(std::vector<int32_t>(lines.begin(), lines.end()), 1);
           },
-          "axis"_a, "GCell grid line coordinates along 'x' or 'y' (DBU, sorted); empty without GCELLGRID.")
+          "axis"_a, "GCell grid line coordinates along 'x' or 'y' (DBU, sorted); empty without GCELLGRID.");
+}
+
+// Database: nets, pins, guides.
+void bindDatabaseNets(DatabaseClass& cls) {
+  cls
       .def(
           "net_names",
           [](const Database& d) {
@@ -325,7 +340,12 @@ void bindDatabase(nb::module_& m) {
             return ownedInt32(std::move(flat), 6);
           },
           "net"_a,
-          "int32[shapes, 6]: (pin index within the net, LEF layer index, xlo, ylo, xhi, yhi) in DBU, placed.")
+          "int32[shapes, 6]: (pin index within the net, LEF layer index, xlo, ylo, xhi, yhi) in DBU, placed.");
+}
+
+// Database: components and macros.
+void bindDatabaseLibrary(DatabaseClass& cls) {
+  cls
       .def(
           "component",
           [](const Database& d, const std::string& name) {
@@ -380,7 +400,12 @@ void bindDatabase(nb::module_& m) {
             r["obstructions"] = shapeList(d.tech, m.obstructions);
             return r;
           },
-          "name"_a, "A LEF macro: class, origin, size, pins (with shapes in macro coordinates, DBU) and OBS.")
+          "name"_a, "A LEF macro: class, origin, size, pins (with shapes in macro coordinates, DBU) and OBS.");
+}
+
+// Database: LEF vias, via rules, sites, macro names.
+void bindDatabaseVias(DatabaseClass& cls) {
+  cls
       .def(
           "via",
           [](const Database& d, const std::string& name) {
@@ -448,7 +473,12 @@ void bindDatabase(nb::module_& m) {
             for (const Macro& m : d.tech.macros) names.push_back(m.name);
             return names;
           },
-          "LEF macro names in order.")
+          "LEF macro names in order.");
+}
+
+// Database: DEF vias, IO pins, special nets.
+void bindDatabaseDefObjects(DatabaseClass& cls) {
+  cls
       .def(
           "def_via",
           [](const Database& d, const std::string& name) {
@@ -527,7 +557,12 @@ void bindDatabase(nb::module_& m) {
           },
           "name"_a,
           "A SPECIALNETS entry: pins, wires (layer, width, shape, x1, y1, x2, y2), vias (name, x, y, shape), "
-          "rects (layer, xlo, ylo, xhi, yhi); DBU.")
+          "rects (layer, xlo, ylo, xhi, yhi); DBU.");
+}
+
+// Database: routing, writing, comparing.
+void bindDatabaseRouting(DatabaseClass& cls) {
+  cls
       .def(
           "net_routing",
           [](const Database& d, int32_t net) {
@@ -572,6 +607,19 @@ void bindDatabase(nb::module_& m) {
             return compareDesigns(a.design, b.design, max_diffs);
           },
           "other"_a, "max_diffs"_a = 20, "Differences between two designs (empty list = equal).");
+}
+
+}  // namespace
+
+void bindDatabase(nb::module_& m) {
+  DatabaseClass cls(m, "Database", "A loaded design: technology (LEF) + design (DEF) + guides.");
+  bindDatabaseSummary(cls);
+  bindDatabaseTechnology(cls);
+  bindDatabaseNets(cls);
+  bindDatabaseLibrary(cls);
+  bindDatabaseVias(cls);
+  bindDatabaseDefObjects(cls);
+  bindDatabaseRouting(cls);
 
   m.def(
       "load",
