@@ -25,7 +25,7 @@ class Collector {
   Collector(const Tech& tech, const Design& design, std::vector<std::string>* names)
       : tech_(tech), design_(design), names_(names) {}
 
-  std::vector<DrcShape> run();
+  std::vector<DrcShape> run();  // pins, obstructions, special routing, regular routing, in that order
 
  private:
   void add(LayerId layer, const Rect& r, int32_t net, ShapeOrigin origin) {
@@ -36,6 +36,11 @@ class Collector {
   void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin);
   void addComponentPin(int32_t comp, int32_t pin, int32_t net);
   void addIoPin(int32_t io, int32_t net);
+  void addNetPins();            // pins of regular and special nets
+  void addUnconnectedPins();    // pins on no net (ids after the special nets)
+  void addBlockages();          // cell OBS and DEF blockages
+  void addSpecialRouting();     // special wires (flush ends), vias, rects
+  void addRegularRouting();     // wires extended by half width unless told otherwise, vias, patches
 
   const Tech& tech_;
   const Design& design_;
@@ -102,12 +107,21 @@ void Collector::addIoPin(int32_t io, int32_t net) {
 }
 
 std::vector<DrcShape> Collector::run() {
-  const int32_t nets = int32_t(design_.nets.size());
   compPinDone_.resize(design_.components.size());
   for (size_t c = 0; c < design_.components.size(); ++c)
     compPinDone_[c].assign(tech_.macros[*design_.components[c].macro].pins.size(), 0);
   ioPinDone_.assign(design_.ioPins.size(), 0);
 
+  addNetPins();
+  addUnconnectedPins();
+  addBlockages();
+  addSpecialRouting();
+  addRegularRouting();
+  return std::move(out_);
+}
+
+void Collector::addNetPins() {
+  const int32_t nets = int32_t(design_.nets.size());
   // Pins of regular nets.
   for (int32_t n = 0; n < nets && size_t(n + 1) < design_.netPinStart.size(); ++n) {
     for (int32_t r = design_.netPinStart[n]; r < design_.netPinStart[n + 1]; ++r) {
@@ -140,6 +154,10 @@ std::vector<DrcShape> Collector::run() {
     for (size_t io = 0; io < design_.ioPins.size(); ++io)
       if (!design_.ioPins[io].net.valid() && design_.ioPins[io].netName == sn.name) addIoPin(int32_t(io), id);
   }
+}
+
+void Collector::addUnconnectedPins() {
+  const int32_t nets = int32_t(design_.nets.size());
   // Pins on no net: one id each, except that POWER / GROUND pins of the same
   // name share one (the rails of abutting cells are one conductor).
   int32_t nextId = nets + int32_t(design_.specialNets.size());
@@ -178,7 +196,9 @@ std::vector<DrcShape> Collector::run() {
       name("PIN", design_.ioPins[io].name);
       addIoPin(int32_t(io), nextId++);
     }
+}
 
+void Collector::addBlockages() {
   // Obstructions.
   for (const Component& c : design_.components)
     if (placed(c.status)) addObstructions(c);
@@ -191,7 +211,10 @@ std::vector<DrcShape> Collector::run() {
       for (const Rect& r : scratch_) add(b.layer, r, -1, ShapeOrigin::Obstruction);
     }
   }
+}
 
+void Collector::addSpecialRouting() {
+  const int32_t nets = int32_t(design_.nets.size());
   // Special-net routing: flush ends.
   for (size_t s = 0; s < design_.specialNets.size(); ++s) {
     const SpecialNet& sn = design_.specialNets[s];
@@ -210,7 +233,10 @@ std::vector<DrcShape> Collector::run() {
     for (const SpecialVia& v : sn.vias) addVia(v.via, v.at, id, ShapeOrigin::SpecialNet);
     for (const RoutePatch& p : sn.rects) add(p.layer, p.rect, id, ShapeOrigin::SpecialNet);
   }
+}
 
+void Collector::addRegularRouting() {
+  const int32_t nets = int32_t(design_.nets.size());
   // Regular routing: wires extend by half width unless told otherwise.
   for (int32_t n = 0; n < nets; ++n) {
     const NetRouting& r = design_.nets[n].routing;
@@ -221,7 +247,6 @@ std::vector<DrcShape> Collector::run() {
     for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via);
     for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire);
   }
-  return std::move(out_);
 }
 
 }  // namespace
