@@ -12,6 +12,8 @@ namespace xroute {
 
 namespace {
 
+constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
+
 struct TermSpec {
   std::vector<Point> points;  // DBU
   std::vector<int> zs;        // routing index per point
@@ -488,9 +490,25 @@ struct RegionRouter::Impl {
       const Dbu s = std::max(ctx.rules.layers[z]->minSpacing(), ctx.rules.eolSpace[z]);
       const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
       int64_t bad = 0;
-      ctx.fixedIndex.query(grown, [&](int32_t id) {
+      // Fixed shapes by the spacing table: a patch runs along them, so a
+      // wide one (a power rail) may need its wide-metal row.
+      const Layer& layer = *ctx.rules.layers[z];
+      const Dbu pw = std::min(r.width(), r.height());
+      const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
+                                                    std::numeric_limits<Dbu>::max() / 4));
+      const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
+      ctx.fixedIndex.query(far, [&](int32_t id) {
         const DrcShape& sh = ctx.fixedShapes[id];
-        if (sh.net != net && routingIndex(sh.layer) == z && sh.rect.overlaps(grown)) bad += 10;
+        if (sh.net == net || routingIndex(sh.layer) != z) return;
+        const Rect& o = sh.rect;
+        const Dbu dx = std::max<Dbu>(0, std::max(o.xlo - r.xhi, r.xlo - o.xhi));
+        const Dbu dy = std::max<Dbu>(0, std::max(o.ylo - r.yhi, r.ylo - o.yhi));
+        const Dbu prl = dx > 0 && dy > 0 ? 0
+                        : dx > 0         ? std::min(o.yhi, r.yhi) - std::max(o.ylo, r.ylo)
+                                         : std::min(o.xhi, r.xhi) - std::max(o.xlo, r.xlo);
+        const Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, prl);
+        if (std::max(dx, dy) < need) bad += kPatchConflict;
+        else if (o.overlaps(grown)) bad += 10;
       });
       int x0, x1, y0, y1;
       grid->xRangeOpen(grown.xlo, grown.xhi, x0, x1);
