@@ -29,7 +29,8 @@ def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, t
     # The Python heuristic orders exactly like the built-in one: the same routing, iteration by iteration.
     strip = lambda its: [{k: v for k, v in it.items() if k != "seconds"} for it in its]  # noqa: E731
     assert strip(pol["iterations"]) == strip(base["iterations"])
-    assert len(pol["iterations"]) == 3
+    n = len(pol["iterations"])  # up to 3: the flow stops at zero violations (after iteration 1 today)
+    assert 1 <= n <= 3 and (n == 3 or pol["final"]["violations"] == 0)
     f = pol["final"]
     assert f["cost"] == pytest.approx(0.5 * f["wirelength_um"] + 4 * f["vias"] + 500 * f["violations"])
     assert doc["comparison"]["cost_delta"] == pytest.approx(0.0)
@@ -39,7 +40,7 @@ def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, t
         assert (out / sub / f"{SAMPLE4}.routed.def").is_file()
         assert (out / sub / f"{SAMPLE4}.metrics.json").is_file()
     # the table: one row per iteration, then final and cost
-    for row in ("0 │", "1 │", "2 │", "final │", "cost │"):
+    for row in [f"{i} │" for i in range(n)] + ["final │", "cost │"]:
         assert row in result.stdout
     assert "% )" not in result.stdout and "s in the policy of" in result.stdout
 

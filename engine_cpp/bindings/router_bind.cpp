@@ -9,6 +9,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -156,6 +157,9 @@ void bindRouter(nb::module_& m) {
           else if (key == "use_penalty_step") s.usePenaltyStep = val;
           else if (key == "marker_penalty") s.markerPenalty = val;
           else if (key == "history_penalty") s.historyPenalty = val;
+          else if (key == "repair_rounds") s.repairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, 64));
+          else if (key == "repair_penalty") s.repairPenalty = val;
+          else if (key == "first_repair_rounds") s.firstRepairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, 64));
           else throw nb::value_error(("unknown cost setting '" + key + "'").c_str());
         }
         const int dbu = db.design.dbuPerMicron;
@@ -188,7 +192,7 @@ void bindRouter(nb::module_& m) {
       "route nets with it; the order applies to the rest). progress(report, "
       "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
       "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
-      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty). schedule: per-iteration "
+      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration "
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
       "Returns {'iterations': [report, ...]}.");
 }

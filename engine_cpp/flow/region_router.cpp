@@ -13,6 +13,8 @@ namespace xroute {
 
 namespace {
 
+constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
+
 struct TermSpec {
   std::vector<Point> points;  // DBU
   std::vector<int> zs;        // routing index per point
@@ -42,14 +44,19 @@ struct RegionRouter::Impl {
   const RouteContext& ctx;
   const RegionTask& task;
   const CrossingPlan* plan;
+  const RegionRepairSeed* seed;
   std::unique_ptr<RegionGrid> grid;
   std::vector<NetState> nets;
   std::vector<NetCandidate> candidates;
   std::unordered_map<int32_t, ViaId> apVia;  // access node -> via the pin access chose
   std::vector<CrossingChoice> choices;
   int64_t rounds = 0;
+  std::vector<int32_t> order;
 
-  Impl(const RouteContext& c, const RegionTask& t, const CrossingPlan* p) : ctx(c), task(t), plan(p) {}
+  Impl(const RouteContext& c, const RegionTask& t, const CrossingPlan* p, const RegionRepairSeed* s)
+      : ctx(c), task(t), plan(p), seed(s) {}
+
+  bool kept(size_t i) const { return seed && i < seed->keep.size() && seed->keep[i]; }
 
   const Rect& box() const { return task.region.box; }
   int routingIndex(LayerId l) const { return ctx.tech.layer(l).routingIndex; }
@@ -210,17 +217,46 @@ struct RegionRouter::Impl {
       netRoutingShapes(ctx.tech, ctx.design, r, shapes);
       markShapes(n, shapes, win);
     }
+    // Repair round: the routing kept from the previous round is other nets' metal.
+    for (size_t i = 0; i < nets.size(); ++i) {
+      if (!kept(i)) continue;
+      shapes.clear();
+      netRoutingShapes(ctx.tech, ctx.design, nets[i].result.added, shapes);
+      markShapes(nets[i].task.net, shapes, win);
+      markRoutedNodes(nets[i].task.net, nets[i].result.added);
+    }
+  }
+
+  // The grid nodes a net's new wires and vias run through (routedNet).
+  void markRoutedNodes(int32_t net, const NetRouting& r) {
+    RegionGrid& g = *grid;
+    for (const RouteWire& w : r.wires) {
+      const int z = routingIndex(w.layer);
+      if (z < 0 || z >= g.nz()) continue;
+      int x0, x1, y0, y1;
+      closedRange(g.xs(), std::min(w.from.x, w.to.x), std::max(w.from.x, w.to.x), x0, x1);
+      closedRange(g.ys(), std::min(w.from.y, w.to.y), std::max(w.from.y, w.to.y), y0, y1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) g.routedNet[g.index(x, y, z)] = net;
+    }
   }
 
   void markMarkers() {
+    for (const MarkerCost& m : task.markers) markMarker(m);
+    if (seed) {
+      for (const MarkerCost& m : seed->markers) markMarker(m);
+    }
+  }
+
+  void markMarker(const MarkerCost& m) {
     RegionGrid& g = *grid;
-    for (const MarkerCost& m : task.markers) {
+    {
       const Layer& l = ctx.tech.layer(m.layer);
       int zlo = l.routingIndex, zhi = l.routingIndex;
       if (zlo < 0) {
         zlo = cutBelow(m.layer);
         zhi = zlo + 1;
-        if (zlo < 0) continue;
+        if (zlo < 0) return;
       }
       for (int z = zlo; z <= zhi && z < g.nz(); ++z) {
         const Dbu grow = ctx.tracks.layers[z].pitch;
@@ -245,6 +281,22 @@ struct RegionRouter::Impl {
   void prepare() {
     std::vector<Dbu> xs, ys;
     gatherTerminals(xs, ys);
+    if (seed && seed->previous) {
+      for (size_t i = 0; i < nets.size(); ++i) {
+        if (!kept(i)) continue;
+        nets[i].routed = true;
+        nets[i].result = seed->previous->nets[i];
+      }
+      for (const CrossingChoice& c : seed->previous->crossingChoices) {
+        const int32_t net = plan->crossings[c.crossing].net;
+        for (size_t i = 0; i < nets.size(); ++i) {
+          if (kept(i) && nets[i].task.net == net) {
+            choices.push_back(c);
+            break;
+          }
+        }
+      }
+    }
     grid = std::make_unique<RegionGrid>(ctx.tracks, box(), std::move(xs), std::move(ys));
     RegionGrid& g = *grid;
     markFixed();
@@ -362,6 +414,7 @@ struct RegionRouter::Impl {
     NetState& ns = nets[index];
     if (ns.routed) return;
     ns.routed = true;
+    order.push_back(index);
     ns.result.routed = true;
     RegionGrid& g = *grid;
     MazeNet mn;
@@ -438,9 +491,25 @@ struct RegionRouter::Impl {
       const Dbu s = std::max(ctx.rules.layers[z]->minSpacing(), ctx.rules.eolSpace[z]);
       const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
       int64_t bad = 0;
-      ctx.fixedIndex.query(grown, [&](int32_t id) {
+      // Fixed shapes by the spacing table: a patch runs along them, so a
+      // wide one (a power rail) may need its wide-metal row.
+      const Layer& layer = *ctx.rules.layers[z];
+      const Dbu pw = std::min(r.width(), r.height());
+      const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
+                                                    std::numeric_limits<Dbu>::max() / 4));
+      const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
+      ctx.fixedIndex.query(far, [&](int32_t id) {
         const DrcShape& sh = ctx.fixedShapes[id];
-        if (sh.net != net && routingIndex(sh.layer) == z && sh.rect.overlaps(grown)) bad += 10;
+        if (sh.net == net || routingIndex(sh.layer) != z) return;
+        const Rect& o = sh.rect;
+        const Dbu dx = std::max<Dbu>(0, std::max(o.xlo - r.xhi, r.xlo - o.xhi));
+        const Dbu dy = std::max<Dbu>(0, std::max(o.ylo - r.yhi, r.ylo - o.yhi));
+        const Dbu prl = dx > 0 && dy > 0 ? 0
+                        : dx > 0         ? std::min(o.yhi, r.yhi) - std::max(o.ylo, r.ylo)
+                                         : std::min(o.xhi, r.xhi) - std::max(o.xlo, r.xlo);
+        const Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, prl);
+        if (std::max(dx, dy) < need) bad += kPatchConflict;
+        else if (o.overlaps(grown)) bad += 10;
       });
       int x0, x1, y0, y1;
       grid->xRangeOpen(grown.xlo, grown.xhi, x0, x1);
@@ -459,8 +528,9 @@ struct RegionRouter::Impl {
   }
 };
 
-RegionRouter::RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan)
-    : impl_(std::make_unique<Impl>(ctx, task, plan)) {}
+RegionRouter::RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
+                           const RegionRepairSeed* seed)
+    : impl_(std::make_unique<Impl>(ctx, task, plan, seed)) {}
 RegionRouter::~RegionRouter() = default;
 
 void RegionRouter::prepare() { impl_->prepare(); }
@@ -545,6 +615,7 @@ RegionResult RegionRouter::finish() {
   r.crossingChoices = std::move(impl_->choices);
   r.gridNodes = impl_->grid ? static_cast<int64_t>(impl_->grid->size()) : 0;
   r.mazeRounds = impl_->rounds;
+  r.order = std::move(impl_->order);
   return r;
 }
 
@@ -553,7 +624,61 @@ RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const 
   RegionRouter rr(ctx, task, plan);
   rr.prepare();
   rr.routeAll(policy, ws);
-  return rr.finish();
+  if (task.repairRounds <= 0) return rr.finish();
+  std::vector<Marker> markers = rr.check();
+  RegionResult best = rr.finish();
+  // Repair: rip up the region's nets named in its markers and reroute them
+  // (in their first order) around everything else, with the markers found
+  // so far as rising node costs; keep the round with the fewest markers.
+  RegionRepairSeed seed;
+  std::vector<int32_t> candidateOf;  // net -> candidate index
+  for (size_t i = 0; i < task.nets.size(); ++i) {
+    const int32_t n = task.nets[i].net;
+    if (n >= static_cast<int32_t>(candidateOf.size())) candidateOf.resize(n + 1, -1);
+    candidateOf[n] = static_cast<int32_t>(i);
+  }
+  auto candidate = [&](int32_t net) {
+    return net >= 0 && net < static_cast<int32_t>(candidateOf.size()) ? candidateOf[net] : -1;
+  };
+  std::vector<Marker> current = markers;
+  RegionResult currentResult = best;
+  size_t bestCount = markers.size();
+  for (int round = 1; round <= task.repairRounds && !current.empty(); ++round) {
+    seed.keep.assign(task.nets.size(), 1);
+    bool any = false;
+    for (const Marker& m : current) {
+      for (int32_t n : {m.net1, m.net2}) {
+        const int32_t c = candidate(n);
+        if (c >= 0 && currentResult.nets[c].routed) {
+          seed.keep[c] = 0;
+          any = true;
+        }
+      }
+      seed.markers.push_back({m.layer, m.box, task.repairPenalty * round});
+    }
+    if (!any) break;
+    seed.previous = &currentResult;
+    RegionRouter again(ctx, task, plan, &seed);
+    again.prepare();
+    for (int32_t c : currentResult.order) {
+      if (!seed.keep[c]) again.routeNet(c, ws);
+    }
+    std::vector<Marker> next = again.check();
+    RegionResult res = again.finish();
+    // Keep the first order for the next round's reroutes.
+    std::vector<int32_t> ord = currentResult.order;
+    res.order = std::move(ord);
+    res.gridNodes = std::max(res.gridNodes, currentResult.gridNodes);
+    res.mazeRounds += currentResult.mazeRounds;
+    res.repairRounds = round;
+    currentResult = std::move(res);
+    current = std::move(next);
+    if (current.size() >= bestCount) break;  // no better: stop here (keeps the time bounded)
+    bestCount = current.size();
+    best = currentResult;
+  }
+  best.repairRounds = currentResult.repairRounds;
+  return best;
 }
 
 }  // namespace xroute

@@ -40,6 +40,8 @@ struct RegionTask {
   std::vector<RegionNetTask> nets;
   std::vector<MarkerCost> markers;
   MazeCosts costs;
+  int repairRounds = 0;         // routeRegion: check-and-reroute rounds inside the region before it is committed
+  int64_t repairPenalty = 0;    // cost units per node near a marker of a repair round, times the round number
 };
 
 struct RegionNetResult {
@@ -62,12 +64,24 @@ struct RegionResult {
   std::vector<CrossingChoice> crossingChoices;
   int64_t gridNodes = 0;
   int64_t mazeRounds = 0;
+  std::vector<int32_t> order;   // candidate indices in the order they were routed
+  int repairRounds = 0;         // repair rounds run inside the region
+};
+
+// What a repair round starts from: the result of the previous round, the
+// candidates whose routing it keeps (their metal becomes other nets' metal),
+// and the markers so far as extra node costs.
+struct RegionRepairSeed {
+  const RegionResult* previous = nullptr;
+  std::vector<uint8_t> keep;               // per candidate (task.nets order)
+  std::vector<MarkerCost> markers;
 };
 
 class RegionRouter {
  public:
   // `plan` is read for iteration 0 crossings (may be null for later iterations).
-  RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan);
+  RegionRouter(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
+               const RegionRepairSeed* seed = nullptr);
   ~RegionRouter();
 
   // Builds the grid and the candidates; call once before routing.

@@ -105,6 +105,8 @@ class Flow {
     t.region = r;
     t.iteration = it;
     t.costs = costsFor(it);
+    t.repairRounds = it == 0 ? s_.firstRepairRounds : s_.repairRounds;
+    t.repairPenalty = s_.repairPenalty;
     for (int32_t net : plan.regionNets[r.id]) {
       RegionNetTask nt;
       nt.net = net;
@@ -125,6 +127,8 @@ class Flow {
     t.region = r;
     t.iteration = it;
     t.costs = costsFor(it);
+    t.repairRounds = it == 0 ? s_.firstRepairRounds : s_.repairRounds;
+    t.repairPenalty = s_.repairPenalty;
     std::vector<int32_t> dirty;
     const int32_t nNets = static_cast<int32_t>(design_.nets.size());
     for (const Marker& m : markers_) {

@@ -41,6 +41,9 @@ struct RouterSettings {
   int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
   int64_t historyPenalty = 1000;   // cost units per node near any earlier marker
   bool stopAtZero = true;          // stop when an iteration ends without markers
+  int repairRounds = 3;            // check-and-reroute rounds inside each region before it is committed
+  int firstRepairRounds = 0;       // the same in iteration 0 (0 measured best: later iterations mend as much, for a fraction of the time)
+  int64_t repairPenalty = 3000;    // cost units per node near a region marker, times the repair round
 };
 
 inline constexpr int kMarkerTypes = 8;

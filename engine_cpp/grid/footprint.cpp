@@ -1,6 +1,7 @@
 #include "grid/footprint.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <limits>
 
 #include "drc/drc.hpp"
@@ -68,51 +69,66 @@ void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r,
   const Layer& layer = *rules.layers[z];
   const Dbu half = rules.wireHalf[z];
   const Dbu width = std::min(r.width(), r.height());
-  const Dbu runLength = std::max(r.width(), r.height());
-  const Dbu s = requiredSpacing(layer, width, 2 * half, runLength);
+  const bool hz = rules.horizontal[z] != 0;
+  // Spacing depends on the parallel run length. A wire along the preferred
+  // direction beside the shape runs parallel at most the shape's extent in
+  // that direction; a wire ending towards the shape (or passing a corner)
+  // runs parallel at most its own width. Wide shapes (pads, macros, stripes)
+  // need their wide-metal row only beside them.
+  const Dbu sSide = requiredSpacing(layer, width, 2 * half, hz ? r.width() : r.height());
+  const Dbu sEnd = requiredSpacing(layer, width, 2 * half, 2 * half);
   const Rect& m = rules.viaLanding[z];
-  // A wire through the node: its square [x-half, x+half] must stay s away.
-  const Rect wireRegion{r.xlo - s - half, r.ylo - s - half, r.xhi + s + half, r.yhi + s + half};
-  // A via landing: its metal rect at the node must stay s away.
-  const Rect viaRegion{r.xlo - s - m.xhi, r.ylo - s - m.yhi, r.xhi + s - m.xlo, r.yhi + s - m.ylo};
+  const Dbu sVia = requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height()));
+  // A wire through the node: its square [x-half, x+half] must stay away.
+  const Rect wireEnd{r.xlo - sEnd - half, r.ylo - sEnd - half, r.xhi + sEnd + half, r.yhi + sEnd + half};
+  const Rect wireSide = hz ? Rect{r.xlo - half, r.ylo - sSide - half, r.xhi + half, r.yhi + sSide + half}
+                           : Rect{r.xlo - sSide - half, r.ylo - half, r.xhi + sSide + half, r.yhi + half};
+  // A via landing: its metal rect at the node must stay sVia away.
+  const Rect viaRegion{r.xlo - sVia - m.xhi, r.ylo - sVia - m.yhi, r.xhi + sVia - m.xlo, r.yhi + sVia - m.ylo};
   // End of line: a wire or via metal ending at the node faces the shape
   // along the preferred direction and needs the EOL spacing within a
   // narrow band beside the shape.
-  const Dbu e = std::max(rules.eolSpace[z], s), w = rules.eolWithin[z];
-  Rect wireEol = wireRegion, viaEol = viaRegion;
+  const Dbu e = std::max(rules.eolSpace[z], sEnd), w = rules.eolWithin[z];
+  Rect wireEol = wireEnd, viaEol = viaRegion;
   if (rules.eolSpace[z] > 0) {
-    if (rules.horizontal[z]) {
+    if (hz) {
       wireEol = {r.xlo - e - half, r.ylo - w - half, r.xhi + e + half, r.yhi + w + half};
     } else {
       wireEol = {r.xlo - w - half, r.ylo - e - half, r.xhi + w + half, r.yhi + e + half};
     }
     // Via metal has its line ends across its long axis, which need not be
     // the layer's preferred direction.
-    const bool viaAlongX = m.width() != m.height() ? m.width() > m.height() : bool(rules.horizontal[z]);
+    const bool viaAlongX = m.width() != m.height() ? m.width() > m.height() : hz;
+    const Dbu ev = std::max(rules.eolSpace[z], sVia);
     if (viaAlongX) {
-      viaEol = {r.xlo - e - m.xhi, r.ylo - w - m.yhi, r.xhi + e - m.xlo, r.yhi + w - m.ylo};
+      viaEol = {r.xlo - ev - m.xhi, r.ylo - w - m.yhi, r.xhi + ev - m.xlo, r.yhi + w - m.ylo};
     } else {
-      viaEol = {r.xlo - w - m.xhi, r.ylo - e - m.yhi, r.xhi + w - m.xlo, r.yhi + e - m.ylo};
+      viaEol = {r.xlo - w - m.xhi, r.ylo - ev - m.yhi, r.xhi + w - m.xlo, r.yhi + ev - m.ylo};
     }
   }
   const int32_t owner = net < 0 ? kOwnerMixed : net;
-  auto each = [&](const Rect& a, const Rect& b, auto&& fn) {
-    forNodesInside(g, z, a, fn);
-    // Nodes of b not already in a.
-    forNodesInside(g, z, b, [&](int32_t n) {
-      const Point p = g.point(n);
-      if (!(p.x > a.xlo && p.x < a.xhi && p.y > a.ylo && p.y < a.yhi)) fn(n);
-    });
+  // Every node strictly inside one of the rects, once.
+  auto each = [&](std::initializer_list<Rect> rects, auto&& fn) {
+    const Rect* begin = rects.begin();
+    for (const Rect* a = begin; a != rects.end(); ++a) {
+      forNodesInside(g, z, *a, [&](int32_t n) {
+        const Point p = g.point(n);
+        for (const Rect* b = begin; b != a; ++b) {
+          if (p.x > b->xlo && p.x < b->xhi && p.y > b->ylo && p.y < b->yhi) return;
+        }
+        fn(n);
+      });
+    }
   };
   if (fixed) {
-    each(wireRegion, wireEol, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
-    each(viaRegion, viaEol, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
+    each({wireEnd, wireSide, wireEol}, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
+    each({viaRegion, viaEol}, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
   } else {
-    each(wireRegion, wireEol, [&](int32_t n) {
+    each({wireEnd, wireSide, wireEol}, [&](int32_t n) {
       bump(g.wireUse[n]);
       claimOwner(g.wireUseOwner[n], owner);
     });
-    each(viaRegion, viaEol, [&](int32_t n) {
+    each({viaRegion, viaEol}, [&](int32_t n) {
       bump(g.viaUse[n]);
       claimOwner(g.viaUseOwner[n], owner);
     });

@@ -43,7 +43,12 @@ class Search {
 
 int64_t Search::wireNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
-  if (own(v)) return cost;
+  if (own(v)) {
+    // The net's own access point: pin access checked it against fixed
+    // shapes only; other nets' routing (their access vias) still counts.
+    if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
+    return cost;
+  }
   if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
   if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
   const int32_t fo = g_.fixedOwner[v];
@@ -54,7 +59,10 @@ int64_t Search::wireNodeCost(int32_t v) const {
 
 int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
-  if (own(v)) return cost;
+  if (own(v)) {
+    if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
+    return cost;
+  }
   if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
   if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
   // Above the net's own access point, pin access has checked the via
