@@ -41,7 +41,8 @@ def one_input(data: bytes, targets=None) -> None:
     """Loads ``data`` as both kinds of config; raises on anything but a config or a ConfigError."""
     load_config, load_batch_config, ConfigError = targets or _import_targets()
     _FILE.write_bytes(data)
-    lines = data.count(b"\n") + 1
+    # Line breaks as YAML counts them (\r, \r\n, \x85, \u2028 too): str.splitlines is a superset.
+    lines = len(data.decode("utf-8", "replace").splitlines()) + 1
     for load in (load_config, load_batch_config):
         try:
             load(_FILE)

@@ -90,8 +90,8 @@ Lexer Lexer::fromFile(const std::string& path) {
 
 void Lexer::scan() {
   if (hasLookahead_ || eof_) return;
-  if (pendingSemicolon_) {
-    pendingSemicolon_ = false;
+  if (pendingSemicolons_ > 0) {
+    --pendingSemicolons_;
     lookahead_ = Token{std::string_view(";"), pendingSemicolonLine_, false};
     hasLookahead_ = true;
     return;
@@ -132,9 +132,11 @@ void Lexer::scan() {
   const size_t start = pos_;
   while (pos_ < n && !isSpace(text_[pos_])) ++pos_;
   std::string_view tok = std::string_view(text_).substr(start, pos_ - start);
-  if (tok.size() > 1 && tok.back() == ';') {
+  // Every ';' at the end of a word is a token of its own (a name never ends in ';', so what
+  // the DEF writer writes reads back the same).
+  while (tok.size() > 1 && tok.back() == ';') {
     tok.remove_suffix(1);
-    pendingSemicolon_ = true;
+    ++pendingSemicolons_;
     pendingSemicolonLine_ = startLine;
   }
   lookahead_ = Token{tok, startLine, false};

@@ -1,7 +1,7 @@
 // Tokenizer shared by the LEF, DEF and guide readers. Tokens are separated by
 // white space; "#" starts a comment to the end of the line; double-quoted
-// strings may hold spaces and span lines; a ';' glued to the end of a word is
-// split off as its own token. Tokens are views into the file text held by the
+// strings may hold spaces and span lines; ';'s glued to the end of a word are
+// split off as tokens of their own ("x;;" is "x" ";" ";"). Tokens are views into the file text held by the
 // lexer, so they live as long as the lexer.
 #pragma once
 
@@ -57,7 +57,7 @@ class Lexer {
   int curLine_ = 1;
   int lastLine_ = 1;
   bool hasLookahead_ = false;
-  bool pendingSemicolon_ = false;
+  int pendingSemicolons_ = 0;  // ';' split off the end of the last word, still to hand out
   int pendingSemicolonLine_ = 0;
   Token lookahead_;
   bool eof_ = false;
