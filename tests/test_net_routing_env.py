@@ -1,0 +1,189 @@
+"""``xroute/NetRouting-v0`` (envs/net_routing.py): check_env, seeded determinism, A* paths replayed as
+actions give the maze's routing, illegal moves, the T_min cut, net_loop, and the shipped ONNX model.
+All on the shipped demo design (no contest data)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+gym = pytest.importorskip("gymnasium", reason="the rl extra (gymnasium) is not installed")
+
+pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
+
+MODEL = Path(__file__).resolve().parent.parent / "policies" / "models" / "net_router_dqn.onnx"
+
+
+def _env(**kwargs):
+    import xroute.envs  # noqa: F401  (registers the environments)
+
+    return gym.make("xroute/NetRouting-v0", **kwargs).unwrapped
+
+
+def _rollout(env, seed: int, episodes: int) -> list[tuple]:
+    rng = np.random.default_rng(seed)
+    obs, info = env.reset(seed=seed)
+    out = [(obs.tobytes(), info["candidate"])]
+    for _ in range(episodes):
+        done = False
+        while not done:
+            legal = env.legal_actions()
+            a = int(rng.choice(np.flatnonzero(legal))) if legal.any() and rng.random() < 0.9 else int(rng.integers(6))
+            obs, reward, terminated, truncated, info = env.step(a)
+            out.append((obs.tobytes(), reward, terminated, truncated))
+            done = terminated or truncated
+        obs, info = env.reset()
+        out.append((obs.tobytes(), info["candidate"]))
+    return out
+
+
+def _actions_for(region, cand: int, path: list[int]) -> list[int]:
+    out = []
+    for u, v in zip(path, path[1:]):
+        nodes, _ = region.moves(cand, u)
+        out.append(list(nodes).index(v))
+    return out
+
+
+def test_registered_and_check_env() -> None:
+    from gymnasium.utils.env_checker import check_env
+
+    import xroute.envs
+
+    assert "xroute/NetRouting-v0" in gym.registry
+    assert xroute.envs.net_routing_env().action_space == gym.spaces.Discrete(6)
+    env = _env()
+    check_env(env, skip_render_check=True)
+    obs, info = env.reset(seed=1)
+    assert env.observation_space.contains(obs) and obs.shape == (12,)
+    assert info["pins"] >= 2 and info["t_min"] == -info["hpwl"] * info["pins"]
+
+
+def test_seeded_determinism() -> None:
+    a = _rollout(_env(), seed=5, episodes=4)
+    b = _rollout(_env(), seed=5, episodes=4)
+    assert a == b
+
+
+def test_astar_path_replayed_gives_the_maze_routing() -> None:
+    env = _env()
+    obs, info = env.reset(seed=0)
+    cand, box = info["candidate"], info["box"]
+    maze_region = env._session.open_region(box)  # the same state: a fresh region, nothing routed yet
+    maze = maze_region.route_net(cand)
+    paths = maze_region.net_paths(cand)
+    assert maze["unreached"] == 0 and len(paths) == 1 and info["pins"] == 2  # a two-pin net: one path
+    obs, info = env.reset(seed=0, options={"start_node": paths[0][0]})
+    assert info["candidate"] == cand
+    total = 0.0
+    actions = _actions_for(env.region, cand, paths[0])
+    for k, a in enumerate(actions):
+        assert obs[6 + a] >= 0  # the observation shows the move as legal
+        obs, reward, terminated, truncated, info = env.step(a)
+        total += reward
+        assert terminated == (k == len(actions) - 1) and not truncated
+    assert info["connected"] and not info["illegal"] and info["paths"] == paths
+    got, want = info["metrics"], maze_region.metrics()
+    assert (got["wirelength_dbu"], got["vias"], got["violations"]) == (maze["wirelength_dbu"], maze["vias"],
+                                                                       want["violations"])
+    cost = env.weights.cost(maze["wirelength_dbu"] / env.dbu, maze["vias"], want["violations"])
+    assert total == pytest.approx(info["hpwl"] - cost)
+
+
+def test_multi_terminal_net_connects() -> None:
+    """A net with three or more terminals: walking the maze's paths from the env's heads connects it."""
+    env = _env()
+    env.reset(seed=0)
+    for _ in range(40):
+        obs, info = env.reset()
+        if info["pins"] >= 3:
+            break
+    else:
+        pytest.skip("no net with three terminals in the first regions of the demo")
+    cand = info["candidate"]
+    # Route greedily toward the target along the maze's own single-net search: a fresh region of the
+    # same state, the maze's route, then its paths walked in order (each starts on the env's tree).
+    n = env._net
+    done = False
+    steps = 0
+    while not done and steps < 2000:
+        legal = env.legal_actions()
+        d = obs[3:6]
+        prefs = []
+        for axis, (pos, neg) in enumerate(((4, 5), (2, 3), (0, 1))):
+            v = d[(0, 1, 2)[axis]]
+            if v > 0:
+                prefs.append(pos)
+            elif v < 0:
+                prefs.append(neg)
+        choice = next((a for a in prefs if legal[a]), None)
+        if choice is None:
+            choice = int(np.flatnonzero(legal)[0]) if legal.any() else 0
+        obs, reward, terminated, truncated, info = env.step(choice)
+        done = terminated or truncated
+        steps += 1
+    assert done and info["candidate"] == cand
+    if info["connected"]:
+        assert all(n.reached) and len(info["paths"]) == info["pins"] - 1
+
+
+def test_illegal_move_ends_the_episode() -> None:
+    env = _env()
+    obs, info = env.reset(seed=0)
+    legal = env.legal_actions()
+    assert ((obs[6:] >= 0) == legal).all()
+    bad = int(np.flatnonzero(~legal)[0])
+    obs, reward, terminated, truncated, info = env.step(bad)
+    assert terminated and not truncated and info["illegal"] and not info["connected"]
+    assert info["moves"] == 0 and reward == pytest.approx(0.0)
+    with pytest.raises(RuntimeError):
+        env.step(0)
+    # the net is kept unrouted, and the next episode routes the next net
+    obs, info2 = env.reset()
+    assert info2["candidate"] != info["candidate"]
+
+
+def test_t_min_cuts_an_episode() -> None:
+    env = _env(t_min_scale=0.02)
+    obs, info = env.reset(seed=0)
+    assert info["t_min"] == pytest.approx(-0.02 * info["hpwl"] * info["pins"])
+    total, done, steps = 0.0, False, 0
+    while not done:
+        # away from the target: the head wanders until the total reward is below T_min
+        a = int(np.flatnonzero(env.legal_actions())[-1])
+        obs, reward, terminated, truncated, info = env.step(a)
+        total += reward
+        done = terminated or truncated
+        steps += 1
+    assert truncated and not terminated and info["cut"] and not info["connected"]
+    assert info["total_reward"] < info["t_min"]
+
+
+def test_net_loop_replays_each_net() -> None:
+    env = _env(net_loop=2)
+    seen = []
+    obs, info = env.reset(seed=0)
+    for _ in range(4):
+        seen.append((info["candidate"], info["attempt"]))
+        env.step(int(np.flatnonzero(env.legal_actions())[0]))
+        obs, info = env.reset()
+    assert seen[0][0] == seen[1][0] and [s[1] for s in seen] == [1, 2, 1, 2] and seen[2][0] != seen[0][0]
+
+
+def test_shipped_onnx_model_acts() -> None:
+    pytest.importorskip("onnxruntime")
+    from xroute.policies.rl.net_dqn import OnnxNetRouter
+
+    model = OnnxNetRouter(MODEL)
+    env = _env()
+    obs, info = env.reset(seed=0)
+    q = model.q_values(obs)
+    assert q.shape == (1, 6) and np.isfinite(q).all()
+    for _ in range(5):
+        a = model.act(obs, env.legal_actions())
+        assert 0 <= a < 6 and env.legal_actions()[a]
+        obs, reward, terminated, truncated, info = env.step(a)
+        if terminated or truncated:
+            break
