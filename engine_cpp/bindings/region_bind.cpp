@@ -155,6 +155,12 @@ void bindRegion(nb::module_& m) {
           "(nz, ny, nx) grid arrays; joined terminals first, the maze starts from the first). Reaching any node of "
           "a terminal connects it.")
       .def(
+          "terminal_joined",
+          [](const RegionHandle& h, int32_t i) { return h.get().terminalJoined(h.candidate(i)); }, "index"_a,
+          "Per terminal of terminal_nodes(i): True when its nodes are one conductor (a pin's access points: all "
+          "of them join the route once one is reached), False for alternatives (a free crossing: only the node "
+          "reached joins).")
+      .def(
           "moves",
           [](const RegionHandle& h, int32_t i, int32_t node) {
             std::array<MazeMove, kMoveCount> mv;

@@ -549,6 +549,13 @@ std::vector<std::vector<int32_t>> RegionRouter::terminalNodes(int32_t candidate)
   for (const MazeTerminal& t : mn.terminals) out.push_back(t.nodes);
   return out;
 }
+std::vector<bool> RegionRouter::terminalJoined(int32_t candidate) const {
+  std::vector<int32_t> termOfSpec;
+  const MazeNet mn = impl_->mazeNet(impl_->nets[candidate], termOfSpec);
+  std::vector<bool> out;
+  for (const MazeTerminal& t : mn.terminals) out.push_back(t.joined);
+  return out;
+}
 void RegionRouter::moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const {
   impl_->moves(candidate, node, out);
 }

@@ -85,6 +85,9 @@ class RegionRouter {
   const std::vector<std::vector<int32_t>>& paths(int32_t candidate) const;
   // A candidate's terminals as the maze sees them (grid nodes, joined terminals first).
   std::vector<std::vector<int32_t>> terminalNodes(int32_t candidate) const;
+  // Per terminal of terminalNodes: true when its nodes are one conductor (all join the tree once
+  // one is reached), false for alternatives (a free crossing: only the node reached joins).
+  std::vector<bool> terminalJoined(int32_t candidate) const;
   // The six maze moves from `node` for the candidate's net (see mazeMoves).
   void moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const;
   // Routes every candidate not yet routed in the policy's order.

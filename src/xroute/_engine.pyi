@@ -336,6 +336,11 @@ class Region:
         Candidate i's terminals as the maze sees them: per terminal, its grid nodes (flat indices into the (nz, ny, nx) grid arrays; joined terminals first, the maze starts from the first). Reaching any node of a terminal connects it.
         """
 
+    def terminal_joined(self, index: int) -> list[bool]:
+        """
+        Per terminal of terminal_nodes(i): True when its nodes are one conductor (a pin's access points: all of them join the route once one is reached), False for alternatives (a free crossing: only the node reached joins).
+        """
+
     def moves(self, index: int, node: int) -> tuple:
         """
         The maze's six edges from grid node `node` for candidate i's net, by direction (0 up, 1 down, 2 north, 3 south, 4 east, 5 west): (neighbour nodes, step costs in maze cost units); -1 where there is no edge. Wrong-way edges reach the next existing node.
