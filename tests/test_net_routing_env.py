@@ -105,7 +105,7 @@ def test_multi_terminal_net_connects() -> None:
     cand = info["candidate"]
     # Route greedily toward the target along the maze's own single-net search: a fresh region of the
     # same state, the maze's route, then its paths walked in order (each starts on the env's tree).
-    n = env._net
+    walk = env._net
     done = False
     steps = 0
     while not done and steps < 2000:
@@ -126,7 +126,7 @@ def test_multi_terminal_net_connects() -> None:
         steps += 1
     assert done and info["candidate"] == cand
     if info["connected"]:
-        assert all(n.reached) and len(info["paths"]) == info["pins"] - 1
+        assert all(walk.reached) and len(info["paths"]) == info["pins"] - 1
 
 
 def test_illegal_move_ends_the_episode() -> None:
