@@ -187,3 +187,27 @@ def test_shipped_onnx_model_acts() -> None:
         obs, reward, terminated, truncated, info = env.step(a)
         if terminated or truncated:
             break
+
+
+def test_net_router_policy_routes_the_demo_with_astar_taking_over() -> None:
+    """`xroute route --net-router`'s policy: the model's connected nets committed, A* for the rest, no opens."""
+    pytest.importorskip("onnxruntime")
+    from xroute import load_design
+    from xroute.policies.net_router import NetRouterPolicy
+    from xroute.router import route_design
+
+    d = load_design("demo")
+    policy = NetRouterPolicy(MODEL, d.dbu_per_micron, max_moves=60)
+    route_design(d, iterations=1, policy=policy)
+    assert policy.stats["agent_connected"] > 0 and policy.stats["astar_fallback"] > 0
+    assert d.engine.check_connectivity()["open_nets"] == 0
+
+
+def test_route_net_router_option_is_checked(runner, tmp_path) -> None:
+    from xroute.cli.app import app
+
+    both = runner.invoke(app, ["route", "demo", "--net-router", str(MODEL), "--policy", "random",
+                               "--out", str(tmp_path)])
+    assert both.exit_code == 2 and "--net-router" in both.output
+    missing = runner.invoke(app, ["route", "demo", "--net-router", str(tmp_path / "none.onnx"), "--out", str(tmp_path)])
+    assert missing.exit_code == 2 and "no such model file" in missing.output
