@@ -18,8 +18,10 @@ direction an edge goes to the next track node, against it to the next existing n
 Episode: the head starts on the net's first terminal (the maze's start: a pin's access point,
 the one closest to the nearest other terminal; ``reset(options={"start_node": n})`` picks one of
 its nodes). Each action moves the head; reaching a node of an unreached terminal connects it; with
-more terminals left, the head jumps to the node of the tree built so far (terminals reached and
-paths) closest to the nearest unreached terminal. The episode terminates when every terminal is
+more terminals left, the head jumps to the node of the tree built so far (the paths, and the
+terminals reached: all of a pin's access points, of a free crossing's alternatives only the node
+reached) closest to the nearest unreached terminal. The walk itself is
+:class:`xroute.policies.rl.net_walk.NetWalk`, shared with ``xroute route --net-router``. The episode terminates when every terminal is
 connected or on an illegal move (no edge that way, or onto a node of the net's own tree or path:
 a loop); it is truncated when the total reward falls below ``T_min``. Either way the paths walked
 so far (a partial path included) are committed into the region through the maze's own commit
