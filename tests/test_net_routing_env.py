@@ -211,3 +211,21 @@ def test_route_net_router_option_is_checked(runner, tmp_path) -> None:
     assert both.exit_code == 2 and "--net-router" in both.output
     missing = runner.invoke(app, ["route", "demo", "--net-router", str(tmp_path / "none.onnx"), "--out", str(tmp_path)])
     assert missing.exit_code == 2 and "no such model file" in missing.output
+
+
+def test_steps_setting_moves_several_edges() -> None:
+    env1, env3 = _env(), _env(steps=3)
+    env1.reset(seed=0)
+    env3.reset(seed=0)
+    a = int(np.flatnonzero(env1.legal_actions())[0])
+    total1 = 0.0
+    for _ in range(3):
+        if not env1.legal_actions()[a]:
+            break
+        _, r, term, trunc, info1 = env1.step(a)
+        total1 += r
+        if term or trunc:
+            break
+    _, r3, _, _, info3 = env3.step(a)
+    assert info3["moves"] == info1["moves"] and info3["head"] == info1["head"]
+    assert r3 == pytest.approx(total1)
