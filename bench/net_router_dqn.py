@@ -24,8 +24,11 @@ import json
 import time
 from pathlib import Path
 
+import numpy as np
+
 import xroute.envs  # noqa: F401
 from xroute.envs.net_routing import NetRoutingEnv
+from xroute.errors import TestcaseNotFound
 from xroute.policies.rl.net_dqn import (
     NetDQNConfig,
     OnnxNetRouter,
@@ -40,7 +43,7 @@ def _present(name: str) -> bool:
     try:
         find_testcase(name)
         return True
-    except Exception:
+    except TestcaseNotFound:
         return False
 
 
@@ -127,6 +130,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--eps-episodes", type=int, default=NetDQNConfig.eps_episodes)
     ap.add_argument("--gamma", type=float, default=NetDQNConfig.gamma)
+    ap.add_argument("--shaping", type=float, default=NetDQNConfig.shaping)
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--model", type=Path, default=None, help="evaluate this ONNX model, no training")
     ap.add_argument("--json", type=Path, default=None)
@@ -142,7 +146,7 @@ def main() -> None:
     if args.model is None:
         envs = [NetRoutingEnv(name, region_location=splits[name][0]) for name, _ in cases]
         cfg = NetDQNConfig(episodes=args.episodes, max_seconds=args.seconds, eps_episodes=args.eps_episodes,
-                           gamma=args.gamma)
+                           gamma=args.gamma, shaping=args.shaping)
         res = train_net_router(envs, cfg, seed=args.seed, log=lambda s: print(s, flush=True))
         print(f"trained: {res.episodes} episodes, {res.transitions} transitions, {res.seconds:.0f} s CPU, "
               f"connected {res.connected}/{res.episodes}", flush=True)

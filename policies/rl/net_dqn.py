@@ -5,7 +5,8 @@ DOWN, NORTH, SOUTH, EAST, WEST). The raw state (grid indices, distances, edge co
 :mod:`xroute.envs.net_routing`) goes through a fixed ``sign(v) * log1p(|v|)`` first (part of the
 model and of its ONNX graph), so the same model reads small and large regions. Training (:func:`train_net_router`): plain DQN
 with a replay buffer, a target network, epsilon-greedy exploration over the legal moves
-(``env.legal_actions()``), Huber loss; CPU. Acting (:class:`OnnxNetRouter`): the exported ONNX
+(``env.legal_actions()``), Huber loss, optional potential-based shaping toward the target
+(``NetDQNConfig.shaping``, training only: the env's reward is the paper's); CPU. Acting (:class:`OnnxNetRouter`): the exported ONNX
 model through onnxruntime, the best legal direction.
 
 ONNX signature: input ``state`` float32 [B, 12], output ``q`` float32 [B, 6]; metadata
@@ -68,6 +69,9 @@ class NetDQNConfig:
     warmup: int = 500  # transitions before learning starts
     reward_scale: float = 0.1
     max_seconds: float = 240.0
+    # Potential-based shaping for training only (Ng et al. 1999; leaves the optimal policy as it is):
+    # r + shaping * (gamma * phi(s') - phi(s)), phi = -(|dx| + |dy| + |dz|) of the state (0 at the end).
+    shaping: float = 0.0
 
 
 @dataclass
@@ -127,6 +131,10 @@ def train_net_router(envs: list[Any], cfg: NetDQNConfig = NetDQNConfig(), seed: 
                     a = greedy(q(torch.as_tensor(obs[None])).numpy()[0], legal)
             nxt, r, term, trunc, info = env.step(a)
             done = term or trunc
+            if cfg.shaping:
+                phi = -float(np.abs(obs[3:6]).sum())
+                phi2 = 0.0 if done else -float(np.abs(nxt[3:6]).sum())
+                r = r + cfg.shaping * (cfg.gamma * phi2 - phi)
             S[pos], A[pos], R[pos], S2[pos], D[pos] = obs, a, r * cfg.reward_scale, nxt, float(term)
             L2[pos] = env.legal_actions() if not done else False
             pos = (pos + 1) % cfg.buffer
