@@ -131,6 +131,7 @@ def main() -> None:
     ap.add_argument("--eps-episodes", type=int, default=NetDQNConfig.eps_episodes)
     ap.add_argument("--gamma", type=float, default=NetDQNConfig.gamma)
     ap.add_argument("--shaping", type=float, default=NetDQNConfig.shaping)
+    ap.add_argument("--reward-clip", type=float, default=NetDQNConfig.reward_clip)
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--model", type=Path, default=None, help="evaluate this ONNX model, no training")
     ap.add_argument("--json", type=Path, default=None)
@@ -146,7 +147,8 @@ def main() -> None:
     if args.model is None:
         envs = [NetRoutingEnv(name, region_location=splits[name][0]) for name, _ in cases]
         cfg = NetDQNConfig(episodes=args.episodes, max_seconds=args.seconds, eps_episodes=args.eps_episodes,
-                           gamma=args.gamma, shaping=args.shaping)
+                           gamma=args.gamma, shaping=args.shaping,
+                           reward_clip=args.reward_clip)
         res = train_net_router(envs, cfg, seed=args.seed, log=lambda s: print(s, flush=True))
         print(f"trained: {res.episodes} episodes, {res.transitions} transitions, {res.seconds:.0f} s CPU, "
               f"connected {res.connected}/{res.episodes}", flush=True)

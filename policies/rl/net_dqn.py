@@ -69,9 +69,14 @@ class NetDQNConfig:
     warmup: int = 500  # transitions before learning starts
     reward_scale: float = 0.1
     max_seconds: float = 240.0
-    # Potential-based shaping for training only (Ng et al. 1999; leaves the optimal policy as it is):
-    # r + shaping * (gamma * phi(s') - phi(s)), phi = -(|dx| + |dy| + |dz|) of the state (0 at the end).
+    # Shaping for training only: r + shaping * (dist(s) - dist(s')), dist = |dx| + |dy| + |dz| of the
+    # state (0 at the end): +shaping per step toward the target, -shaping away (the potential-based form
+    # of Ng et al. with the discount left out, which would add a bias of dist * (1 - gamma)).
     shaping: float = 0.0
+    # Training only: the scaled reward clipped to [-reward_clip, reward_clip] (0 = no clip). The end
+    # of an episode carries -500 per new violation, which the 12-d state can hardly predict; unclipped
+    # it drowns the rest of the signal.
+    reward_clip: float = 0.0
 
 
 @dataclass
@@ -132,10 +137,13 @@ def train_net_router(envs: list[Any], cfg: NetDQNConfig = NetDQNConfig(), seed: 
             nxt, r, term, trunc, info = env.step(a)
             done = term or trunc
             if cfg.shaping:
-                phi = -float(np.abs(obs[3:6]).sum())
-                phi2 = 0.0 if done else -float(np.abs(nxt[3:6]).sum())
-                r = r + cfg.shaping * (cfg.gamma * phi2 - phi)
-            S[pos], A[pos], R[pos], S2[pos], D[pos] = obs, a, r * cfg.reward_scale, nxt, float(term)
+                dist = float(np.abs(obs[3:6]).sum())
+                dist2 = 0.0 if done else float(np.abs(nxt[3:6]).sum())
+                r = r + cfg.shaping * (dist - dist2)
+            r_train = r * cfg.reward_scale
+            if cfg.reward_clip:
+                r_train = float(np.clip(r_train, -cfg.reward_clip, cfg.reward_clip))
+            S[pos], A[pos], R[pos], S2[pos], D[pos] = obs, a, r_train, nxt, float(term)
             L2[pos] = env.legal_actions() if not done else False
             pos = (pos + 1) % cfg.buffer
             size = min(size + 1, cfg.buffer)
