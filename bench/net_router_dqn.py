@@ -1,7 +1,7 @@
 """Trains the paper's net-routing DQN on ``xroute/NetRouting-v0`` and compares it with A* on held-out
 regions (prints a table, writes JSON; ``--out`` writes the ONNX model).
 
-    python bench/net_router_dqn.py [--episodes 1500] [--seconds 240] [--out policies/models/net_router_dqn.onnx]
+    python bench/net_router_dqn.py [--episodes 4000] [--seconds 240] [--out policies/models/net_router_dqn.onnx]
                                    [--json out.json] [--model M.onnx (evaluate only)]
 
 Regions: 1x1-GCell regions. Held out: lower-left GCell x % K == K // 2 and y % K == K // 2
@@ -123,7 +123,7 @@ def evaluate(testcase: str, locations: list, act, with_astar: bool = True) -> di
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--episodes", type=int, default=1500)
+    ap.add_argument("--episodes", type=int, default=NetDQNConfig.episodes)
     ap.add_argument("--seconds", type=float, default=240.0, help="CPU seconds of training at most")
     ap.add_argument("--train-regions", type=int, default=24)
     ap.add_argument("--eval-regions", type=int, default=8)

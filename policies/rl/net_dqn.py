@@ -57,26 +57,26 @@ def build_model() -> Any:
 
 @dataclass
 class NetDQNConfig:
-    episodes: int = 300
-    gamma: float = 0.98
+    episodes: int = 4000
+    gamma: float = 0.9
     lr: float = 1e-3
     batch: int = 64
     buffer: int = 50_000
     target_every: int = 250  # gradient steps
     eps_start: float = 1.0
     eps_end: float = 0.05
-    eps_episodes: int = 200  # linear decay over this many episodes
+    eps_episodes: int = 300  # linear decay over this many episodes
     warmup: int = 500  # transitions before learning starts
     reward_scale: float = 0.1
     max_seconds: float = 240.0
     # Shaping for training only: r + shaping * (dist(s) - dist(s')), dist = |dx| + |dy| + |dz| of the
     # state (0 at the end): +shaping per step toward the target, -shaping away (the potential-based form
     # of Ng et al. with the discount left out, which would add a bias of dist * (1 - gamma)).
-    shaping: float = 0.0
+    shaping: float = 10.0
     # Training only: the scaled reward clipped to [-reward_clip, reward_clip] (0 = no clip). The end
     # of an episode carries -500 per new violation, which the 12-d state can hardly predict; unclipped
     # it drowns the rest of the signal.
-    reward_clip: float = 0.0
+    reward_clip: float = 5.0
 
 
 @dataclass
