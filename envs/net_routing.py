@@ -48,6 +48,11 @@ is connected. ``HPWL`` is the half perimeter of the net's terminal nodes in grid
 (the paper's grid unit; see :func:`net_hpwl`), ``pin_count`` its terminals in the region, and
 ``T_min = -t_min_scale * HPWL * pin_count``.
 
+``info``: box, candidate, net (design net id), attempt, head, pins, hpwl, t_min, total_reward,
+connected, moves, cost (the region's, before the episode's commit); at the end also illegal, cut,
+paths (the node paths committed), unreached (terminals they miss, the engine's count) and metrics
+(``Region.metrics()`` after the commit). ``env.legal_actions()``: bool[6], the legal directions.
+
 Seeding: ``reset(seed=s)`` restarts from the first net of the first region (attempt 1); the env
 draws nothing from ``self.np_random``: same seed and actions, same episode.
 """
@@ -100,7 +105,7 @@ class NetRoutingEnv(gym.Env):
         *,
         region_dir: str | None = None,
         steps: int = 1,
-        weights: CostSection = CostSection(),
+        weights: CostSection | None = None,
         t_min_scale: float = 1.0,
     ) -> None:
         for name, value in (("region_size", region_size), ("net_loop", net_loop), ("steps", steps)):
@@ -114,7 +119,7 @@ class NetRoutingEnv(gym.Env):
         self.region_locations = _locations(region_location)
         self.net_loop = int(net_loop)
         self.steps = int(steps)
-        self.weights = weights
+        self.weights = weights if weights is not None else CostSection()
         self.t_min_scale = float(t_min_scale)
         self.observation_space = spaces.Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.action_space = spaces.Discrete(len(DIRECTIONS))
@@ -249,7 +254,7 @@ class NetRoutingEnv(gym.Env):
         """Commits the net's paths; the reward the end of the episode adds (violations, HPWL bonus)."""
         n = self._net
         paths = n.paths()
-        self._region.route_net_paths(n.cand, paths)
+        unreached = int(self._region.route_net_paths(n.cand, paths)["unreached"])
         self._kept[n.cand] = paths
         self._region_holds = self._k + 1
         metrics = self._region.metrics()
@@ -258,7 +263,7 @@ class NetRoutingEnv(gym.Env):
         self._cost = cost
         bonus = float(n.hpwl) if n.connected else 0.0
         self._total += correction + bonus
-        self._end = {"illegal": illegal, "cut": truncated, "paths": paths, "metrics": metrics}
+        self._end = {"illegal": illegal, "cut": truncated, "paths": paths, "metrics": metrics, "unreached": unreached}
         return correction + bonus
 
     def _info(self) -> dict[str, Any]:

@@ -194,7 +194,7 @@ void bindRegion(nb::module_& m) {
           "index"_a, "paths"_a,
           "Routes candidate i along the caller's node paths (each step one edge of moves()) through the maze's "
           "own commit (wires, vias, min-area fix, grid marks); returns what route_net returns (unreached: "
-          "terminals no path touches).")
+          "terminals after the first that no path touches).")
       .def(
           "net_paths", [](const RegionHandle& h, int32_t i) { return h.get().paths(h.candidate(i)); }, "index"_a,
           "The node paths candidate i was routed along (by the maze or route_net_paths); empty before.")

@@ -478,8 +478,8 @@ struct RegionRouter::Impl {
   }
 
   // A caller's node paths for net `index` (each step one maze edge), routed
-  // through applyPaths; unreached = terminals no path touches (when there is
-  // a path, the first terminal counts as reached only if a path touches it).
+  // through applyPaths; unreached = terminals after the first (where the tree
+  // starts, as in the maze) that no path touches.
   void routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths) {
     NetState& ns = nets[index];
     if (ns.routed) throw std::invalid_argument("candidate " + std::to_string(index) + " is already routed");
@@ -502,8 +502,13 @@ struct RegionRouter::Impl {
     ns.routed = true;
     ns.result.routed = true;
     int unreached = 0;
+    bool first = true;  // as in the maze, the tree starts on the first terminal with nodes
     for (const MazeTerminal& t : mn.terminals) {
       if (t.nodes.empty()) continue;
+      if (first) {
+        first = false;
+        continue;
+      }
       bool hit = false;
       for (const auto& p : paths)
         for (int32_t v : p) hit = hit || std::binary_search(t.nodes.begin(), t.nodes.end(), v);

@@ -97,9 +97,10 @@ def greedy(q: np.ndarray, legal: np.ndarray) -> int:
     return int(np.argmax(np.where(legal, q, -np.inf)))
 
 
-def train_net_router(envs: list[Any], cfg: NetDQNConfig = NetDQNConfig(), seed: int = 0,
+def train_net_router(envs: list[Any], cfg: NetDQNConfig | None = None, seed: int = 0,
                      log: Any = None) -> NetDQNResult:
     """Trains :func:`build_model` on net-routing envs (round robin, one episode each in turn)."""
+    cfg = cfg if cfg is not None else NetDQNConfig()
     torch = _torch()
     torch.manual_seed(seed)
     rng = np.random.default_rng(seed)

@@ -41,12 +41,12 @@ def _terminals(region: Any, cand: int) -> tuple[list[np.ndarray], list[bool]]:
 class NetWalk:
     """The head, terminals, tree and paths of one net being walked (see the module docstring)."""
 
-    def __init__(self, region: Any, cand: int, dbu_per_micron: int, weights: CostSection = CostSection(),
+    def __init__(self, region: Any, cand: int, dbu_per_micron: int, weights: CostSection | None = None,
                  t_min_scale: float = 1.0, start: int | None = None) -> None:
         self.region = region
         self.cand = int(cand)
         self.dbu = int(dbu_per_micron)
-        self.weights = weights
+        self.weights = weights if weights is not None else CostSection()
         g = region.grid()
         self._xs = np.asarray(g["xs"], dtype=np.int64)
         self._ys = np.asarray(g["ys"], dtype=np.int64)

@@ -348,7 +348,7 @@ class Region:
 
     def route_net_paths(self, index: int, paths: Sequence[Sequence[int]]) -> dict:
         """
-        Routes candidate i along the caller's node paths (each step one edge of moves()) through the maze's own commit (wires, vias, min-area fix, grid marks); returns what route_net returns (unreached: terminals no path touches).
+        Routes candidate i along the caller's node paths (each step one edge of moves()) through the maze's own commit (wires, vias, min-area fix, grid marks); returns what route_net returns (unreached: terminals after the first that no path touches).
         """
 
     def net_paths(self, index: int) -> list[list[int]]:
