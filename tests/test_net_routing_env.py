@@ -229,3 +229,16 @@ def test_steps_setting_moves_several_edges() -> None:
     _, r3, _, _, info3 = env3.step(a)
     assert info3["moves"] == info1["moves"] and info3["head"] == info1["head"]
     assert r3 == pytest.approx(total1)
+
+
+def test_static_region_folder(tmp_path) -> None:
+    """A region written by make-region (here of the demo) is one region whose nets the env walks."""
+    from gymnasium.utils.env_checker import check_env
+
+    from xroute.testcases.regions import make_region
+
+    make_region("demo", tmp_path / "r", location=(2, 2), size=2)
+    env = _env(region_dir=str(tmp_path / "r"))
+    check_env(env, skip_render_check=True)
+    _, info = env.reset(seed=0)
+    assert info["box"] == tuple(env._walk[0]) and info["pins"] >= 2
