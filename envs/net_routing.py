@@ -39,6 +39,12 @@ Spaces::
                the move is illegal (no edge, or onto the net's own tree / path)
     action      = Discrete(6)  # direction; the head moves ``steps`` edges that way (default 1)
 
+    with full_state=True: Dict(state = the 12-d Box above,
+                               obstacle = Box(0, 1, (3, 64, 64)): the region's obstacle grid as the
+                                          net-ordering envs see it (policies/rl/observation.py), aligned,
+                               net = Box(0, 1, (3, 3, 64, 64)): channels head, the net's tree and path,
+                                     its unreached terminals; aligned the same way)
+
 Reward of a step: ``cost(s) - cost(s')`` with the paper's cost ``0.5 WL(µm) + 4 vias + 500
 violations`` (:class:`xroute.config.CostSection`). Wirelength and vias are counted per move; the
 violations (``Region.metrics()``, a full check of the box) once, when the net's paths are committed
@@ -107,6 +113,7 @@ class NetRoutingEnv(gym.Env):
         steps: int = 1,
         weights: CostSection | None = None,
         t_min_scale: float = 1.0,
+        full_state: bool = False,
     ) -> None:
         for name, value in (("region_size", region_size), ("net_loop", net_loop), ("steps", steps)):
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
@@ -121,7 +128,18 @@ class NetRoutingEnv(gym.Env):
         self.steps = int(steps)
         self.weights = weights if weights is not None else CostSection()
         self.t_min_scale = float(t_min_scale)
-        self.observation_space = spaces.Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
+        self.full_state = bool(full_state)
+        state = spaces.Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
+        if self.full_state:
+            from xroute.policies.rl.observation import ALIGNED_SHAPE
+
+            self.observation_space = spaces.Dict({
+                "state": state,
+                "obstacle": spaces.Box(0.0, 1.0, ALIGNED_SHAPE, np.float32),
+                "net": spaces.Box(0.0, 1.0, (3, *ALIGNED_SHAPE), np.float32),
+            })
+        else:
+            self.observation_space = state
         self.action_space = spaces.Discrete(len(DIRECTIONS))
         self._design: Any = None
         self._session: Any = None
@@ -135,6 +153,7 @@ class NetRoutingEnv(gym.Env):
         self._region_holds = -1  # the open region holds the kept paths of nets [0, _region_holds)
         self._cost = 0.0
         self._net: NetWalk | None = None
+        self._obstacle: np.ndarray | None = None
         self._total = 0.0
         self._end: dict[str, Any] | None = None
 
@@ -221,7 +240,8 @@ class NetRoutingEnv(gym.Env):
         self._net = NetWalk(self._region, self._nets[self._k], self.dbu, self.weights, self.t_min_scale, start)
         self._total = 0.0
         self._end: dict[str, Any] | None = None
-        return self._net.observation(), self._info()
+        self._obstacle = None
+        return self._observation(), self._info()
 
     def legal_actions(self) -> np.ndarray:
         """bool[6]: the directions that are legal moves from the head now."""
@@ -248,7 +268,29 @@ class NetRoutingEnv(gym.Env):
         self._total += reward
         if terminated or truncated:
             reward += self._finish(illegal, truncated)
-        return n.observation(), float(reward), terminated, truncated, self._info()
+        return self._observation(), float(reward), terminated, truncated, self._info()
+
+    def _observation(self) -> Any:
+        """The 12-d state, or with ``full_state`` the Dict of it and the region's aligned grids."""
+        state = self._net.observation()
+        if not self.full_state:
+            return state
+        from xroute.policies.rl.observation import align, obstacle_grid
+
+        grid = self._region.grid()
+        if self._obstacle is None:  # the region changes only when the episode's paths are committed
+            rows = np.asarray(self._region.candidates)
+            nets = rows[:, FEATURE_COLUMNS.index("net")]
+            routed = np.array([self._region.is_routed(i) for i in range(len(rows))], dtype=bool)
+            self._obstacle = align(obstacle_grid(grid, nets[~routed], nets[routed]).astype(np.float32))
+        n = self._net
+        shape = grid["flags"].shape
+        net = np.zeros((3, *shape), np.float32)
+        for ch, nodes in enumerate(([n.head], sorted(n.visited),
+                                    [int(v) for t, r in zip(n.terminals, n.reached) if not r for v in t])):
+            if len(nodes):
+                net[ch].reshape(-1)[np.asarray(nodes, dtype=np.int64)] = 1.0
+        return {"state": state, "obstacle": self._obstacle.copy(), "net": align(net)}
 
     def _finish(self, illegal: bool, truncated: bool) -> float:
         """Commits the net's paths; the reward the end of the episode adds (violations, HPWL bonus)."""

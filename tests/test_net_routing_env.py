@@ -242,3 +242,15 @@ def test_static_region_folder(tmp_path) -> None:
     check_env(env, skip_render_check=True)
     _, info = env.reset(seed=0)
     assert info["box"] == tuple(env._walk[0]) and info["pins"] >= 2
+
+
+def test_full_state_dict_observation() -> None:
+    from gymnasium.utils.env_checker import check_env
+
+    env = _env(full_state=True)
+    check_env(env, skip_render_check=True)
+    obs, _ = env.reset(seed=0)
+    assert env.observation_space.contains(obs)
+    assert obs["net"][0].sum() >= 1 and obs["net"][2].sum() >= 1  # the head, the unreached terminals
+    plain, _ = _env().reset(seed=0)
+    assert np.array_equal(obs["state"], plain)
