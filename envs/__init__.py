@@ -5,9 +5,11 @@
 * ``xroute/NetOrderingEval-v0`` (:mod:`.ordering_evaluation`, :func:`ordering_evaluation_env`):
   routes a whole testcase, the agent ordering every region;
 * ``xroute/StaticRegion-v0`` (:mod:`.static_region`, :func:`static_region_env`): one region
-  written by ``xroute make-region``.
+  written by ``xroute make-region``;
+* ``xroute/NetRouting-v0`` (:mod:`.net_routing`, :func:`net_routing_env`): the paper's second task,
+  one net of a region routed step by step from its head.
 
-Importing this package registers the three IDs with gymnasium (nothing else is loaded until an
+Importing this package registers the four IDs with gymnasium (nothing else is loaded until an
 environment is made), so ``import xroute.envs; gymnasium.make("xroute/NetOrdering-v0")`` works, and
 so does ``gymnasium.make("xroute.envs:xroute/NetOrdering-v0")`` without the import.
 """
@@ -22,12 +24,14 @@ ENV_IDS: dict[str, str] = {
     "xroute/NetOrdering-v0": "xroute.envs.ordering_training:NetOrderingTrainingEnv",
     "xroute/NetOrderingEval-v0": "xroute.envs.ordering_evaluation:NetOrderingEvaluationEnv",
     "xroute/StaticRegion-v0": "xroute.envs.static_region:StaticRegionEnv",
+    "xroute/NetRouting-v0": "xroute.envs.net_routing:NetRoutingEnv",
 }
 
 _FACTORIES = {
     "ordering_training_env": "xroute.envs.ordering_training",
     "ordering_evaluation_env": "xroute.envs.ordering_evaluation",
     "static_region_env": "xroute.envs.static_region",
+    "net_routing_env": "xroute.envs.net_routing",
 }
 
 
@@ -49,4 +53,4 @@ def __getattr__(name: str) -> Any:
 
 register_envs()
 
-__all__ = ["ENV_IDS", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]
+__all__ = ["ENV_IDS", "net_routing_env", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]

@@ -36,11 +36,23 @@ ThreadsOption = Annotated[
     int | None,
     typer.Option("--threads", help="Worker threads (the result does not depend on it). Default: 1.", show_default=False),
 ]
+RepairRoundsOption = Annotated[
+    int | None,
+    typer.Option("--repair-rounds", help="Check-and-reroute rounds inside each region before it is committed "
+                 "(iterations after the first; more rounds, fewer violations, more time). Default: 0.",
+                 show_default=False),
+]
 PolicyOption = Annotated[
     str | None,
     typer.Option("--policy",
                  help="Net-order policy: heuristic, random, or a policy file (.py defining order(region, features)). "
                       "Default: heuristic.", show_default=False),
+]
+NetRouterOption = Annotated[
+    Path | None,
+    typer.Option("--net-router",
+                 help="A net-router ONNX model (policies/models/net_router_dqn.onnx): it routes each net step by step, "
+                      "A* taking over every net it does not connect. Not with --policy.", show_default=False),
 ]
 SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]

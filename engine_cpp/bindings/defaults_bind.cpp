@@ -22,6 +22,8 @@ void bindDefaults(nb::module_& m) {
   d["max_threads"] = kMaxThreads;
   d["threads"] = router.threads;
   d["access_points_per_pin"] = pa.maxPointsPerPin;
+  d["repair_rounds"] = router.repairRounds;
+  d["max_repair_rounds"] = kMaxRepairRounds;
   d["marker_penalty"] = router.markerPenalty;
   d["history_penalty"] = router.historyPenalty;
   d["max_region_nodes"] = static_cast<int64_t>(kMaxRegionNodes);

@@ -8,6 +8,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 
@@ -147,6 +148,56 @@ void bindRegion(nb::module_& m) {
             return netResultDict(h.get().result(i));
           },
           "index"_a, "Routes candidate i now; returns its wirelength_dbu, vias and unreached terminals.")
+      .def(
+          "terminal_nodes",
+          [](const RegionHandle& h, int32_t i) { return h.get().terminalNodes(h.candidate(i)); }, "index"_a,
+          "Candidate i's terminals as the maze sees them: per terminal, its grid nodes (flat indices into the "
+          "(nz, ny, nx) grid arrays; joined terminals first, the maze starts from the first). Reaching any node of "
+          "a terminal connects it.")
+      .def(
+          "terminal_joined",
+          [](const RegionHandle& h, int32_t i) { return h.get().terminalJoined(h.candidate(i)); }, "index"_a,
+          "Per terminal of terminal_nodes(i): True when its nodes are one conductor (a pin's access points: all "
+          "of them join the route once one is reached), False for alternatives (a free crossing: only the node "
+          "reached joins).")
+      .def(
+          "moves",
+          [](const RegionHandle& h, int32_t i, int32_t node) {
+            std::array<MazeMove, kMoveCount> mv;
+            h.get().moves(h.candidate(i), node, mv);
+            std::vector<int32_t> nodes;
+            std::vector<int64_t> costs;
+            for (const MazeMove& m : mv) {
+              nodes.push_back(m.node);
+              costs.push_back(m.cost);
+            }
+            return nb::make_tuple(nodes, costs);
+          },
+          "index"_a, "node"_a,
+          "The maze's six edges from grid node `node` for candidate i's net, by direction (0 up, 1 down, 2 north, "
+          "3 south, 4 east, 5 west): (neighbour nodes, step costs in maze cost units); -1 where there is no edge. "
+          "Wrong-way edges reach the next existing node.")
+      .def(
+          "route_net_paths",
+          [](RegionHandle& h, int32_t i, std::vector<std::vector<int32_t>> paths) {
+            h.checkOpen();
+            h.candidate(i);
+            if (h.get().isRouted(i)) throw nb::value_error(("candidate " + std::to_string(i) + " is already routed").c_str());
+            try {
+              nb::gil_scoped_release release;
+              h.get().routeNetPaths(i, std::move(paths));
+            } catch (const std::invalid_argument& e) {
+              throw nb::value_error(e.what());
+            }
+            return netResultDict(h.get().result(i));
+          },
+          "index"_a, "paths"_a,
+          "Routes candidate i along the caller's node paths (each step one edge of moves()) through the maze's "
+          "own commit (wires, vias, min-area fix, grid marks); returns what route_net returns (unreached: "
+          "terminals after the first that no path touches).")
+      .def(
+          "net_paths", [](const RegionHandle& h, int32_t i) { return h.get().paths(h.candidate(i)); }, "index"_a,
+          "The node paths candidate i was routed along (by the maze or route_net_paths); empty before.")
       .def(
           "route_rest",
           [](RegionHandle& h, const std::string& policy, uint64_t seed) {

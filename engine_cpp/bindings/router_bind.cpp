@@ -157,9 +157,9 @@ void bindRouter(nb::module_& m) {
           else if (key == "use_penalty_step") s.usePenaltyStep = val;
           else if (key == "marker_penalty") s.markerPenalty = val;
           else if (key == "history_penalty") s.historyPenalty = val;
-          else if (key == "repair_rounds") s.repairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, 64));
+          else if (key == "repair_rounds") s.repairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, kMaxRepairRounds));
           else if (key == "repair_penalty") s.repairPenalty = val;
-          else if (key == "first_repair_rounds") s.firstRepairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, 64));
+          else if (key == "first_repair_rounds") s.firstRepairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, kMaxRepairRounds));
           else throw nb::value_error(("unknown cost setting '" + key + "'").c_str());
         }
         const int dbu = db.design.dbuPerMicron;

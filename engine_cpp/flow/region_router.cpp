@@ -4,6 +4,7 @@
 #include "route/min_area_fix.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,8 @@ struct NetState {
   NetRouting kept;  // rip-up: routing outside the box
   bool routed = false;
   RegionNetResult result;
+  std::vector<std::vector<int32_t>> paths;  // the node paths its routing was made of
+  std::vector<uint8_t> guide;               // guideMask, built on first use by moves()
 };
 
 // Grid index range of the closed interval [lo, hi] (first > last when empty).
@@ -410,17 +413,12 @@ struct RegionRouter::Impl {
     markShapes(net, shapes, win);
   }
 
-  void routeNet(int32_t index, MazeWorkspace& ws) {
-    NetState& ns = nets[index];
-    if (ns.routed) return;
-    ns.routed = true;
-    order.push_back(index);
-    ns.result.routed = true;
-    RegionGrid& g = *grid;
+  // The maze's view of a net: its terminals (joined ones first, so the tree
+  // starts on metal) as grid nodes; termOfSpec maps them back to ns.terms.
+  MazeNet mazeNet(const NetState& ns, std::vector<int32_t>& termOfSpec) const {
+    const RegionGrid& g = *grid;
     MazeNet mn;
     mn.net = ns.task.net;
-    std::vector<int32_t> termOfSpec;
-    // Joined terminals (pins, fixed points) first, so the tree starts on metal.
     for (int pass = 0; pass < 2; ++pass) {
       for (size_t t = 0; t < ns.terms.size(); ++t) {
         const TermSpec& s = ns.terms[t];
@@ -444,12 +442,32 @@ struct RegionRouter::Impl {
         termOfSpec.push_back(static_cast<int32_t>(t));
       }
     }
+    return mn;
+  }
+
+  void routeNet(int32_t index, MazeWorkspace& ws) {
+    NetState& ns = nets[index];
+    if (ns.routed) return;
+    ns.routed = true;
+    order.push_back(index);
+    ns.result.routed = true;
+    std::vector<int32_t> termOfSpec;
+    MazeNet mn = mazeNet(ns, termOfSpec);
     if (mn.terminals.size() < 2) return;
     const std::vector<uint8_t> mask = guideMask(ns.task.net);
     mn.inGuide = &mask;
     std::vector<std::vector<int32_t>> paths;
-    ns.result.unreached = routeMaze(g, task.costs, mn, ws, paths);
+    ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
     rounds += static_cast<int64_t>(paths.size());
+    applyPaths(ns, mn, termOfSpec, std::move(paths));
+  }
+
+  // Turns a net's node paths into its routing: wires and vias, the free
+  // crossings they reach, the min-area fix, and the marks on the grid. The
+  // one way routing enters a region (the maze's and a caller's paths alike).
+  void applyPaths(NetState& ns, const MazeNet& mn, const std::vector<int32_t>& termOfSpec,
+                  std::vector<std::vector<int32_t>> paths) {
+    RegionGrid& g = *grid;
     for (const auto& p : paths) {
       addPathGeometry(ns.task.net, p, ns.result.added);
       for (int32_t v : p) g.routedNet[v] = ns.task.net;
@@ -525,6 +543,62 @@ struct RegionRouter::Impl {
     };
     fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
+    ns.paths = std::move(paths);
+  }
+
+  // A caller's node paths for net `index` (each step one maze edge), routed
+  // through applyPaths; unreached = terminals after the first (where the tree
+  // starts, as in the maze) that no path touches.
+  void routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths) {
+    NetState& ns = nets[index];
+    if (ns.routed) throw std::invalid_argument("candidate " + std::to_string(index) + " is already routed");
+    std::vector<int32_t> termOfSpec;
+    const MazeNet mn = mazeNet(ns, termOfSpec);
+    for (const auto& p : paths) {
+      for (size_t k = 0; k < p.size(); ++k) {
+        if (p[k] < 0 || static_cast<size_t>(p[k]) >= grid->size() || !grid->exists(p[k]))
+          throw std::invalid_argument("path node " + std::to_string(p[k]) + " is not a node of the region grid");
+        if (k == 0) continue;
+        std::array<MazeMove, kMoveCount> mv;
+        mazeMoves(*grid, task.costs, mn, p[k - 1], mv);
+        bool edge = false;
+        for (const MazeMove& m : mv) edge = edge || m.node == p[k];
+        if (!edge)
+          throw std::invalid_argument("path step " + std::to_string(p[k - 1]) + " -> " + std::to_string(p[k]) +
+                                      " is not an edge of the region grid");
+      }
+    }
+    ns.routed = true;
+    order.push_back(index);
+    ns.result.routed = true;
+    int unreached = 0;
+    bool first = true;  // as in the maze, the tree starts on the first terminal with nodes
+    for (const MazeTerminal& t : mn.terminals) {
+      if (t.nodes.empty()) continue;
+      if (first) {
+        first = false;
+        continue;
+      }
+      bool hit = false;
+      for (const auto& p : paths)
+        for (int32_t v : p) hit = hit || std::binary_search(t.nodes.begin(), t.nodes.end(), v);
+      if (!hit) ++unreached;
+    }
+    ns.result.unreached = mn.terminals.size() < 2 ? 0 : unreached;
+    if (paths.empty() || mn.terminals.size() < 2) return;
+    rounds += static_cast<int64_t>(paths.size());
+    applyPaths(ns, mn, termOfSpec, std::move(paths));
+  }
+
+  void moves(int32_t index, int32_t node, std::array<MazeMove, kMoveCount>& out) {
+    NetState& ns = nets[index];
+    if (node < 0 || static_cast<size_t>(node) >= grid->size() || !grid->exists(node))
+      throw std::invalid_argument("node " + std::to_string(node) + " is not a node of the region grid");
+    if (ns.guide.empty()) ns.guide = guideMask(ns.task.net);
+    std::vector<int32_t> termOfSpec;
+    MazeNet mn = mazeNet(ns, termOfSpec);
+    mn.inGuide = &ns.guide;
+    mazeMoves(*grid, task.costs, mn, node, out);
   }
 };
 
@@ -538,6 +612,29 @@ const RegionGrid& RegionRouter::grid() const { return *impl_->grid; }
 const std::vector<NetCandidate>& RegionRouter::candidates() const { return impl_->candidates; }
 bool RegionRouter::isRouted(int32_t candidate) const { return impl_->nets[candidate].routed; }
 void RegionRouter::routeNet(int32_t index, MazeWorkspace& ws) { impl_->routeNet(index, ws); }
+void RegionRouter::routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths) {
+  impl_->routeNetPaths(index, std::move(paths));
+}
+const std::vector<std::vector<int32_t>>& RegionRouter::paths(int32_t candidate) const {
+  return impl_->nets[candidate].paths;
+}
+std::vector<std::vector<int32_t>> RegionRouter::terminalNodes(int32_t candidate) const {
+  std::vector<int32_t> termOfSpec;
+  const MazeNet mn = impl_->mazeNet(impl_->nets[candidate], termOfSpec);
+  std::vector<std::vector<int32_t>> out;
+  for (const MazeTerminal& t : mn.terminals) out.push_back(t.nodes);
+  return out;
+}
+std::vector<bool> RegionRouter::terminalJoined(int32_t candidate) const {
+  std::vector<int32_t> termOfSpec;
+  const MazeNet mn = impl_->mazeNet(impl_->nets[candidate], termOfSpec);
+  std::vector<bool> out;
+  for (const MazeTerminal& t : mn.terminals) out.push_back(t.joined);
+  return out;
+}
+void RegionRouter::moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const {
+  impl_->moves(candidate, node, out);
+}
 
 void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
   std::vector<int32_t> pending;

@@ -91,6 +91,19 @@ class RegionRouter {
   bool isRouted(int32_t candidate) const;
   // Routes candidate `index` (an index into candidates()).
   void routeNet(int32_t index, MazeWorkspace& ws);
+  // Routes candidate `index` along the caller's node paths (each step one
+  // edge of the maze's grid graph; throws std::invalid_argument otherwise)
+  // through the same commit as the maze's paths: geometry, min-area fix, marks.
+  void routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths);
+  // The node paths a routed candidate's routing was made of (empty before).
+  const std::vector<std::vector<int32_t>>& paths(int32_t candidate) const;
+  // A candidate's terminals as the maze sees them (grid nodes, joined terminals first).
+  std::vector<std::vector<int32_t>> terminalNodes(int32_t candidate) const;
+  // Per terminal of terminalNodes: true when its nodes are one conductor (all join the tree once
+  // one is reached), false for alternatives (a free crossing: only the node reached joins).
+  std::vector<bool> terminalJoined(int32_t candidate) const;
+  // The six maze moves from `node` for the candidate's net (see mazeMoves).
+  void moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const;
   // Routes every candidate not yet routed in the policy's order.
   void routeAll(NetOrderPolicy& policy, MazeWorkspace& ws);
   // The new routing of a candidate so far (empty until routed).

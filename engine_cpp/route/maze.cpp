@@ -20,6 +20,10 @@ class Search {
 
   int run(std::vector<std::vector<int32_t>>& paths);
 
+  // Every edge leaving u: fn(v, step cost, direction) with direction a MazeDirection.
+  template <class Fn>
+  void forEachEdge(int32_t u, Fn&& fn) const;
+
  private:
   int64_t wireNodeCost(int32_t v) const;
   int64_t viaNodeCost(int32_t v) const;
@@ -40,6 +44,49 @@ class Search {
   std::vector<uint8_t> reached_;     // per terminal
   std::vector<Rect> termBox_;        // per terminal, DBU
 };
+
+template <class Fn>
+void Search::forEachEdge(int32_t u, Fn&& fn) const {
+  const int nx = g_.nx(), ny = g_.ny(), nz = g_.nz();
+  const int x = g_.xOf(u), y = g_.yOf(u), z = g_.zOf(u);
+  const Point p = g_.point(u);
+  const bool h = g_.horizontal(z);
+  // Along the preferred direction (both ends on the track).
+  if (g_.flags[u] & kOnTrack) {
+    for (int d = -1; d <= 1; d += 2) {
+      const int xx = h ? x + d : x, yy = h ? y : y + d;
+      if (xx < 0 || xx >= nx || yy < 0 || yy >= ny) continue;
+      const int32_t v = g_.index(xx, yy, z);
+      if (!(g_.flags[v] & kOnTrack)) continue;
+      const Point q = g_.point(v);
+      const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+      const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
+      fn(v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), dir);
+    }
+  }
+  // Against it, to the next existing node.
+  for (int d = -1; d <= 1; d += 2) {
+    const int32_t v = g_.wrongWayNeighbour(u, d);
+    if (v < 0) continue;
+    const Point q = g_.point(v);
+    const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+    const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
+    fn(v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), dir);
+  }
+  // Vias.
+  for (int d = -1; d <= 1; d += 2) {
+    const int zz = z + d;
+    if (zz < 0 || zz >= nz) continue;
+    const int32_t v = g_.index(x, y, zz);
+    if (!g_.flags[v]) continue;
+    const int32_t lower = d > 0 ? u : v;
+    int64_t cut = 0;
+    if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
+      cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
+    }
+    fn(v, c_.viaCost * guideFactor(v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown);
+  }
+}
 
 int64_t Search::wireNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
@@ -109,7 +156,6 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
     ws_.parent[s] = -1;
     open.push({ws_.cost[s] + heuristic(s), s});
   }
-  const int nx = g_.nx(), ny = g_.ny(), nz = g_.nz();
   while (!open.empty()) {
     const auto [f, u] = open.top();
     open.pop();
@@ -118,43 +164,7 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
     const int32_t t = ws_.terminalOf[u];
     if (t >= 0 && !reached_[t]) return u;
 
-    const int x = g_.xOf(u), y = g_.yOf(u), z = g_.zOf(u);
-    const Point p = g_.point(u);
-    // Along the preferred direction (both ends on the track).
-    if (g_.flags[u] & kOnTrack) {
-      const bool h = g_.horizontal(z);
-      for (int d = -1; d <= 1; d += 2) {
-        const int xx = h ? x + d : x, yy = h ? y : y + d;
-        if (xx < 0 || xx >= nx || yy < 0 || yy >= ny) continue;
-        const int32_t v = g_.index(xx, yy, z);
-        if (!(g_.flags[v] & kOnTrack)) continue;
-        const Point q = g_.point(v);
-        const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
-        relax(u, v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), open);
-      }
-    }
-    // Against it, to the next existing node.
-    for (int d = -1; d <= 1; d += 2) {
-      const int32_t v = g_.wrongWayNeighbour(u, d);
-      if (v < 0) continue;
-      const Point q = g_.point(v);
-      const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
-      relax(u, v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v),
-            open);
-    }
-    // Vias.
-    for (int d = -1; d <= 1; d += 2) {
-      const int zz = z + d;
-      if (zz < 0 || zz >= nz) continue;
-      const int32_t v = g_.index(x, y, zz);
-      if (!g_.flags[v]) continue;
-      const int32_t lower = d > 0 ? u : v;
-      int64_t cut = 0;
-      if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
-        cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
-      }
-      relax(u, v, c_.viaCost * guideFactor(v) + viaNodeCost(u) + viaNodeCost(v) + cut, open);
-    }
+    forEachEdge(u, [&](int32_t v, int64_t step, int) { relax(u, v, step, open); });
     (void)f;
   }
   return -1;
@@ -248,6 +258,15 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
 }
 
 }  // namespace
+
+void mazeMoves(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, int32_t node,
+               std::array<MazeMove, kMoveCount>& out) {
+  MazeWorkspace unused;
+  out.fill(MazeMove{});
+  Search(grid, costs, net, unused).forEachEdge(node, [&](int32_t v, int64_t step, int dir) {
+    out[dir] = MazeMove{v, step};
+  });
+}
 
 int routeMaze(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, MazeWorkspace& ws,
               std::vector<std::vector<int32_t>>& paths) {

@@ -3,6 +3,7 @@
 // terminal not yet reached, until every terminal is connected.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +53,17 @@ struct MazeWorkspace {
 // Appends one node path per round to `paths` (from a tree node to a terminal
 // node, inclusive). Returns the number of terminals that could not be
 // reached (0 = connected).
+// The six moves from a node (index = direction): the neighbour the maze's edge
+// that way reaches (-1: no edge) and its step cost for `net`, as the search
+// counts it. Wrong-way edges go to the next existing node.
+enum MazeDirection : int { kMoveUp = 0, kMoveDown, kMoveNorth, kMoveSouth, kMoveEast, kMoveWest, kMoveCount };
+struct MazeMove {
+  int32_t node = -1;
+  int64_t cost = 0;
+};
+void mazeMoves(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, int32_t node,
+               std::array<MazeMove, kMoveCount>& out);
+
 int routeMaze(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& net, MazeWorkspace& ws,
               std::vector<std::vector<int32_t>>& paths);
 

@@ -331,6 +331,31 @@ class Region:
         Routes candidate i now; returns its wirelength_dbu, vias and unreached terminals.
         """
 
+    def terminal_nodes(self, index: int) -> list[list[int]]:
+        """
+        Candidate i's terminals as the maze sees them: per terminal, its grid nodes (flat indices into the (nz, ny, nx) grid arrays; joined terminals first, the maze starts from the first). Reaching any node of a terminal connects it.
+        """
+
+    def terminal_joined(self, index: int) -> list[bool]:
+        """
+        Per terminal of terminal_nodes(i): True when its nodes are one conductor (a pin's access points: all of them join the route once one is reached), False for alternatives (a free crossing: only the node reached joins).
+        """
+
+    def moves(self, index: int, node: int) -> tuple:
+        """
+        The maze's six edges from grid node `node` for candidate i's net, by direction (0 up, 1 down, 2 north, 3 south, 4 east, 5 west): (neighbour nodes, step costs in maze cost units); -1 where there is no edge. Wrong-way edges reach the next existing node.
+        """
+
+    def route_net_paths(self, index: int, paths: Sequence[Sequence[int]]) -> dict:
+        """
+        Routes candidate i along the caller's node paths (each step one edge of moves()) through the maze's own commit (wires, vias, min-area fix, grid marks); returns what route_net returns (unreached: terminals after the first that no path touches).
+        """
+
+    def net_paths(self, index: int) -> list[list[int]]:
+        """
+        The node paths candidate i was routed along (by the maze or route_net_paths); empty before.
+        """
+
     def route_rest(self, policy: str = 'heuristic', seed: int = 1) -> None:
         """Routes every candidate not routed yet in a built-in policy's order."""
 

@@ -32,6 +32,7 @@ from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
 from xroute.errors import XrouteError
+from xroute.defaults import MAX_REPAIR_ROUNDS, MAX_THREADS, REPAIR_ROUNDS
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
 
 __all__ = [
@@ -138,7 +139,9 @@ class RouterSection:
     """The routing flow (XRoute: iteration_count, thread_count, net_loop)."""
 
     iteration_count: int = setting(DEFAULT_ITERATIONS, min=1, max=MAX_ITERATIONS)
-    thread_count: int = setting(1, min=1, max=1024)
+    thread_count: int = setting(1, min=1, max=MAX_THREADS)
+    repair_rounds: int = setting(REPAIR_ROUNDS, min=0, max=MAX_REPAIR_ROUNDS,
+                                 help="check-and-reroute rounds inside each region (iterations after the first)")
     net_loop: int = setting(1, min=1, help="orderings of each region's nets per visit (training environments)")
     iteration_schedule: tuple[ScheduleEntry, ...] = ()  # empty: region_size with the default offsets
 
@@ -212,6 +215,7 @@ class RunSettings:
     schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
     net_loop: int = 1
     policy_timeout: float | None = None  # seconds per policy call (None: the default)
+    repair_rounds: int = REPAIR_ROUNDS  # check-and-reroute rounds inside each region
 
     def route_settings(self) -> RouteSettings:
         """The detailed router's settings (validated: RouteArgumentError when invalid)."""
@@ -219,17 +223,19 @@ class RunSettings:
             raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
                               "once per visit; net_loop > 1 applies to the training environments only")
         return RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
-                             seed=self.seed, schedule=self.schedule or None, policy_timeout=self.policy_timeout)
+                             seed=self.seed, schedule=self.schedule or None, policy_timeout=self.policy_timeout,
+                             repair_rounds=self.repair_rounds)
 
     def to_dict(self) -> dict[str, Any]:
         return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
                 "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in self.schedule],
-                "net_loop": self.net_loop}
+                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds}
 
 
 def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iterations: int | None = None,
                  threads: int | None = None, policy: str | None = None, seed: int | None = None,
-                 schedule: tuple[tuple[int, int], ...] | None = None) -> RunSettings:
+                 schedule: tuple[tuple[int, int], ...] | None = None,
+                 repair_rounds: int | None = None) -> RunSettings:
     """The run's settings: each flag that was given (not None) overrides the config value."""
     if schedule is None:
         schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
@@ -242,6 +248,7 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         schedule=tuple(schedule),
         net_loop=cfg.router.net_loop,
         policy_timeout=cfg.policy.call_timeout,
+        repair_rounds=repair_rounds if repair_rounds is not None else cfg.router.repair_rounds,
     )
 
 

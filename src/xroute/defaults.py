@@ -15,6 +15,8 @@ ITERATIONS: int = int(_D["iterations"])  # iteration limit; the flow stops earli
 MAX_ITERATIONS: int = int(_D["max_iterations"])
 MAX_REGION_SIZE: int = int(_D["max_region_size"])  # GCells per region side at most
 MAX_THREADS: int = int(_D["max_threads"])
+REPAIR_ROUNDS: int = int(_D["repair_rounds"])  # check-and-reroute rounds inside a region (later iterations)
+MAX_REPAIR_ROUNDS: int = int(_D["max_repair_rounds"])
 ACCESS_POINTS_PER_PIN: int = int(_D["access_points_per_pin"])
 MAX_REGION_NODES: int = int(_D["max_region_nodes"])  # grid nodes of one region at most
 

@@ -58,6 +58,7 @@ def route(
         seed=settings.seed,
         schedule=settings.schedule,
         policy_timeout=settings.policy_timeout,
+        repair_rounds=settings.repair_rounds,
         policy=policy,
         progress=progress,
     )

@@ -57,6 +57,8 @@ class RouteSettings:
     schedule: tuple[tuple[int, int], ...] | None = None
     # seconds a Python policy's order() may take per call (None: xroute.policy_guard's default, 0: no limit)
     policy_timeout: float | None = None
+    # check-and-reroute rounds inside each region before it is committed (iterations after the first)
+    repair_rounds: int = defaults.REPAIR_ROUNDS
 
     def __post_init__(self) -> None:
         if self.schedule is not None:
@@ -75,6 +77,10 @@ class RouteSettings:
                                              f"got {size}")
                 if not 0 <= offset < size:
                     raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
+        if isinstance(self.repair_rounds, bool) or not isinstance(self.repair_rounds, int) or not (
+                0 <= self.repair_rounds <= defaults.MAX_REPAIR_ROUNDS):
+            raise RouteArgumentError(f"repair_rounds must be an integer in 0..{defaults.MAX_REPAIR_ROUNDS}, "
+                                     f"got {self.repair_rounds!r}")
         for name in ("region_size", "iterations", "threads", "seed"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
@@ -260,11 +266,12 @@ def route_design(
     schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
     policy_timeout: float | None = None,
+    repair_rounds: int = defaults.REPAIR_ROUNDS,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
-    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), a path to a ``.py`` policy
-    file, or a policy object (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` -
+    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), or a policy object (policy
+    files and ONNX models: :func:`xroute.policies.get_policy`) (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` -
     whose own seed is used -, ``CallablePolicy(fn)`` or anything with ``name`` and ``order``).
     Built-in policies run in C++; any other is called once per region. Raises
     :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
@@ -283,6 +290,7 @@ def route_design(
         seed=seed,
         schedule=tuple(tuple(step) for step in schedule) if schedule is not None else None,
         policy_timeout=policy_timeout,
+        repair_rounds=repair_rounds,
     )
     pol = resolve_policy(policy, seed)
     kwargs, callback = _policy_kwargs(pol, settings)
@@ -305,6 +313,7 @@ def route_design(
             iterations=settings.iterations,
             threads=settings.threads,
             schedule=list(settings.schedule) if settings.schedule is not None else None,
+            costs={"repair_rounds": settings.repair_rounds},
             **kwargs,
         )
     finally:

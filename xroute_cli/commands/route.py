@@ -28,9 +28,11 @@ from xroute.cli.options import (
     ConfigOption,
     IterationsOption,
     JsonOption,
+    NetRouterOption,
     OutOption,
     PolicyOption,
     QuietOption,
+    RepairRoundsOption,
     RegionSizeOption,
     ScheduleOption,
     SeedOption,
@@ -116,9 +118,11 @@ def route(
     region_size: RegionSizeOption = None,
     iterations: IterationsOption = None,
     threads: ThreadsOption = None,
+    repair_rounds: RepairRoundsOption = None,
     policy: PolicyOption = None,
     seed: SeedOption = None,
     schedule: ScheduleOption = None,
+    net_router: NetRouterOption = None,
     as_json: JsonOption = False,
     quiet: QuietOption = False,
 ) -> None:
@@ -143,6 +147,11 @@ def route(
 
         testcase = DEMO
     check_design_args(testcase, lef, def_, guide)
+    if net_router is not None and policy is not None:
+        raise typer.BadParameter("--net-router routes the nets itself (in the heuristic order): not with --policy",
+                                 param_hint="--net-router")
+    if net_router is not None and not net_router.is_file():
+        raise typer.BadParameter(f"no such model file: {net_router}", param_hint="--net-router")
     started = time.perf_counter()
 
     from xroute import pipeline
@@ -151,12 +160,17 @@ def route(
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
+                      repair_rounds=repair_rounds,
                       schedule=steps)
     settings = rs.route_settings()  # fail before loading
     pol = get_policy(rs.policy, rs.seed)
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
     design = prepare_design_args(testcase, lef, def_, guide)
+    if net_router is not None:
+        from xroute.policies.net_router import NetRouterPolicy
+
+        pol = NetRouterPolicy(net_router, design.dbu_per_micron)
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
     out_dir = out if out is not None else Path("out") / safe_stem(design.name)
@@ -171,6 +185,10 @@ def route(
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
         outputs = pipeline.route_to_outputs(design, out_dir, settings, pol, progress=display, started=started)
 
+    if net_router is not None and mode in ("rich", "lines"):
+        st = pol.stats
+        typer.echo(f"net router: {st['agent_connected']} nets connected by the model, "
+                   f"{st['astar_fallback']} taken over by A*")
     if mode == "json":
         print_json(outputs.metrics)
     elif mode == "quiet":
