@@ -35,12 +35,12 @@ def test_route_quiet_writes_three_files_and_one_line(runner: CliRunner, testcase
 def test_route_json_parses_and_matches_the_file(runner: CliRunner, testcase, tmp_path: Path) -> None:
     testcase(SAMPLE4)
     result = runner.invoke(app, ["route", SAMPLE4, "--out", str(tmp_path), "--json", "--iterations", "3",
-                                 "--threads", "2", "--region-size", "4"])
+                                 "--threads", "2", "--region-size", "4", "--repair-rounds", "2"])
     assert result.exit_code == 0, result.output + result.stderr
     data = json.loads(result.stdout)
     assert data == json.loads((tmp_path / f"{SAMPLE4}.metrics.json").read_text())
     assert data["settings"] == {"region_size": 4, "iterations": 3, "threads": 2, "seed": 1, "schedule": None,
-                                "policy": "heuristic"}
+                                "repair_rounds": 2, "policy": "heuristic"}
     assert 1 <= len(data["iterations"]) <= 3
     assert data["final"]["open_nets"] == 0 and data["final"]["nets"] == nets_of(SAMPLE4)
 

@@ -88,7 +88,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
     assert data["settings"] == {"region_size": 5, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
-                                "policy": "heuristic"}
+                                "repair_rounds": 0, "policy": "heuristic"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
         assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
@@ -354,3 +354,15 @@ def test_a_region_size_too_large_for_the_design_is_a_clear_error(tmp_path: Path)
         design = load_design(lef=tmp_path / "big.lef", def_=tmp_path / "big.def")
     with pytest.raises(RouteArgumentError, match="smaller region size"):
         route_design(design, region_size=1000, iterations=1)
+
+
+def test_repair_rounds_setting_reaches_the_engine(tmp_path) -> None:
+    """repair_rounds: out-of-range values are refused; the setting is recorded in the metrics, and the
+    demo routed with repair inside its regions keeps 0 opens and 0 violations."""
+    from xroute import RouteSettings, prepare_design, route_to_outputs
+
+    with pytest.raises(RouteArgumentError, match="repair_rounds must be an integer in 0..64"):
+        RouteSettings(repair_rounds=65)
+    outputs = route_to_outputs(prepare_design("demo"), tmp_path, RouteSettings(repair_rounds=2))
+    assert outputs.metrics["settings"]["repair_rounds"] == 2
+    assert (outputs.figures.open_nets, outputs.figures.violations) == (0, 0)
