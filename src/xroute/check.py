@@ -150,7 +150,10 @@ def lyrdb_text(result: CheckResult, design: Design) -> str:
             "   <references/>", "  </cell>", " </cells>", " <items>"]
     for m in result.markers:
         xlo, ylo, xhi, yhi = (v / dbu for v in m["box"])
-        nets = ", ".join(_net_label(design, int(n)) for n in m["nets"] if int(n) != -2)
+        ids = [int(n) for n in m["nets"]]
+        if m["type"] == "MinArea":  # one conductor: its second id is -1 for "none", not an obstruction
+            ids = ids[:1]
+        nets = ", ".join(_net_label(design, n) for n in ids)
         text = escape(f"{m['layer']}: {nets}").replace("'", "&apos;")
         out += ["  <item>", "   <tags/>", f"   <category>{escape(m['type'])}</category>", f"   <cell>{cell}</cell>",
                 "   <visited>false</visited>", "   <multiplicity>1</multiplicity>", "   <image/>", "   <values>",
