@@ -54,7 +54,11 @@ nb::dict netResultDict(const RegionNetResult& r) {
 
 }  // namespace
 
-void bindRegion(nb::module_& m) {
+namespace {
+
+using RegionClass = nb::class_<RegionHandle>;
+
+void bindRoutingSession(nb::module_& m) {
   nb::class_<RoutingSession>(m, "RoutingSession",
                              "What every region of one design shares: tracks, vias, pin access, fixed shapes.")
       .def(
@@ -104,8 +108,11 @@ void bindRegion(nb::module_& m) {
           "box"_a, "iteration"_a = 0, nb::rv_policy::take_ownership, nb::keep_alive<0, 1>(),
           "Opens the region box (xlo, ylo, xhi, yhi) in DBU: nets with pins or routing inside, or whose guides "
           "cross its edges, become candidates (routed nets are ripped up inside the box).");
+}
 
-  nb::class_<RegionHandle>(m, "Region", "One routing region, routed net by net in the caller's order.")
+// Region: box, candidates, what is routed.
+void bindRegionState(RegionClass& cls) {
+  cls
       .def_prop_ro(
           "box",
           [](const RegionHandle& h) {
@@ -134,7 +141,12 @@ void bindRegion(nb::module_& m) {
             }
             return out;
           },
-          "Indices of the candidates not routed yet.")
+          "Indices of the candidates not routed yet.");
+}
+
+// Region: routing nets: the maze, caller paths, the rest.
+void bindRegionRouting(RegionClass& cls) {
+  cls
       .def(
           "route_net",
           [](RegionHandle& h, int32_t i) {
@@ -209,7 +221,12 @@ void bindRegion(nb::module_& m) {
             nb::gil_scoped_release release;
             h.get().routeAll(*p, h.ws);
           },
-          "policy"_a = "heuristic", "seed"_a = 1, "Routes every candidate not routed yet in a built-in policy's order.")
+          "policy"_a = "heuristic", "seed"_a = 1, "Routes every candidate not routed yet in a built-in policy's order.");
+}
+
+// Region: metrics.
+void bindRegionResults(RegionClass& cls) {
+  cls
       .def(
           "metrics",
           [](const RegionHandle& h) {
@@ -245,7 +262,12 @@ void bindRegion(nb::module_& m) {
             return d;
           },
           "The new routing so far: wirelength_dbu, vias, nets_routed, unreached terminals, and the design-rule "
-          "violations inside the box (fixed-only ones skipped).")
+          "violations inside the box (fixed-only ones skipped).");
+}
+
+// Region: grid views and commit.
+void bindRegionGrid(RegionClass& cls) {
+  cls
       .def(
           "grid",
           [](nb::handle self) {
@@ -295,4 +317,15 @@ void bindRegion(nb::module_& m) {
             h.committed = true;
           },
           "Writes the region's new routing into the design (other open regions of the session become stale).");
+}
+
+}  // namespace
+
+void bindRegion(nb::module_& m) {
+  bindRoutingSession(m);
+  RegionClass cls(m, "Region", "One routing region, routed net by net in the caller's order.");
+  bindRegionState(cls);
+  bindRegionRouting(cls);
+  bindRegionResults(cls);
+  bindRegionGrid(cls);
 }
