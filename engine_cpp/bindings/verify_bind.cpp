@@ -76,8 +76,12 @@ nb::dict metricsDict(const Tech& tech, const RoutingMetrics& m) {
 
 using namespace xroute;
 
-void bindVerify(nb::module_& m) {
-  nb::class_<Database> cls = nb::borrow<nb::class_<Database>>(nb::type<Database>());
+namespace {
+
+using DatabaseClass = nb::class_<Database>;
+
+// Opens and metrics of the routing a Database holds.
+void bindConnectivity(DatabaseClass& cls) {
   cls.def(
       "check_connectivity",
       [](const Database& db) {
@@ -109,6 +113,10 @@ void bindVerify(nb::module_& m) {
       "Routing metrics of the regular nets: {wirelength_dbu (sum of wire piece lengths, extensions not\n"
       "counted), wirelength_um, wirelength_by_layer {routing layer: DBU}, vias (instances),\n"
       "vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.");
+}
+
+// Everything a routed design is judged on (xroute check).
+void bindCheckRouting(DatabaseClass& cls) {
   cls.def(
       "check_routing",
       [](const Database& db, bool skip_fixed_pairs) {
@@ -165,6 +173,10 @@ void bindVerify(nb::module_& m) {
       "its point is off the preferred-direction tracks of its bottom or top metal layer (y on a TRACKS Y\n"
       "line of a horizontal layer, x on a TRACKS X line of a vertical one), and out-of-guide when no\n"
       "guide of its net on its bottom metal, or none on its top metal, contains its point.");
+}
+
+// The marker report file.
+void bindDrcReport(DatabaseClass& cls) {
   cls.def(
       "write_drc_report",
       [](const Database& db, const std::string& path, bool skip_fixed_pairs) {
@@ -189,4 +201,13 @@ void bindVerify(nb::module_& m) {
       "<net1> <net2>' (DBU; net names, '-' for none or an obstruction; pins on no net as comp/pin,\n"
       "*/pin or PIN/name). Returns {marker type: count} for every type. Raises InputError when the\n"
       "file cannot be written (nothing is left behind).");
+}
+
+}  // namespace
+
+void bindVerify(nb::module_& m) {
+  nb::class_<Database> cls = nb::borrow<nb::class_<Database>>(nb::type<Database>());
+  bindConnectivity(cls);
+  bindCheckRouting(cls);
+  bindDrcReport(cls);
 }
