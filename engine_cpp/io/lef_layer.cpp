@@ -20,6 +20,52 @@ bool typeFromName(std::string_view s, LayerType& out) {
 
 }  // namespace
 
+// DIRECTION HORIZONTAL | VERTICAL ;  (DIAG45 / DIAG135 are counted and read as no direction)
+void LefParser::parseLayerDirection(Layer& layer) {
+  const Token d = name("HORIZONTAL or VERTICAL");
+  if (d.text == "HORIZONTAL") {
+    layer.direction = Direction::Horizontal;
+  } else if (d.text == "VERTICAL") {
+    layer.direction = Direction::Vertical;
+  } else if (d.text == "DIAG45" || d.text == "DIAG135") {
+    layer.direction = Direction::None;
+    count("LAYER.DIRECTION", d.text);
+  } else {
+    failAt(d, "unknown DIRECTION " + quoteToken(d.text));
+  }
+  endStatement();
+}
+
+// PITCH p [py] ;  |  OFFSET o [oy] ;  (one value: the same along x and y)
+void LefParser::parseLayerPitchOrOffset(Layer& layer, bool pitch) {
+  const std::string what = std::string(pitch ? "PITCH" : "OFFSET") + " of LAYER " + quoteToken(layer.name);
+  const Dbu a = pitch ? positiveDist(what) : nonNegativeDist(what);
+  const Dbu b = peekIs(";") ? a : (pitch ? positiveDist(what) : nonNegativeDist(what));
+  endStatement();
+  if (pitch) {
+    layer.pitchX = a;
+    layer.pitchY = b;
+  } else {
+    layer.offsetX = a;
+    layer.offsetY = b;
+  }
+}
+
+// "{AC|DC}CURRENTDENSITY kind value ;" or a table written as several
+// ';'-ended statements (FREQUENCY / WIDTH / CUTAREA ... TABLEENTRIES ... ;): skipped and counted.
+void LefParser::skipCurrentDensity(std::string_view keyword) {
+  next();  // PEAK / AVERAGE / RMS
+  const bool table = !isNumberText(peek().text);
+  bool seenEntries = !table;
+  while (true) {
+    const Token t = next();
+    if (t.quoted) continue;
+    if (t.text == "TABLEENTRIES") seenEntries = true;
+    if (t.text == ";" && seenEntries) break;
+  }
+  count("LAYER", keyword);
+}
+
 void LefParser::parseLayer(const Token& opener) {
   const Token n = name("a layer name");
   if (tech_.findLayer(n.text).valid()) failAt(n, "duplicate LAYER " + quoteToken(n.text));
@@ -59,31 +105,9 @@ void LefParser::parseLayer(const Token& opener) {
       layer.width = positiveDist("WIDTH of LAYER " + quoteToken(layer.name));
       endStatement();
     } else if (routing && k == "DIRECTION") {
-      const Token d = name("HORIZONTAL or VERTICAL");
-      if (d.text == "HORIZONTAL") {
-        layer.direction = Direction::Horizontal;
-      } else if (d.text == "VERTICAL") {
-        layer.direction = Direction::Vertical;
-      } else if (d.text == "DIAG45" || d.text == "DIAG135") {
-        layer.direction = Direction::None;
-        count("LAYER.DIRECTION", d.text);
-      } else {
-        failAt(d, "unknown DIRECTION " + quoteToken(d.text));
-      }
-      endStatement();
+      parseLayerDirection(layer);
     } else if (routing && (k == "PITCH" || k == "OFFSET")) {
-      const bool pitch = k == "PITCH";
-      const std::string what = std::string(k) + " of LAYER " + quoteToken(layer.name);
-      const Dbu a = pitch ? positiveDist(what) : nonNegativeDist(what);
-      const Dbu b = peekIs(";") ? a : (pitch ? positiveDist(what) : nonNegativeDist(what));
-      endStatement();
-      if (pitch) {
-        layer.pitchX = a;
-        layer.pitchY = b;
-      } else {
-        layer.offsetX = a;
-        layer.offsetY = b;
-      }
+      parseLayerPitchOrOffset(layer, k == "PITCH");
     } else if (routing && k == "MINWIDTH") {
       layer.minWidth = positiveDist("MINWIDTH of LAYER " + quoteToken(layer.name));
       endStatement();
@@ -99,18 +123,7 @@ void LefParser::parseLayer(const Token& opener) {
     } else if (cut && k == "SPACING") {
       parseCutSpacing(layer, kw);
     } else if (k == "ACCURRENTDENSITY" || k == "DCCURRENTDENSITY") {
-      // "{AC|DC}CURRENTDENSITY kind value ;" or a table written as several
-      // ';'-ended statements (FREQUENCY / WIDTH / CUTAREA ... TABLEENTRIES ... ;).
-      next();  // PEAK / AVERAGE / RMS
-      const bool table = !isNumberText(peek().text);
-      bool seenEntries = !table;
-      while (true) {
-        const Token t = next();
-        if (t.quoted) continue;
-        if (t.text == "TABLEENTRIES") seenEntries = true;
-        if (t.text == ";" && seenEntries) break;
-      }
-      count("LAYER", k);
+      skipCurrentDensity(k);
     } else {
       skipStatement("LAYER", kw);
     }

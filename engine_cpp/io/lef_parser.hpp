@@ -71,6 +71,9 @@ class LefParser {
   void parsePropertyDefinitions(const Token& opener);
   void parseSite(const Token& opener);
   void parseLayer(const Token& opener);
+  void parseLayerDirection(Layer& layer);
+  void parseLayerPitchOrOffset(Layer& layer, bool pitch);
+  void skipCurrentDensity(std::string_view keyword);
   void parseRoutingSpacing(Layer& layer, const Token& kw);
   void parseCutSpacing(Layer& layer, const Token& kw);
   void parseSpacingTable(Layer& layer, const Token& kw);
