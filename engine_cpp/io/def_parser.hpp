@@ -46,6 +46,8 @@ class DefParser {
   // def_vias.cpp
   void readVias();
   void readVia();
+  ViaShape readViaShape(const Token& kw);
+  void finishVia(DefVia& v, int ruleLine);
 
   // def_nets.cpp
   void readSpecialNets();

@@ -149,27 +149,7 @@ void DefParser::readVia() {
     const Token kw = lex_.next();
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "RECT" || k == "POLYGON") {
-      const LayerId layer = layerAt(lex_.next());
-      if (lex_.accept("+")) {
-        lex_.expect("MASK");
-        lex_.integer();
-        countSkip("VIAS.MASK");
-      }
-      Rect r;
-      if (k == "RECT") {
-        const Point a = readPoint();
-        const Point b = readPoint();
-        r = Rect::fromCorners(a, b);
-      } else {
-        std::vector<Point> pts;
-        while (peekIs("(")) pts.push_back(readPoint());
-        if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
-        r = Rect{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
-        for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
-        countSkip("VIAS.POLYGON");
-        ++design_.warningCount;
-      }
-      v.via.shapes.push_back({layer, r});
+      v.via.shapes.push_back(readViaShape(kw));
       haveShapes = true;
     } else if (k == "VIARULE") {
       const Token ruleTok = lex_.next();
@@ -223,25 +203,54 @@ void DefParser::readVia() {
     }
   }
   if (v.generated && haveShapes) lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " has both VIARULE and RECT");
+  if (v.generated && (!haveCutSize || !haveLayers)) {
+    lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " needs + CUTSIZE and + LAYERS with its VIARULE");
+  }
+  finishVia(v, ruleLine);
+  design_.vias.push_back(std::move(v));
+}
+
+// + RECT layer pt pt  |  + POLYGON layer pt pt pt ... (kept as its bounding box, counted), with an
+// optional + MASK n after the layer (skipped, counted).
+ViaShape DefParser::readViaShape(const Token& kw) {
+  const LayerId layer = layerAt(lex_.next());
+  if (lex_.accept("+")) {
+    lex_.expect("MASK");
+    lex_.integer();
+    countSkip("VIAS.MASK");
+  }
+  if (kw.text == "RECT") {
+    const Point a = readPoint();
+    const Point b = readPoint();
+    return {layer, Rect::fromCorners(a, b)};
+  }
+  std::vector<Point> pts;
+  while (peekIs("(")) pts.push_back(readPoint());
+  if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+  Rect r{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+  for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  countSkip("VIAS.POLYGON");
+  ++design_.warningCount;
+  return {layer, r};
+}
+
+// A generated via gets its shapes from its rule; a fixed one its bottom/top (the lowest and
+// highest routing layers, LEF order) and cut layer from its shapes.
+void DefParser::finishVia(DefVia& v, int ruleLine) {
   if (v.generated) {
-    if (!haveCutSize || !haveLayers) {
-      lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + " needs + CUTSIZE and + LAYERS with its VIARULE");
-    }
     std::string error;
     if (!generateViaShapes(v, error)) lex_.fail(ruleLine, "via " + quoteToken(v.via.name) + ": " + error);
-  } else {
-    // Bottom/top: the lowest and highest routing layers (LEF order); cut: a cut layer.
-    for (const ViaShape& s : v.via.shapes) {
-      const Layer& l = tech_.layer(s.layer);
-      if (l.type == LayerType::Cut) {
-        if (!v.via.cut.valid()) v.via.cut = s.layer;
-      } else if (l.type == LayerType::Routing) {
-        if (!v.via.bottom.valid() || *s.layer < *v.via.bottom) v.via.bottom = s.layer;
-        if (!v.via.top.valid() || *s.layer > *v.via.top) v.via.top = s.layer;
-      }
+    return;
+  }
+  for (const ViaShape& s : v.via.shapes) {
+    const Layer& l = tech_.layer(s.layer);
+    if (l.type == LayerType::Cut) {
+      if (!v.via.cut.valid()) v.via.cut = s.layer;
+    } else if (l.type == LayerType::Routing) {
+      if (!v.via.bottom.valid() || *s.layer < *v.via.bottom) v.via.bottom = s.layer;
+      if (!v.via.top.valid() || *s.layer > *v.via.top) v.via.top = s.layer;
     }
   }
-  design_.vias.push_back(std::move(v));
 }
 
 }  // namespace xroute
