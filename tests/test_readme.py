@@ -97,10 +97,9 @@ def test_status_table_figures_of_the_small_designs_are_current(name: str, testca
     assert name in rows, f"the README's status table has no row for {name}"
     if name != "demo":
         testcase(name)  # skips when the contest data is absent
-    from xroute import RouteSettings, prepare_design, route_design
+    from xroute import prepare_design, route_design
 
-    design = prepare_design(name)
-    result = route_design(design, **{k: getattr(RouteSettings(), k) for k in ("region_size", "iterations")})
+    result = route_design(prepare_design(name))  # the defaults, as bench/quality.py routes
     wl, vias, violations = rows[name]
     assert (round(result.wirelength_um, 1), result.vias, result.violations) == (wl, vias, violations)
 

@@ -357,12 +357,26 @@ def test_a_region_size_too_large_for_the_design_is_a_clear_error(tmp_path: Path)
 
 
 def test_repair_rounds_setting_reaches_the_engine(tmp_path) -> None:
-    """repair_rounds: out-of-range values are refused; the setting is recorded in the metrics, and the
-    demo routed with repair inside its regions keeps 0 opens and 0 violations."""
+    """repair_rounds: out-of-range values are refused; the setting is recorded in the metrics and
+    changes the routing (the demo with repair inside its regions differs from the demo without,
+    and both end with 0 opens and 0 violations)."""
     from xroute import RouteSettings, prepare_design, route_to_outputs
 
     with pytest.raises(RouteArgumentError, match="repair_rounds must be an integer in 0..64"):
         RouteSettings(repair_rounds=65)
-    outputs = route_to_outputs(prepare_design("demo"), tmp_path, RouteSettings(repair_rounds=2))
-    assert outputs.metrics["settings"]["repair_rounds"] == 2
-    assert (outputs.figures.open_nets, outputs.figures.violations) == (0, 0)
+    runs = {n: route_to_outputs(prepare_design("demo"), tmp_path / str(n), RouteSettings(repair_rounds=n))
+            for n in (0, 3)}
+    assert runs[3].metrics["settings"]["repair_rounds"] == 3
+    figures = {n: (o.figures.wirelength_um, o.figures.vias) for n, o in runs.items()}
+    assert figures[0] != figures[3]
+    assert all((o.figures.open_nets, o.figures.violations) == (0, 0) for o in runs.values())
+
+
+def test_route_settings_fields_are_route_design_keywords() -> None:
+    """The pipeline passes RouteSettings.keywords() to route_design: the two must not drift apart."""
+    import inspect
+
+    from xroute.router import RouteSettings
+
+    keywords = set(inspect.signature(route_design).parameters) - {"design", "policy", "progress"}
+    assert keywords == set(RouteSettings().keywords())

@@ -78,21 +78,15 @@ def check_design_args(testcase: str | None, lef: list[Path] | None, def_: Path |
         raise typer.BadParameter("give a testcase name, or both --lef and --def", param_hint="TESTCASE")
 
 
-def load_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> Design:
-    """Loads the design the (checked) arguments name, as it is (no global routing); the compiled
+def load_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None,
+                     prepare: bool = False) -> Design:
+    """Loads the design the (checked) arguments name: as it is, or with ``prepare`` ready to route
+    (:func:`xroute.pipeline.prepare_design`: global-routed when it has no guide). The compiled
     engine loads only now."""
     from xroute.design import load_design
-
-    if testcase is not None:
-        return load_design(testcase)
-    return load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
-
-
-def prepare_design_args(testcase: str | None, lef: list[Path] | None, def_: Path | None, guide: Path | None) -> Design:
-    """Loads the design the (checked) arguments name, ready to route (:func:`xroute.pipeline.prepare_design`:
-    global-routed when it has no guide)."""
     from xroute.pipeline import prepare_design
 
+    load = prepare_design if prepare else load_design
     if testcase is not None:
-        return prepare_design(testcase)
-    return prepare_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
+        return load(testcase)
+    return load(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)

@@ -119,7 +119,7 @@ void bindConnectivity(DatabaseClass& cls) {
 void bindCheckRouting(DatabaseClass& cls) {
   cls.def(
       "check_routing",
-      [](const Database& db, bool skip_fixed_pairs) {
+      [](const Database& db, bool skip_fixed_pairs, const std::string& report_path) {
         ConnectivityReport conn;
         RoutingMetrics metrics;
         GuideTrackFigures figures;
@@ -131,7 +131,9 @@ void bindCheckRouting(DatabaseClass& cls) {
           figures = computeGuideTrackFigures(db.tech, db.design);
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
-          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design), options);
+          std::vector<std::string> names;
+          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design, &names), options);
+          if (!report_path.empty()) writeDrcReport(report_path, db.tech, markers, names);  // the same markers
         }
         const int dbu = db.design.dbuPerMicron > 0 ? db.design.dbuPerMicron : db.tech.dbuPerMicron;
         auto um = [&](int64_t v) { return dbu > 0 ? double(v) / dbu : 0.0; };
@@ -159,8 +161,9 @@ void bindCheckRouting(DatabaseClass& cls) {
         }
         return d;
       },
-      "skip_fixed_pairs"_a = true,
-      "Everything a routed design is judged on, in one call (the engine side of `xroute check`).\n\n"
+      "skip_fixed_pairs"_a = true, "report_path"_a = "",
+      "Everything a routed design is judged on, in one call (the engine side of `xroute check`); with\n"
+      "report_path, also writes the markers found as write_drc_report does (no second check).\n\n"
       "Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens\n"
       "(open nets), connectivity (check_connectivity's dict), markers (check_drc's list),\n"
       "wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/\n"

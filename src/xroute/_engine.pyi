@@ -192,9 +192,10 @@ class Database:
         vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.
         """
 
-    def check_routing(self, skip_fixed_pairs: bool = True) -> dict:
+    def check_routing(self, skip_fixed_pairs: bool = True, report_path: str = '') -> dict:
         """
-        Everything a routed design is judged on, in one call (the engine side of `xroute check`).
+        Everything a routed design is judged on, in one call (the engine side of `xroute check`); with
+        report_path, also writes the markers found as write_drc_report does (no second check).
 
         Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens
         (open nets), connectivity (check_connectivity's dict), markers (check_drc's list),

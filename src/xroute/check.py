@@ -94,10 +94,11 @@ def contest_terms(raw: dict[str, Any], pitch_dbu: int) -> dict[str, float]:
     return {k: SCORE_WEIGHTS[k] * v for k, v in figures.items()}
 
 
-def check_design(design: Design) -> CheckResult:
+def check_design(design: Design, report_path: str | os.PathLike[str] | None = None) -> CheckResult:
     """Checks the routing ``design`` holds (a routed DEF, read with its LEF and, for the guide
-    figures, its guide file)."""
-    raw = design.engine.check_routing()
+    figures, its guide file); with ``report_path``, the markers are also written there as a text
+    DRC report (atomically, from the same check)."""
+    raw = design.engine.check_routing(report_path=os.fspath(report_path) if report_path is not None else "")
     by_type: dict[str, int] = {}
     for m in raw["markers"]:
         by_type[m["type"]] = by_type.get(m["type"], 0) + 1
@@ -163,16 +164,16 @@ def lyrdb_text(result: CheckResult, design: Design) -> str:
     return "\n".join(out)
 
 
-def write_check_outputs(result: CheckResult, design: Design, out_dir: str | os.PathLike[str],
-                        stem: str) -> dict[str, Path]:
-    """Writes ``<stem>.check.json`` (figures, markers included), ``<stem>.drc.rpt`` (the text
-    marker report) and ``<stem>.lyrdb`` into ``out_dir``, each atomically."""
+def check_paths(out_dir: str | os.PathLike[str], stem: str) -> dict[str, Path]:
+    """Where :func:`check_design` (``report``) and :func:`write_check_outputs` write in ``out_dir``."""
+    out = Path(out_dir)
+    return {"json": out / f"{stem}.check.json", "report": out / f"{stem}.drc.rpt", "lyrdb": out / f"{stem}.lyrdb"}
+
+
+def write_check_outputs(result: CheckResult, design: Design, paths: dict[str, Path]) -> None:
+    """Writes ``json`` (figures, markers included) and ``lyrdb`` of :func:`check_paths`, each
+    atomically (the text report comes from :func:`check_design` itself)."""
     import json
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = {"json": out / f"{stem}.check.json", "report": out / f"{stem}.drc.rpt", "lyrdb": out / f"{stem}.lyrdb"}
-    design.engine.write_drc_report(str(paths["report"]))
     atomic_write_text(paths["lyrdb"], lyrdb_text(result, design))
     atomic_write_text(paths["json"], json.dumps(result.to_dict(with_markers=True), indent=2) + "\n")
-    return paths

@@ -50,18 +50,8 @@ def route(
     progress: Callable[[RouteProgress], None] | None = None,
 ) -> RouteResult:
     """Detailed-routes a prepared design in place with ``settings`` and ``policy``."""
-    return router.route_design(  # looked up on the module: tests may replace it
-        design,
-        region_size=settings.region_size,
-        iterations=settings.iterations,
-        threads=settings.threads,
-        seed=settings.seed,
-        schedule=settings.schedule,
-        policy_timeout=settings.policy_timeout,
-        repair_rounds=settings.repair_rounds,
-        policy=policy,
-        progress=progress,
-    )
+    # looked up on the module: tests may replace it
+    return router.route_design(design, policy=policy, progress=progress, **settings.keywords())
 
 
 def route_to_outputs(

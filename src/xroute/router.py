@@ -13,7 +13,7 @@ regions and at the end of each iteration.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from xroute.policy import HeuristicPolicy, NetOrderPolicy, RandomPolicy, builtin_policy, check_order
@@ -59,6 +59,10 @@ class RouteSettings:
     policy_timeout: float | None = None
     # check-and-reroute rounds inside each region before it is committed (iterations after the first)
     repair_rounds: int = defaults.REPAIR_ROUNDS
+
+    def keywords(self) -> dict[str, Any]:
+        """The settings as :func:`route_design`'s keyword arguments (its setting keywords are these fields)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
     def __post_init__(self) -> None:
         if self.schedule is not None:
@@ -270,9 +274,11 @@ def route_design(
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
-    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), or a policy object (policy
-    files and ONNX models: :func:`xroute.policies.get_policy`) (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` -
-    whose own seed is used -, ``CallablePolicy(fn)`` or anything with ``name`` and ``order``).
+    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), or a policy object
+    (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
+    ``CallablePolicy(fn)``, anything with ``name`` and ``order``; policy files and ONNX models
+    through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
+    fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
     Built-in policies run in C++; any other is called once per region. Raises
     :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception

@@ -23,13 +23,15 @@ EXIT_OPENS = 1
 
 
 def _stem(def_path: Path) -> str:
+    """The output stem: the DEF's name less .routed.def / .def, made safe (xroute.safe_paths)."""
+    from xroute.safe_paths import safe_stem
+
     name = def_path.name
     for suffix in (".routed.def", ".def"):
         if name.lower().endswith(suffix):
             name = name[: -len(suffix)]
             break
-    keep = "".join(c if c.isalnum() or c in "-_." else "-" for c in name).strip(".-")
-    return keep or "design"
+    return safe_stem(name)
 
 
 def _table(r) -> Table:  # noqa: ANN001 - a CheckResult
@@ -72,7 +74,7 @@ def check(
     Give the routed DEF with --def and either a testcase name (its LEF and guide are used) or
     --lef files (and --guide for the out-of-guide figures). Exit status 1 when a net is open.
     """
-    from xroute.check import check_design, write_check_outputs
+    from xroute.check import check_design, check_paths, write_check_outputs
     from xroute.design import load_design
     from xroute.testcases.registry import find_testcase
 
@@ -88,9 +90,12 @@ def check(
         if guide is None and found.guide is not None:
             guide = found.guide
     design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
-    result = check_design(design)
     stem = _stem(def_)
-    paths = write_check_outputs(result, design, out if out is not None else Path("out") / f"check-{stem}", stem)
+    out_dir = out if out is not None else Path("out") / f"check-{stem}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    paths = check_paths(out_dir, stem)
+    result = check_design(design, report_path=paths["report"])
+    write_check_outputs(result, design, paths)
 
     if as_json:
         print_json(result.to_dict())

@@ -20,7 +20,7 @@ from xroute.cli.console import (
     LefOption,
     TestcaseArg,
     check_design_args,
-    prepare_design_args,
+    load_design_args,
     print_json,
     stdout_console,
 )
@@ -166,7 +166,7 @@ def route(
     pol = get_policy(rs.policy, rs.seed)
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
-    design = prepare_design_args(testcase, lef, def_, guide)
+    design = load_design_args(testcase, lef, def_, guide, prepare=True)
     if net_router is not None:
         from xroute.policies.net_router import NetRouterPolicy
 
