@@ -14,6 +14,7 @@ void bindVerify(nb::module_& m);
 void bindRouter(nb::module_& m);
 void bindPinAccess(nb::module_& m);
 void bindRegion(nb::module_& m);
+void bindFirstPass(nb::module_& m);
 void bindGlobalRouter(nb::module_& m);
 void bindDefaults(nb::module_& m);
 
@@ -42,6 +43,7 @@ NB_MODULE(_engine, m) {
   bindRouter(m);
   bindPinAccess(m);
   bindRegion(m);
+  bindFirstPass(m);
   bindGlobalRouter(m);
   bindDefaults(m);
 }

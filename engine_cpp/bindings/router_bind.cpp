@@ -16,6 +16,7 @@
 
 #include "bindings/arrays.hpp"
 #include "bindings/region_handle.hpp"
+#include "bindings/report_dict.hpp"
 #include "db/database.hpp"
 #include "flow/policy.hpp"
 #include "flow/router.hpp"
@@ -85,27 +86,6 @@ class PythonPolicy final : public NetOrderPolicy {
   std::string name_;  // in error messages
   std::mutex mutex_;
 };
-
-nb::dict reportDict(const IterationReport& r, int dbuPerMicron) {
-  nb::dict d;
-  d["iteration"] = r.iteration;
-  d["region_size"] = r.regionSize;
-  d["offset"] = r.offset;
-  d["regions"] = r.regions;
-  d["net_routes"] = r.netRoutes;
-  d["unreached"] = r.unreached;
-  d["wirelength_dbu"] = r.wirelength;
-  d["wirelength_um"] = dbuPerMicron > 0 ? double(r.wirelength) / dbuPerMicron : 0.0;
-  d["vias"] = r.vias;
-  nb::dict byType;
-  for (int t = 0; t < kMarkerTypes; ++t) {
-    byType[std::string(markerTypeName(static_cast<MarkerType>(t))).c_str()] = r.markersByType[t];
-  }
-  d["violations_by_type"] = byType;
-  d["violations"] = r.markers;
-  d["seconds"] = r.seconds;
-  return d;
-}
 
 }  // namespace
 

@@ -44,8 +44,10 @@ ScheduleStep stepFor(const RouterSettings& s, int iteration) {
 
 class Flow {
  public:
-  Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress)
-      : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
+  Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress,
+       const ColourHook& beforeColour)
+      : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
+        ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
 
   RouteOutcome run() {
     for (Net& n : design_.nets) n.routing = NetRouting{};
@@ -167,6 +169,7 @@ class Flow {
         RegionTask t = it == 0 ? initialTask(r, plan, it) : repairTask(r, it);
         if (!t.nets.empty()) tasks.push_back(std::move(t));
       }
+      if (it == 0 && beforeColour_) beforeColour_(color, plan, tasks);
       std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
@@ -228,6 +231,7 @@ class Flow {
   const RouterSettings& s_;
   NetOrderPolicy& policy_;
   const RouteProgress& progress_;
+  const ColourHook& beforeColour_;
   RouteContext ctx_;
   std::vector<Marker> markers_;
   std::vector<MarkerCost> history_;
@@ -236,8 +240,8 @@ class Flow {
 }  // namespace
 
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
-                         const RouteProgress& progress) {
-  return Flow(tech, design, settings, policy, progress).run();
+                         const RouteProgress& progress, const ColourHook& beforeColour) {
+  return Flow(tech, design, settings, policy, progress, beforeColour).run();
 }
 
 }  // namespace xroute

@@ -74,9 +74,16 @@ struct RouteOutcome {
 // Called after every region batch: (iteration so far, regions done, regions with work).
 using RouteProgress = std::function<void(const IterationReport&, int, int)>;
 
+struct CrossingPlan;
+struct RegionTask;
+// Called in iteration 0 before each colour's regions are routed: (colour, the crossing plan with the
+// choices of the colours before, that colour's region tasks); the design holds the routing of the
+// colours before. What a replay of the first pass keeps (flow/first_pass.hpp).
+using ColourHook = std::function<void(int, const CrossingPlan&, const std::vector<RegionTask>&)>;
+
 // Routes every net of `design` (its Net::routing is replaced).
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
-                         const RouteProgress& progress = {});
+                         const RouteProgress& progress = {}, const ColourHook& beforeColour = {});
 
 // Wirelength (DBU, sum of wire lengths) and via count of the regular nets.
 void routingTotals(const Design& design, int64_t& wirelength, int64_t& vias);

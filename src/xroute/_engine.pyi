@@ -380,6 +380,38 @@ class Region:
         Writes the region's new routing into the design (other open regions of the session become stale).
         """
 
+class FirstPass:
+    """
+    The flow's first pass (iteration 0) of a session's design, kept so that each of its regions can be opened again in context (flow/first_pass.hpp).
+    """
+
+    def __init__(self, session: RoutingSession, region_size: int = 5, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:
+        """
+        Routes iteration 0 of the session's design as `xroute route` does (regions of region_size GCells, colour by colour; policy 'heuristic' or 'random' (seeded)), keeping the design's routing and crossing choices before each colour. The design is left with the whole pass routed.
+        """
+
+    @property
+    def regions(self) -> list:
+        """
+        The regions with work in the flow's order (colour, then row by row): [((gcell column, row), (xlo, ylo, xhi, yhi) in DBU, colour 0..3, nets), ...]; open_region(i) opens the i-th.
+        """
+
+    def open_region(self, index: int) -> Region:
+        """
+        Region `index` of regions, in context: the design's routing put back to what the pass had before the region's colour (earlier colours routed and their crossing points chosen, the rest unrouted) and the region's nets, pins and crossings as the flow gave them. Other open regions of the session become stale; routing it with route_rest('heuristic') gives what the pass routed there.
+        """
+
+    def restore(self, colour: int) -> None:
+        """
+        Puts the design's routing back to what it was before the regions of `colour` (0..3) were routed; 4: after the whole pass.
+        """
+
+    @property
+    def report(self) -> dict:
+        """
+        Iteration 0's report (as route()'s): wirelength, vias and violations of the whole design after the pass.
+        """
+
 def gcell_capacity(db: Database) -> dict:
     """
     The global router's GCell grid and capacities: xs, ys (GCell lines, DBU), layers (routing layer names), horizontal (preferred direction per layer), capacity and tracks (per layer, int32[ny, nx]: at [y, x] the edge from GCell (x, y) to its right neighbour on a horizontal layer, to its upper neighbour on a vertical one; free tracks after blocking, and all tracks).

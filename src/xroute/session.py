@@ -23,6 +23,22 @@ Region = _engine.Region
 """One region being routed: ``candidates``, ``grid()``, ``route_net(i)``, ``unrouted()``, ``metrics()``, ``commit()``."""
 
 
+FirstPass = _engine.FirstPass
+"""The flow's first pass of a session's design, kept for replay: ``regions``, ``open_region(i)`` (region i in
+context: the colours routed before it committed), ``restore(colour)``, ``report``; see ``engine_cpp/flow/README.md``."""
+
+
 def open_session(design: Design, threads: int = 1) -> RoutingSession:
     """A routing session over ``design`` (which must outlive it)."""
     return _engine.RoutingSession(design.engine, threads=threads)
+
+
+def first_pass(session: RoutingSession, region_size: int | None = None, *, policy: str = "heuristic", seed: int = 1,
+               threads: int = 1) -> FirstPass:
+    """Routes the first pass (iteration 0) of ``session``'s design as ``xroute route`` does, regions of
+    ``region_size`` GCells (default: the router's), ``policy`` ``heuristic`` or ``random``, and keeps it so that
+    each region can be opened again in context (:attr:`FirstPass.regions`, :meth:`FirstPass.open_region`)."""
+    from xroute.defaults import REGION_SIZE
+
+    size = REGION_SIZE if region_size is None else int(region_size)
+    return _engine.FirstPass(session, region_size=size, policy=policy, seed=seed, threads=threads)
