@@ -5,7 +5,7 @@
 * ``xroute/NetOrderingEval-v0`` (:mod:`.ordering_evaluation`, :func:`ordering_evaluation_env`):
   routes a whole testcase, the agent ordering every region;
 * ``xroute/StaticRegion-v0`` (:mod:`.static_region`, :func:`static_region_env`): one region
-  written by ``xroute make-region``;
+  written by ``xroute make-region`` (or :func:`generate_static_region`);
 * ``xroute/NetRouting-v0`` (:mod:`.net_routing`, :func:`net_routing_env`): the paper's second task,
   one net of a region routed step by step from its head.
 
@@ -31,6 +31,7 @@ _FACTORIES = {
     "ordering_training_env": "xroute.envs.ordering_training",
     "ordering_evaluation_env": "xroute.envs.ordering_evaluation",
     "static_region_env": "xroute.envs.static_region",
+    "generate_static_region": "xroute.envs.static_region",
     "net_routing_env": "xroute.envs.net_routing",
 }
 
@@ -53,4 +54,4 @@ def __getattr__(name: str) -> Any:
 
 register_envs()
 
-__all__ = ["ENV_IDS", "net_routing_env", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]
+__all__ = ["ENV_IDS", "generate_static_region", "net_routing_env", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]

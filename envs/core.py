@@ -152,24 +152,52 @@ class RegionStepper:
         return float(reward), info
 
 
+RENDER_MODES = ["rgb_array"]
+
+
+def check_render_mode(render_mode: str | None) -> str | None:
+    if render_mode is not None and render_mode not in RENDER_MODES:
+        raise ValueError(f"render_mode must be None or one of {RENDER_MODES}, got {render_mode!r}")
+    return render_mode
+
+
 class RegionEnv(gym.Env):
     """What the net-ordering envs share: the current episode's :class:`RegionStepper` (None between
-    episodes), its action mask and its engine Region. Subclasses set ``max_candidates``, create the
+    episodes), its action mask and its engine Region, ``info["action_mask"]`` and ``render()``.
+    Subclasses set ``max_candidates`` and ``render_mode`` (:func:`check_render_mode`), create the
     stepper in ``reset`` and define ``_info()`` (the env's own info keys)."""
 
+    metadata = {"render_modes": RENDER_MODES, "render_fps": 4}
     max_candidates: int
+    render_mode: str | None = None
     _stepper: RegionStepper | None = None
 
     def _info(self) -> dict[str, Any]:
         raise NotImplementedError
 
+    def _with_mask(self, info: dict[str, Any]) -> dict[str, Any]:
+        """``info`` with ``action_mask`` (bool[M]) of the observation just made (call after it)."""
+        info["action_mask"] = self.action_masks()
+        return info
+
     def _step_region(self, action: int) -> tuple[dict[str, np.ndarray], float, bool, dict[str, Any]]:
-        """Routes the chosen net: (observation, reward, region done, info with the env's keys)."""
+        """Routes the chosen net: (observation, reward, region done, info with the env's keys and the
+        next observation's action mask)."""
         if self._stepper is None:
             raise RuntimeError("the episode is over (or never started): call reset()")
         reward, info = self._stepper.step(action)
         info.update(self._info())
-        return self._stepper.observation(), reward, self._stepper.done, info
+        observation = self._stepper.observation()
+        return observation, reward, self._stepper.done, self._with_mask(info)
+
+    def render(self) -> np.ndarray | None:
+        """With ``render_mode="rgb_array"``: uint8[H, W, 3], the current region seen from above
+        (:func:`xroute.envs.render.render_grid`; a blank square between episodes). Otherwise None."""
+        if self.render_mode != "rgb_array":
+            return None
+        from xroute.envs.render import blank_picture, render_region
+
+        return blank_picture() if self._stepper is None else render_region(self._stepper.region)
 
     def action_masks(self) -> np.ndarray:
         """bool[M]: rows that are legal actions now (sb3-contrib MaskablePPO convention)."""

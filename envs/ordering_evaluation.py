@@ -32,6 +32,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_render_mode,
     empty_observation,
     observation_space,
 )
@@ -64,8 +65,6 @@ class NetOrderingEvaluationEnv(RegionEnv):
     """The whole routing flow of a testcase with the agent ordering every region (see the module
     docstring). observation_space / action_space as in :mod:`xroute.envs.core`."""
 
-    metadata = {"render_modes": []}
-
     def __init__(
         self,
         testcase_name: str = "ispd18_test1",
@@ -76,10 +75,12 @@ class NetOrderingEvaluationEnv(RegionEnv):
         weights: CostWeights = CostWeights(),
         reward_fn: RewardFn | None = None,
         out_dir: str | None = None,
+        render_mode: str | None = None,
     ) -> None:
         from xroute.router import RouteSettings
 
         RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
+        self.render_mode = check_render_mode(render_mode)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.iteration_count = iteration_count
@@ -165,8 +166,9 @@ class NetOrderingEvaluationEnv(RegionEnv):
         self._start()
         final = self._next_event()
         if self._stepper is None:  # nothing to route at all
-            return empty_observation(self.max_candidates), final
-        return self._stepper.observation(), self._info()
+            return empty_observation(self.max_candidates), self._with_mask(final)
+        observation = self._stepper.observation()
+        return observation, self._with_mask(self._info())
 
     def _info(self) -> dict[str, Any]:
         s = self._stepper
@@ -184,9 +186,10 @@ class NetOrderingEvaluationEnv(RegionEnv):
         final = self._next_event()
         if self._stepper is None:
             info.update(final)
-            return empty_observation(self.max_candidates), reward, True, False, info
+            return empty_observation(self.max_candidates), reward, True, False, self._with_mask(info)
         info.update(self._info())
-        return self._stepper.observation(), reward, False, False, info
+        observation = self._stepper.observation()
+        return observation, reward, False, False, self._with_mask(info)
 
     def close(self) -> None:
         self._stop()

@@ -9,6 +9,15 @@ region the walk starts again on a freshly loaded design, ``testcase_loop`` passe
 (GCell column, row of a region's lower-left) restricts the walk to that one region, which is then
 never committed: every episode starts from the same state.
 
+``in_context=True`` draws the regions of the router's own first pass instead
+(:func:`xroute.session.first_pass`, routed once per env with the heuristic at ``region_size``,
+default then the router's region size): each episode opens its region in the state the first pass
+routed it in, every region of an earlier colour (``(rx % 2) + 2 (ry % 2)``) committed with its
+crossing points chosen and the rest unrouted, so the cost counts what the order causes next to
+real neighbours rather than next to an empty design. Nothing is committed; the walk follows the
+flow's order (colour, then row by row), or a permutation with ``region_order="random"``, and
+starts over after the last region without reloading anything.
+
 Spaces and reward: see :mod:`xroute.envs.core`. One step routes one net; the episode
 terminates when every candidate of the region is routed.
 
@@ -30,6 +39,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_render_mode,
     observation_space,
 )
 
@@ -41,12 +51,10 @@ class NetOrderingTrainingEnv(RegionEnv):
     action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
     """
 
-    metadata = {"render_modes": []}
-
     def __init__(
         self,
         testcase_name: str = "ispd18_test1",
-        region_size: int = 1,
+        region_size: int | None = None,
         testcase_loop: int = 1,
         region_location: tuple[int, int] | None = None,
         region_loop: int = 1,
@@ -55,12 +63,20 @@ class NetOrderingTrainingEnv(RegionEnv):
         weights: CostWeights = CostWeights(),
         reward_fn: RewardFn | None = None,
         region_order: str = "sequential",
+        in_context: bool = False,
+        render_mode: str | None = None,
     ) -> None:
+        if region_size is None:
+            from xroute.defaults import REGION_SIZE
+
+            region_size = REGION_SIZE if in_context else 1
         for name, value in (("region_size", region_size), ("testcase_loop", testcase_loop), ("region_loop", region_loop)):
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
         if region_order not in ("sequential", "random"):
             raise ValueError(f"region_order must be 'sequential' or 'random', got {region_order!r}")
+        self.render_mode = check_render_mode(render_mode)
+        self.in_context = bool(in_context)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.testcase_loop = testcase_loop
@@ -75,13 +91,16 @@ class NetOrderingTrainingEnv(RegionEnv):
         self.passes_done = 0
         self._design: Any = None
         self._session: Any = None
+        self._first_pass: Any = None  # in context: the first pass, routed once
         self._dirty = True  # the design holds committed regions (or none is loaded)
-        self._walk: list[tuple[tuple[int, int], tuple[int, int, int, int]]] = []
+        # (location, box, index of the region in the first pass or -1)
+        self._walk: list[tuple[tuple[int, int], tuple[int, int, int, int], int]] = []
         self._next = 0  # position in _walk of the next region
         self._replay = 0  # replays of the current region done
         self._stepper: RegionStepper | None = None
         self._box: tuple[int, int, int, int] | None = None
         self._location: tuple[int, int] | None = None
+        self._index = -1
 
     @property
     def finished(self) -> bool:
@@ -90,14 +109,21 @@ class NetOrderingTrainingEnv(RegionEnv):
 
     def _fresh_design(self) -> None:
         from xroute import load_design
-        from xroute.session import open_session
+        from xroute.session import first_pass, open_session
 
-        if self._dirty or self._design is None:
-            self._session = None
-            self._design = load_design(self.testcase_name)
-            self._session = open_session(self._design)
-            self._dirty = False
-        walk = [(tuple(loc), tuple(box)) for loc, box in self._session.regions(self.region_size)]
+        if self.in_context:
+            if self._first_pass is None:
+                self._design = load_design(self.testcase_name)
+                self._session = open_session(self._design)
+                self._first_pass = first_pass(self._session, self.region_size)
+            walk = [(tuple(loc), tuple(box), i) for i, (loc, box, _colour, _nets) in enumerate(self._first_pass.regions)]
+        else:
+            if self._dirty or self._design is None:
+                self._session = None
+                self._design = load_design(self.testcase_name)
+                self._session = open_session(self._design)
+                self._dirty = False
+            walk = [(tuple(loc), tuple(box), -1) for loc, box in self._session.regions(self.region_size)]
         if self.region_location is not None:
             walk = [w for w in walk if w[0] == self.region_location]
             if not walk:
@@ -109,14 +135,19 @@ class NetOrderingTrainingEnv(RegionEnv):
         self._next = 0
         self._replay = 0
 
+    def _open(self, box: tuple[int, int, int, int], index: int) -> Any:
+        """The engine Region: the first pass's region ``index`` in context, else ``box`` as the design is."""
+        return self._first_pass.open_region(index) if index >= 0 else self._session.open_region(box)
+
     def _open_next(self) -> None:
         """Replays the current region, or commits it and opens the next one with a candidate net."""
         current = self._stepper
         if current is not None and self._replay < self.region_loop:
             self._replay += 1  # the unfinished copy is dropped, never committed
-            self._stepper = self._stepper_for(self._session.open_region(self._box))
+            self._stepper = self._stepper_for(self._open(self._box, self._index))
             return
-        if current is not None and len(self._walk) > 1:  # a lone region (region_location) is never committed
+        # A lone region (region_location) or one in context is never committed.
+        if current is not None and len(self._walk) > 1 and not self.in_context:
             current.region.route_rest("heuristic")  # an episode cut short still leaves a routed region
             current.region.commit()
             self._dirty = True
@@ -125,16 +156,16 @@ class NetOrderingTrainingEnv(RegionEnv):
             if self._next >= len(self._walk):
                 self.passes_done += 1
                 self._fresh_design()
-            location, box = self._walk[self._next]
+            location, box, index = self._walk[self._next]
             self._next += 1
-            region = self._session.open_region(box)
+            region = self._open(box, index)
             if len(region.candidates):
                 break
             skipped += 1
             if skipped > len(self._walk):
                 raise RuntimeError(f"no region of {self.testcase_name} has a net to route")
         self._stepper = self._stepper_for(region)
-        self._box, self._location, self._replay = box, location, 1
+        self._box, self._location, self._index, self._replay = box, location, index, 1
 
     def _stepper_for(self, region: Any) -> RegionStepper:
         return RegionStepper(region, self._design.dbu_per_micron, self.max_candidates, self.weights, self.reward_fn)
@@ -147,12 +178,14 @@ class NetOrderingTrainingEnv(RegionEnv):
             self.passes_done = 0
             self._fresh_design()
         self._open_next()
-        return self._stepper.observation(), self._info()
+        observation = self._stepper.observation()
+        return observation, self._with_mask(self._info())
 
     def _info(self) -> dict[str, Any]:
         s = self._stepper
         return {"region_location": self._location, "box": self._box, "candidates": len(s.rows),
-                "replay": self._replay, "pass": self.passes_done, "cost": s.cost, "metrics": s.metrics}
+                "replay": self._replay, "pass": self.passes_done, "cost": s.cost, "metrics": s.metrics,
+                "region_size": self.region_size, "in_context": self.in_context}
 
     def step(self, action: int):
         observation, reward, done, info = self._step_region(action)
@@ -160,11 +193,12 @@ class NetOrderingTrainingEnv(RegionEnv):
 
     def close(self) -> None:
         self._stepper = None
+        self._first_pass = None
         self._session = None
         self._design = None
 
 
-def ordering_training_env(testcase_name: str = "ispd18_test1", region_size: int = 1, testcase_loop: int = 1,
+def ordering_training_env(testcase_name: str = "ispd18_test1", region_size: int | None = None, testcase_loop: int = 1,
                           region_location: tuple[int, int] | None = None, region_loop: int = 1,
                           **kwargs: Any) -> NetOrderingTrainingEnv:
     """The paper's training-mode env (see :class:`NetOrderingTrainingEnv`)."""

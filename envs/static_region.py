@@ -22,6 +22,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_render_mode,
     observation_space,
 )
 
@@ -33,14 +34,14 @@ class StaticRegionEnv(RegionEnv):
     action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
     """
 
-    metadata = {"render_modes": []}
-
     def __init__(self, region_dir: str, *, max_candidates: int = DEFAULT_MAX_CANDIDATES,
-                 weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None) -> None:
+                 weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None,
+                 render_mode: str | None = None) -> None:
         from xroute.testcases.regions import load_region
         from xroute.session import open_session
 
         self.region_dir = str(region_dir)
+        self.render_mode = check_render_mode(render_mode)
         self.max_candidates = check_max_candidates(max_candidates)
         self.weights = weights
         self.reward_fn = reward_fn
@@ -56,7 +57,8 @@ class StaticRegionEnv(RegionEnv):
         region = self._session.open_region(self.box)
         self._stepper = RegionStepper(region, self.design.dbu_per_micron, self.max_candidates, self.weights,
                                       self.reward_fn)
-        return self._stepper.observation(), self._info()
+        observation = self._stepper.observation()
+        return observation, self._with_mask(self._info())
 
     def _info(self) -> dict[str, Any]:
         s = self._stepper
@@ -70,3 +72,24 @@ class StaticRegionEnv(RegionEnv):
 def static_region_env(region_dir: str, **kwargs: Any) -> StaticRegionEnv:
     """The paper's static-region env (see :class:`StaticRegionEnv`)."""
     return StaticRegionEnv(region_dir, **kwargs)
+
+
+def generate_static_region(testcase_name: str, region_location: tuple[int, int] | None = None, region_size: int = 1,
+                           out_dir: str | None = None, *, box: tuple[int, int, int, int] | None = None) -> str:
+    """The paper's ``generate_static_region``: writes the region of ``testcase_name`` whose lower-left GCell
+    is ``region_location`` (``region_size`` GCells a side), or the ``box`` in DBU, as a static region
+    folder (:func:`xroute.testcases.regions.make_region`, ``xroute make-region``) into ``out_dir`` (default:
+    a new temporary folder) and returns the folder, ready for :func:`static_region_env`."""
+    import tempfile
+    from pathlib import Path
+
+    from xroute.testcases.regions import make_region
+
+    if out_dir is None:
+        out_dir = str(Path(tempfile.mkdtemp(prefix="xroute-region-")) / "region")
+    if box is not None:
+        summary = make_region(testcase_name, out_dir, box=tuple(int(v) for v in box))
+    else:
+        location = None if region_location is None else (int(region_location[0]), int(region_location[1]))
+        summary = make_region(testcase_name, out_dir, location=location, size=int(region_size))
+    return str(summary.out_dir)

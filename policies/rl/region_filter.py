@@ -1,8 +1,10 @@
 """A wrapper of the training env that skips some regions: held-out ones, and ones with no choice.
 
-``hold_out_every = K`` (> 0) holds out the regions whose lower-left GCell (x, y) has
+``hold_out_every = K`` (> 0) holds out the regions whose column and row (x, y) in the partition
+(the lower-left GCell divided by the region size: the GCell itself for 1x1 regions) have
 ``x % K == K // 2`` and ``y % K == K // 2`` (a regular 1-in-K² sample across the die, kept for
-evaluation); ``min_candidates`` skips regions with fewer candidate nets (a region of one net
+evaluation). With regions of the flow's first pass (colour ``(x % 2) + 2 (y % 2)``), an even K
+holds out regions of one colour only; an odd K (3, the in-context benchmark's) mixes all four; ``min_candidates`` skips regions with fewer candidate nets (a region of one net
 has no order to learn). A skipped region is left to the env, which routes it with the heuristic
 and commits it before opening the next, so later regions still see it as routed neighbours.
 """
@@ -16,12 +18,14 @@ import gymnasium as gym
 MAX_SKIPS = 100_000
 
 
-def held_out(location: tuple[int, int], hold_out_every: int) -> bool:
-    """Whether the region with this lower-left GCell is held out (see the module docstring)."""
+def held_out(location: tuple[int, int], hold_out_every: int, region_size: int = 1) -> bool:
+    """Whether the region with this lower-left GCell (regions of ``region_size`` GCells, the
+    partition starting at GCell 0) is held out (see the module docstring)."""
     if hold_out_every <= 0:
         return False
     k = hold_out_every
-    return location[0] % k == k // 2 and location[1] % k == k // 2
+    c = max(1, int(region_size))
+    return (location[0] // c) % k == k // 2 and (location[1] // c) % k == k // 2
 
 
 class RegionFilter(gym.Wrapper):
@@ -35,7 +39,8 @@ class RegionFilter(gym.Wrapper):
 
     def _skip(self, info: dict[str, Any]) -> bool:
         location = info.get("region_location")
-        if location is not None and held_out(tuple(location), self.hold_out_every):
+        size = int(info.get("region_size", 1))
+        if location is not None and held_out(tuple(location), self.hold_out_every, size):
             return True
         return int(info.get("candidates", self.min_candidates)) < self.min_candidates
 

@@ -1,0 +1,117 @@
+"""Net-order policies scored on held-out regions of the router's own first pass (in context).
+
+A held-out region (:func:`~xroute.policies.rl.region_filter.held_out`) is a region of the first
+pass (iteration 0, regions of the router's size, :func:`xroute.session.first_pass`) that training
+never draws. It is opened in context: every region of an earlier colour routed and committed as
+the first pass did, its crossing points chosen, the rest unrouted; the policy orders (or routes)
+its nets; the score is the region's first-pass cost ``0.5 WL(um) + 4 vias + 500 violations``
+(:class:`xroute.config.CostSection`): the region's new routing and the design-rule markers inside
+its box. Every policy starts from the same state (nothing is committed).
+
+A policy is named by a spec: a built-in name the engine routes itself (``heuristic``, ``random``
+and whatever else :data:`xroute.policy.BUILTIN_POLICIES` lists, through
+``Region.route_rest(name, seed)``), or anything :func:`xroute.policies.registry.get_policy`
+resolves (a ``.py`` file, an ``.onnx`` model), asked once per region for an order.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Iterator
+
+import numpy as np
+
+from xroute.config import CostSection
+from xroute.policy import BUILTIN_POLICIES, check_order
+from xroute.policies.rl.region_filter import held_out
+
+FIGURES = ("cost", "wl_um", "vias", "drvs")
+
+
+@dataclass(frozen=True)
+class HeldOutRegion:
+    """A region of the first pass kept out of training."""
+
+    index: int  # in FirstPass.regions
+    location: tuple[int, int]  # lower-left GCell
+    box: tuple[int, int, int, int]  # DBU
+    colour: int  # 0..3: the flow's order
+    candidates: int  # candidate nets when opened in context
+
+
+@dataclass
+class PolicyScore:
+    """One policy's figures on one region (``seconds``: routing, policy included)."""
+
+    cost: float
+    wl_um: float
+    vias: int
+    drvs: int
+    seconds: float = 0.0
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def region_score(region: Any, dbu_per_micron: int, weights: CostSection = CostSection()) -> PolicyScore:
+    """The cost of an engine Region's new routing and the markers inside its box."""
+    m = region.metrics()
+    return PolicyScore(cost=weights.region_cost(m, dbu_per_micron), wl_um=m["wirelength_dbu"] / dbu_per_micron,
+                       vias=int(m["vias"]), drvs=int(m["violations"]))
+
+
+def held_out_regions(first_pass: Any, hold_out_every: int, region_size: int,
+                     min_candidates: int = 2) -> Iterator[HeldOutRegion]:
+    """The held-out regions of ``first_pass`` with at least ``min_candidates`` nets, in the flow's order
+    (each is opened once to count its candidates)."""
+    for i, (loc, box, colour, _nets) in enumerate(first_pass.regions):
+        if not held_out(tuple(loc), hold_out_every, region_size):
+            continue
+        n = len(first_pass.open_region(i).candidates)
+        if n >= min_candidates:
+            yield HeldOutRegion(i, tuple(loc), tuple(box), int(colour), n)
+
+
+def route_in_context(first_pass: Any, region: HeldOutRegion, spec: str | Any, seed: int, dbu_per_micron: int,
+                     weights: CostSection = CostSection()) -> PolicyScore:
+    """Opens ``region`` in context and routes it with ``spec`` (a built-in name, or a policy object with
+    ``order(region, features)``); returns its score."""
+    r = first_pass.open_region(region.index)
+    t0 = time.perf_counter()
+    if isinstance(spec, str):
+        if spec not in BUILTIN_POLICIES:
+            raise ValueError(f"{spec!r} is not a built-in policy ({', '.join(BUILTIN_POLICIES)})")
+        r.route_rest(spec, seed)
+    else:
+        info = {"iteration": 0, "region": region.index, "box": region.box}
+        if getattr(spec, "needs_region", False):
+            info["engine_region"] = r
+        features = r.candidates
+        order = spec.order(info, features)
+        if not getattr(spec, "needs_region", False):
+            order = check_order(order, len(features), str(getattr(spec, "name", spec)))
+        for i in order:
+            if not r.is_routed(int(i)):  # a policy that needs the region may route some itself
+                r.route_net(int(i))
+        r.route_rest("heuristic", 1)  # anything it left out
+    score = region_score(r, dbu_per_micron, weights)
+    score.seconds = time.perf_counter() - t0
+    return score
+
+
+def best_of_random(first_pass: Any, region: HeldOutRegion, seeds: int, dbu_per_micron: int,
+                   weights: CostSection = CostSection()) -> list[PolicyScore]:
+    """The scores of random orders seeded 1..seeds (the mean of the first k is "random", the minimum of
+    all of them "best-of-k")."""
+    return [route_in_context(first_pass, region, "random", s, dbu_per_micron, weights) for s in range(1, seeds + 1)]
+
+
+def mean_score(scores: list[PolicyScore]) -> PolicyScore:
+    return PolicyScore(cost=float(np.mean([s.cost for s in scores])), wl_um=float(np.mean([s.wl_um for s in scores])),
+                       vias=float(np.mean([s.vias for s in scores])), drvs=float(np.mean([s.drvs for s in scores])),
+                       seconds=float(np.mean([s.seconds for s in scores])))
+
+
+def best_score(scores: list[PolicyScore]) -> PolicyScore:
+    """The lowest-cost score (the first on ties); ``seconds`` is the sum (what finding it cost)."""
+    best = min(scores, key=lambda s: s.cost)
+    return PolicyScore(best.cost, best.wl_um, best.vias, best.drvs, float(sum(s.seconds for s in scores)))
