@@ -1,16 +1,23 @@
-"""Net-order policies compared on held-out regions of a testcase (prints a table, writes JSON).
+"""Net-order policies compared on held-out in-context regions of the first pass (prints a table, writes JSON).
 
-    python bench/rl_holdout.py [--testcase ispd18_test1] [--hold-out-every 8] [--min-candidates 2]
-                               [--random-seeds 5] [--json out.json] MODEL.onnx ...
+    python bench/rl_holdout.py [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 5]
+                               [--hold-out-every 3] [--min-candidates 2] [--random-seeds 5]
+                               [--best-of 20] [--limit N] [--json out.json] [POLICY ...]
 
-The held-out regions are the 1x1-GCell regions ``xroute train --hold-out-every K`` never trains
-on (lower-left GCell x % K == K // 2 and y % K == K // 2) with at least ``--min-candidates``
-candidate nets. Each region is opened on the freshly loaded design (no neighbour routed) once per
-policy, routed completely in that policy's order and dropped (never committed), so every policy
-starts from the same state. Per policy: the paper's cost (0.5 WL(um) + 4 vias + 500 DRVs), WL,
-vias and DRVs (the design-rule markers inside the region box after routing), summed over the
-regions; random = the mean over ``--random-seeds`` seeds; for ONNX models also the milliseconds
-of one order() call (observation + model).
+Per testcase: the router's first pass (iteration 0, heuristic, regions of ``--region-size`` GCells,
+default the router's) is routed once and kept (:func:`xroute.session.first_pass`); the held-out
+regions are those ``xroute train --hold-out-every K`` never draws (region column x and row y with
+x % K == K // 2 and y % K == K // 2; K odd mixes the four colours) with at least
+``--min-candidates`` nets. Each is opened in context (the regions of earlier colours routed as the
+first pass routed them, the rest unrouted), once per policy and seed, routed completely and
+dropped, so every policy starts from the same state. Score: the region's first-pass cost
+0.5 WL(um) + 4 vias + 500 DRVs (DRVs: the markers inside the box after routing), summed over the
+regions (:mod:`xroute.policies.rl.holdout`).
+
+Rows: heuristic (the router's order, so exactly what the first pass routed there); random (mean
+over ``--random-seeds`` seeds); best-of-K random orders (per region the cheapest of seeds 1..K,
+its time the K routings); then each POLICY: a built-in name (``xroute.policy.BUILTIN_POLICIES``,
+routed by the engine via ``Region.route_rest``), a ``.py`` policy file or an ``.onnx`` model.
 """
 
 from __future__ import annotations
@@ -18,88 +25,108 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from dataclasses import asdict
 from pathlib import Path
+from typing import Any
 
-import numpy as np
+from xroute import load_design
+from xroute.defaults import REGION_SIZE
+from xroute.policy import BUILTIN_POLICIES
+from xroute.policies.registry import get_policy
+from xroute.policies.rl.holdout import (
+    FIGURES,
+    PolicyScore,
+    best_of_random,
+    best_score,
+    held_out_regions,
+    mean_score,
+    route_in_context,
+)
+from xroute.session import first_pass, open_session
 
 
-from xroute.policies.onnx_policy import OnnxPolicy  # noqa: E402
-from xroute.policies.rl.region_filter import held_out  # noqa: E402
-from xroute import load_design  # noqa: E402
-from xroute.session import open_session  # noqa: E402
+def bench_testcase(name: str, args: argparse.Namespace, policies: dict[str, Any]) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    design = load_design(name)
+    dbu = design.dbu_per_micron
+    session = open_session(design)
+    fp = first_pass(session, args.region_size, threads=args.threads)
+    pass_seconds = time.perf_counter() - t0
+    regions = list(held_out_regions(fp, args.hold_out_every, args.region_size, args.min_candidates))
+    if args.limit:
+        regions = regions[: args.limit]
+    best_name = f"best-of-{args.best_of}"
+    names = ["heuristic", "random", best_name, *policies]
+    rows = []
+    for reg in regions:
+        row: dict[str, Any] = {"index": reg.index, "location": list(reg.location), "colour": reg.colour,
+                               "candidates": reg.candidates}
+        scores: dict[str, PolicyScore] = {"heuristic": route_in_context(fp, reg, "heuristic", 1, dbu)}
+        samples = best_of_random(fp, reg, max(args.random_seeds, args.best_of), dbu)
+        scores["random"] = mean_score(samples[: args.random_seeds])
+        scores[best_name] = best_score(samples[: args.best_of])
+        for pname, spec in policies.items():
+            scores[pname] = route_in_context(fp, reg, spec, args.seed, dbu)
+        row.update({k: asdict(v) for k, v in scores.items()})
+        rows.append(row)
+    totals: dict[str, dict[str, float]] = {}
+    base = [row["heuristic"]["cost"] for row in rows]
+    for n in names:
+        t = {k: float(sum(row[n][k] for row in rows)) for k in FIGURES}
+        diffs = [row[n]["cost"] - b for row, b in zip(rows, base)]
+        t.update(better=sum(d < -1e-9 for d in diffs), same=sum(abs(d) <= 1e-9 for d in diffs),
+                 worse=sum(d > 1e-9 for d in diffs),
+                 seconds_per_region=float(sum(row[n]["seconds"] for row in rows)) / max(1, len(rows)))
+        totals[n] = t
+    return {"testcase": name, "region_size": args.region_size, "hold_out_every": args.hold_out_every,
+            "min_candidates": args.min_candidates, "first_pass_regions": len(fp.regions),
+            "first_pass": {k: fp.report[k] for k in ("wirelength_um", "vias", "violations")},
+            "first_pass_seconds": round(pass_seconds, 2), "seconds": round(time.perf_counter() - t0, 2),
+            "regions": rows, "totals": totals, "policies": names}
 
-WEIGHTS = (0.5, 4.0, 500.0)  # per um of wire, per via, per DRV
 
-
-def region_figures(region, dbu: int) -> dict[str, float]:
-    m = region.metrics()
-    wl_um = m["wirelength_dbu"] / dbu
-    cost = WEIGHTS[0] * wl_um + WEIGHTS[1] * m["vias"] + WEIGHTS[2] * m["violations"]
-    return {"cost": cost, "wl_um": wl_um, "vias": m["vias"], "drvs": m["violations"], "unreached": m["unreached"]}
+def print_table(res: dict[str, Any]) -> None:
+    rows, totals = res["regions"], res["totals"]
+    print(f"{res['testcase']}: {len(rows)} held-out in-context {res['region_size']}x{res['region_size']} regions "
+          f"of {res['first_pass_regions']} (hold-out-every {res['hold_out_every']}, >= {res['min_candidates']} nets; "
+          f"{sum(r['candidates'] for r in rows)} nets); first pass {res['first_pass_seconds']:.1f} s, "
+          f"all {res['seconds']:.1f} s")
+    w = max(14, *(len(n) + 2 for n in res["policies"]))
+    print(f"{'policy':<{w}}{'cost':>12}{'vs heur.':>9}{'WL um':>11}{'vias':>8}{'DRVs':>7}"
+          f"{'better/same/worse':>19}{'s/region':>10}")
+    base = totals["heuristic"]["cost"]
+    for n in res["policies"]:
+        t = totals[n]
+        rel = 100.0 * (t["cost"] - base) / base if base else 0.0
+        bsw = f"{t['better']}/{t['same']}/{t['worse']}"
+        print(f"{n:<{w}}{t['cost']:>12,.1f}{rel:>+8.1f}%{t['wl_um']:>11,.1f}{t['vias']:>8,.0f}{t['drvs']:>7,.1f}"
+              f"{bsw:>19}{t['seconds_per_region']:>10.2f}")
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("models", nargs="*", type=Path)
-    ap.add_argument("--testcase", default="ispd18_test1")
-    ap.add_argument("--hold-out-every", type=int, default=8)
+    ap.add_argument("policies", nargs="*", help="built-in policy names, .py policy files or .onnx models")
+    ap.add_argument("--testcase", action="append", help="testcase (repeatable; default ispd18_test1)")
+    ap.add_argument("--region-size", type=int, default=REGION_SIZE, help="GCells per region side (router's default)")
+    ap.add_argument("--hold-out-every", type=int, default=3)
     ap.add_argument("--min-candidates", type=int, default=2)
     ap.add_argument("--random-seeds", type=int, default=5)
+    ap.add_argument("--best-of", type=int, default=20)
+    ap.add_argument("--seed", type=int, default=1, help="seed passed to the named policies")
+    ap.add_argument("--threads", type=int, default=1, help="threads of the first pass")
+    ap.add_argument("--limit", type=int, default=0, help="score only the first N held-out regions (0: all)")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args()
-
-    design = load_design(args.testcase)
-    dbu = design.dbu_per_micron
-    session = open_session(design)
-    xs, ys = (np.asarray(a) for a in session.gcell_lines)
-    policies = {p.stem: OnnxPolicy(p) for p in args.models}
-    rows = []
-    ms: dict[str, list[float]] = {name: [] for name in policies}
-    for gy in range(len(ys) - 1):
-        for gx in range(len(xs) - 1):
-            if not held_out((gx, gy), args.hold_out_every):
-                continue
-            box = (int(xs[gx]), int(ys[gy]), int(xs[gx + 1]), int(ys[gy + 1]))
-            probe = session.open_region(box)
-            n = len(probe.candidates)
-            del probe
-            if n < args.min_candidates:
-                continue
-            row = {"location": [gx, gy], "candidates": n}
-            r = session.open_region(box)
-            r.route_rest("heuristic", 1)
-            row["heuristic"] = region_figures(r, dbu)
-            samples = []
-            for seed in range(1, args.random_seeds + 1):
-                r = session.open_region(box)
-                r.route_rest("random", seed)
-                samples.append(region_figures(r, dbu))
-            row["random"] = {k: float(np.mean([s[k] for s in samples])) for k in samples[0]}
-            for name, policy in policies.items():
-                r = session.open_region(box)
-                t0 = time.perf_counter()
-                order = policy.order({"iteration": 0, "region": 0, "box": box, "engine_region": r}, r.candidates)
-                ms[name].append(1000 * (time.perf_counter() - t0))
-                for i in order:
-                    r.route_net(int(i))
-                row[name] = region_figures(r, dbu)
-            rows.append(row)
-    names = ["heuristic", "random", *policies]
-    totals = {name: {k: float(sum(row[name][k] for row in rows)) for k in ("cost", "wl_um", "vias", "drvs")}
-              for name in names}
-    for name in policies:
-        c = np.array([row[name]["cost"] - row["heuristic"]["cost"] for row in rows])
-        totals[name].update(better=int((c < -1e-9).sum()), same=int((np.abs(c) <= 1e-9).sum()), worse=int((c > 1e-9).sum()),
-                            ms_per_region=float(np.mean(ms[name])) if ms[name] else 0.0)
-    print(f"{args.testcase}: {len(rows)} held-out 1x1 regions (hold-out-every {args.hold_out_every}, >= "
-          f"{args.min_candidates} nets; {sum(r['candidates'] for r in rows)} nets)")
-    print(f"{'policy':<12}{'cost':>12}{'WL um':>12}{'vias':>8}{'DRVs':>6}   vs heuristic (better/same/worse), ms/region")
-    for name in names:
-        t = totals[name]
-        extra = f"   {t['better']}/{t['same']}/{t['worse']}, {t['ms_per_region']:.1f} ms" if name in policies else ""
-        print(f"{name:<12}{t['cost']:>12,.1f}{t['wl_um']:>12,.1f}{t['vias']:>8,.0f}{t['drvs']:>6,.1f}{extra}")
+    policies: dict[str, Any] = {}
+    for spec in args.policies:
+        policies[Path(spec).stem] = spec if spec in BUILTIN_POLICIES else get_policy(spec, args.seed)
+    results = []
+    for name in args.testcase or ["ispd18_test1"]:
+        res = bench_testcase(name, args, policies)
+        print_table(res)
+        results.append(res)
     if args.json:
-        args.json.write_text(json.dumps({"testcase": args.testcase, "regions": rows, "totals": totals}, indent=1))
+        args.json.write_text(json.dumps({"results": results}, indent=1))
 
 
 if __name__ == "__main__":
