@@ -78,5 +78,59 @@ def test_report_renders_in_headless_chromium(runner: CliRunner, two_runs: Path, 
 def test_report_of_a_folder_without_runs_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
     result = runner.invoke(app, ["report", str(tmp_path), "--out", str(tmp_path / "r.html")])
     assert result.exit_code == 2
-    assert result.stderr == f"error: {tmp_path}: no *.metrics.json (route, evaluate or batch output) found\n"
+    assert result.stderr == (f"error: {tmp_path}: no *.metrics.json (route, evaluate or batch output) or "
+                             "metrics.jsonl (xroute train) found\n")
     assert not (tmp_path / "r.html").exists()
+
+
+def _training_log(path: Path, episodes: int) -> None:
+    """A metrics.jsonl as xroute train writes it: reward rising, cost and violations falling."""
+    import json
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w") as f:
+        for e in range(1, episodes + 1):
+            f.write(json.dumps({"episode": e, "steps": 4, "total_steps": 4 * e, "reward": -200.0 + 2 * e,
+                                "cost": 900.0 - 5 * e, "wirelength_dbu": 4000, "vias": 12, "drvs": 3 if e <= 20 else 1,
+                                "seconds": 0.5, "policy_loss": 0.1}) + "\n")
+
+
+def test_report_training_dashboard(runner: CliRunner, tmp_path: Path) -> None:
+    _training_log(tmp_path / "runs" / "train-ppo" / "metrics.jsonl", 40)
+    out = tmp_path / "train.html"
+    result = runner.invoke(app, ["report", str(tmp_path / "runs"), "--out", str(out)])
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout == f"report: 0 run(s), 1 training run(s) -> {out}\n"
+    html = out.read_text()
+    assert html.count('<tr class="training">') == 1 and '<tr class="run">' not in html
+    assert html.count("<svg") == 3  # reward, cost and violations by episode
+    for title in ("Reward by episode", "Cost by episode", "Violations by episode"):
+        assert title in html
+    assert html.count('class="legend">mean of 2 episodes<') == 3  # the moving mean beside each raw series
+    row = re.search(r'<tr class="training">(.*?)</tr>', html).group(1)
+    cells = re.findall(r"<td[^>]*>([^<]*)</td>", row)
+    # run, episodes, steps, time; reward / cost / violations over the first and the last 4 episodes
+    assert cells[:4] == ["train-ppo", "40", "160", "20.0"]
+    assert [float(c.replace(",", "")) for c in cells[4:]] == [-195.0, -123.0, 887.5, 707.5, 3.0, 1.0]
+    assert not re.search(r"""(src|href)\s*=\s*["']?(https?:)?//""", html)  # nothing fetched
+
+
+def test_report_mixes_routing_and_training_runs(runner: CliRunner, two_runs: Path, tmp_path: Path) -> None:
+    _training_log(two_runs / "train" / "metrics.jsonl", 5)
+    out = tmp_path / "both.html"
+    result = runner.invoke(app, ["report", str(two_runs), "--out", str(out)])
+    assert result.exit_code == 0, result.stderr
+    html = out.read_text()
+    assert html.count('<tr class="run">') == 2 and html.count('<tr class="training">') == 1
+    assert html.count("<svg") == 6  # 3 routing trends + 3 training charts
+
+
+def test_report_bad_training_log_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
+    log = tmp_path / "t" / "metrics.jsonl"
+    _training_log(log, 3)
+    with open(log, "a") as f:
+        f.write("{not json\n")
+    result = runner.invoke(app, ["report", str(tmp_path / "t"), "--out", str(tmp_path / "r.html")])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"error: {log}:4: not a training log line written by xroute train")
+    assert result.stderr.count("\n") == 1

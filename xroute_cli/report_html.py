@@ -3,7 +3,8 @@
 A run is a ``*.metrics.json`` written by route, evaluate or batch; :func:`find_runs` collects
 them under the given folders. The page has a summary table (WL, vias, DRVs by type, opens,
 runtime, the paper's cost) and, per design, trend charts of WL / vias / DRVs over the
-iterations with one line per run (policy).
+iterations with one line per run (policy). Training runs (a ``metrics.jsonl`` of ``xroute
+train``) found there too get the training dashboard (:mod:`xroute.cli.report_training`).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from typing import Any
 
 from xroute.config import CostSection
 from xroute.errors import InputError
+from xroute.cli.report_training import TRAINING_LOG, TrainingRun, find_training_logs, read_training_log, render_training
 from xroute.cli.svg_chart import line_chart
 
 MAX_DEPTH = 4  # folder levels searched below each RUN_DIR
@@ -28,21 +30,35 @@ class Run:
     metrics: dict[str, Any]
 
 
-def find_runs(folders: list[Path]) -> list[Run]:
-    """Every metrics JSON in or below ``folders`` (or the files themselves), in path order."""
+def find_all_runs(folders: list[Path]) -> tuple[list[Run], list[TrainingRun]]:
+    """The routing runs (every metrics JSON) and training runs (every ``metrics.jsonl``) in or below
+    ``folders`` (or the files themselves), each in path order."""
     files: list[Path] = []
+    logs: list[Path] = []
     for folder in folders:
         if folder.is_file():
-            files.append(folder)
+            (logs if folder.name.endswith(".jsonl") else files).append(folder)
             continue
         if not folder.is_dir():
             raise InputError("run folder not found", str(folder), 0)
         found = sorted(p for p in folder.rglob("*.metrics.json")
                        if len(p.relative_to(folder).parts) <= MAX_DEPTH + 1 and not any(
                            part.startswith(".") for part in p.relative_to(folder).parts))
-        if not found:
-            raise InputError("no *.metrics.json (route, evaluate or batch output) found", str(folder), 0)
+        found_logs = find_training_logs(folder, MAX_DEPTH)
+        if not found and not found_logs:
+            raise InputError(f"no *.metrics.json (route, evaluate or batch output) or {TRAINING_LOG} (xroute train) "
+                             "found", str(folder), 0)
         files += found
+        logs += found_logs
+    return _read_runs(files), [read_training_log(p) for p in logs]
+
+
+def find_runs(folders: list[Path]) -> list[Run]:
+    """Every metrics JSON in or below ``folders`` (or the files themselves), in path order."""
+    return find_all_runs(folders)[0]
+
+
+def _read_runs(files: list[Path]) -> list[Run]:
     runs = []
     for f in files:
         try:
@@ -70,8 +86,10 @@ tr:nth-child(even) td{background:#fafbfc} .charts{display:flex;flex-wrap:wrap;ga
 """
 
 
-def render(runs: list[Run], cost: CostSection, title: str = "xroute report") -> str:
-    """The whole HTML page."""
+def render(runs: list[Run], cost: CostSection, title: str = "xroute report",
+           training: list[TrainingRun] | None = None) -> str:
+    """The whole HTML page (the runs table and charts when there are routing runs, the training
+    dashboard when there are training runs)."""
     types = [t for t in _types(runs) if any(r.metrics["final"]["violations_by_type"].get(t) for r in runs)]
     head = ["run", "design", "policy", "region size", "iterations", "WL (µm)", "vias", "DRVs", *types, "opens",
             "runtime (s)", "cost"]
@@ -107,12 +125,17 @@ def render(runs: list[Run], cost: CostSection, title: str = "xroute report") -> 
             charts.append(line_chart(f"{label} by iteration", series, unit))
         sections.append(f"<h2>{escape(design)}: trends over iterations</h2>\n<div class=\"charts\">{''.join(charts)}</div>")
 
+    training = training or []
     sub = (f"{len(runs)} run(s); figures of the written DEF; cost = {cost.wirelength_weight:g}·WL(µm) + "
            f"{cost.via_weight:g}·vias + {cost.drv_weight:g}·DRVs")
+    if training:
+        sub = f"{len(training)} training run(s)" + (f"; {sub}" if runs else "; episode figures from metrics.jsonl")
+    body = f"<h2>Runs</h2>\n{table}\n" + "\n".join(sections) + "\n" if runs or not training else ""
+    if training:
+        body += render_training(training) + "\n"
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<title>{escape(title)}</title><style>{CSS}</style></head><body>\n"
-            f"<h1>{escape(title)}</h1><p class=\"sub\">{escape(sub)}</p>\n<h2>Runs</h2>\n{table}\n"
-            + "\n".join(sections) + "\n</body></html>\n")
+            f"<h1>{escape(title)}</h1><p class=\"sub\">{escape(sub)}</p>\n" + body + "</body></html>\n")
 
 
 def _types(runs: list[Run]) -> list[str]:
