@@ -178,3 +178,17 @@ def test_cli_train_in_a_fresh_process(tmp_path: Path) -> None:
                           capture_output=True, text=True, timeout=300, cwd=tmp_path, env={**os.environ, "CI": "true"})
     assert proc.returncode == 0, proc.stderr[-2000:]
     assert json.loads(proc.stdout)["episodes"]
+
+
+def test_cli_train_in_context(tmp_path: Path) -> None:
+    """`xroute train --in-context`: episodes are first-pass regions (held-out ones skipped)."""
+    from conftest import require_testcase
+
+    require_testcase("standin_sample4")
+    runner = CliRunner()
+    res = runner.invoke(app, ["train", "ppo", "--testcase", "standin_sample4", "--episodes", "3", "--region-size", "2",
+                              "--in-context", "--hold-out-every", "3", "--out", str(tmp_path / "run"), "--json"])
+    assert res.exit_code == 0, res.output
+    rows = json.loads(res.output)["episodes"]
+    assert len(rows) == 3 and all(r["steps"] >= 1 and r["cost"] > 0 for r in rows)
+    assert (tmp_path / "run" / "metrics.jsonl").read_text().count("\n") == 3

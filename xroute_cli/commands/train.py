@@ -38,11 +38,12 @@ def parse_location(text: str | None) -> tuple[int, int] | None:
     return x, y
 
 
-def training_env_factory(testcase: str, region_size: int, location: tuple[int, int] | None, order: str,
+def training_env_factory(testcase: str, region_size: int | None, location: tuple[int, int] | None, order: str,
                          max_candidates: int, region_loop: int = 1, hold_out_every: int = 0,
-                         min_candidates: int = 1) -> Any:
+                         min_candidates: int = 1, in_context: bool = False) -> Any:
     """A function making the training env (``xroute/NetOrdering-v0``) for these options, wrapped in
-    a :class:`~xroute.policies.rl.region_filter.RegionFilter` when regions are held out or skipped."""
+    a :class:`~xroute.policies.rl.region_filter.RegionFilter` when regions are held out or skipped
+    (``region_size`` None: 1, or the router's region size in context)."""
 
     def make() -> Any:
         import gymnasium
@@ -52,7 +53,8 @@ def training_env_factory(testcase: str, region_size: int, location: tuple[int, i
 
         env = gymnasium.make("xroute/NetOrdering-v0", disable_env_checker=True, testcase_name=testcase,
                              region_size=region_size, testcase_loop=1_000_000, region_location=location,
-                             region_loop=region_loop, max_candidates=max_candidates, region_order=order).unwrapped
+                             region_loop=region_loop, max_candidates=max_candidates, region_order=order,
+                             in_context=in_context).unwrapped
         if hold_out_every > 0 or min_candidates > 1:
             return RegionFilter(env, hold_out_every, min_candidates)
         return env
@@ -76,13 +78,17 @@ ConfigOpt = Annotated[Path | None, typer.Option(
 OutOpt = Annotated[Path | None, typer.Option(
     "--out", help="Output folder (default: runs/train-<algorithm>-<testcase>).", show_default=False)]
 SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Seed of torch, the env and exploration.")]
-SizeOpt = Annotated[int, typer.Option("--region-size", min=1, help="Region size in GCells.")]
+SizeOpt = Annotated[int | None, typer.Option(
+    "--region-size", min=1, help="Region size in GCells (default 1; in context the router's, 5).", show_default=False)]
 LocationOpt = Annotated[str | None, typer.Option(
     "--region-location", help="Train on one region: X,Y of its lower-left GCell.", show_default=False)]
 OrderOpt = Annotated[str, typer.Option("--region-order", help="Walk of the regions: sequential or random.")]
 LoopOpt = Annotated[int, typer.Option("--region-loop", min=1, help="Episodes per region (replays from one state).")]
 HoldOutOpt = Annotated[int, typer.Option(
-    "--hold-out-every", min=0, help="Hold out regions whose lower-left GCell x and y are both K//2 mod K (0: none).")]
+    "--hold-out-every", min=0,
+    help="Hold out regions whose column and row (lower-left GCell / region size) are both K//2 mod K (0: none).")]
+InContextOpt = Annotated[bool, typer.Option(
+    "--in-context", help="Episodes are regions of the router's first pass, opened with the earlier colours routed.")]
 MinCandOpt = Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")]
 
@@ -94,12 +100,13 @@ def train(
     config: ConfigOpt = None,
     out: OutOpt = None,
     seed: SeedOpt = 1,
-    region_size: SizeOpt = 1,
+    region_size: SizeOpt = None,
     region_location: LocationOpt = None,
     region_order: OrderOpt = "sequential",
     region_loop: LoopOpt = 1,
     hold_out_every: HoldOutOpt = 0,
     min_candidates: MinCandOpt = 1,
+    in_context: InContextOpt = False,
     json_out: JsonOpt = False,
 ) -> None:
     """Train a PPO or DQN net-order policy on a testcase's regions; write checkpoints and a metrics log."""
@@ -117,7 +124,7 @@ def train(
     find_testcase(testcase)  # unknown testcase: one-line error before any work
     out_dir = out or Path("runs") / f"train-{algorithm}-{testcase}"
     make_env = training_env_factory(testcase, region_size, location, region_order, cfg.max_candidates, region_loop,
-                                    hold_out_every, min_candidates)
+                                    hold_out_every, min_candidates, in_context)
     console = stdout_console()
     if json_out:
         result = run_training(algorithm, make_env, episodes, cfg, out_dir, seed)
