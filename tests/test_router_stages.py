@@ -99,9 +99,9 @@ AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
 
 
 def drawn(tmp_path: Path, comps: dict[str, tuple[int, int]], nets: dict[str, list[str]], extra: str = "",
-          m1_area: bool = False, m2_area: bool = False) -> Any:
+          m1_area: bool = False, m2_area: bool = False, m2_rules: str = "") -> Any:
     """A loaded Design: PIN1 cells at the given locations (N), nets of their pins A, `extra` DEF
-    statements (BLOCKAGES) after the components."""
+    statements (BLOCKAGES) after the components, `m2_rules` more LEF statements of M2."""
     comp_lines = "".join(f"- {c} PIN1 + PLACED ( {x} {y} ) N ;\n" for c, (x, y) in comps.items())
     net_lines = "".join(f"- {n} " + " ".join(f"( {c} A )" for c in cs) + " ;\n" for n, cs in nets.items())
     def_text = (
@@ -113,7 +113,7 @@ def drawn(tmp_path: Path, comps: dict[str, tuple[int, int]], nets: dict[str, lis
         f"COMPONENTS {len(comps)} ;\n{comp_lines}END COMPONENTS\n{extra}"
         f"NETS {len(nets)} ;\n{net_lines}END NETS\nEND DESIGN\n"
     )
-    lef_text = LEF.format(m1_area=AREA if m1_area else "", m2_area=AREA if m2_area else "")
+    lef_text = LEF.format(m1_area=AREA if m1_area else "", m2_area=(AREA if m2_area else "") + m2_rules)
     lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
     return load_design(lef=lef, def_=def_)
 
@@ -217,6 +217,29 @@ def test_via_stacks_get_min_area_patches_on_the_middle_layer(tmp_path: Path) -> 
     r = d.net_routing(0)
     assert r["wires"] == [("M3", 500, 1100, 2500, 1100, 0, -1, -1)]
     assert r["patches"] == [("M2", 470, 933, 530, 1267), ("M2", 2470, 933, 2530, 1267)]
+
+
+def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Path) -> None:
+    # As above, with a second net n2 on the M2 track x = 700 from (700, 300) to (700, 1900), beside
+    # n1's left via stack, and an M2 end-of-line spacing of 0.18 um: the patch's spacing halo
+    # (30 + 180 each side of x = 500) reaches the node of n2's wire on the next track. That wire
+    # (670..730) is 140 from the patch (470..530), beside it and not beyond its ends: 70 is
+    # enough. The patch scorer used to refuse any patch whose halo held a node another net's
+    # wire makes unusable, so this stack kept its MinArea marker.
+    eol = "\n  SPACING 0.18 ENDOFLINE 0.07 WITHIN 0.025 ;"
+    comps = {**ROW, "u3": (600, 200), "u4": (600, 1800)}
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]},
+              blockage("M1", (1400, 1000, 1600, 1200)), m2_area=True, m2_rules=eol)
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    region.route_net(1)  # n2 first: its wire is there when n1's patches are placed
+    region.route_net(0)
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert d.net_routing(1)["wires"] == [("M2", 700, 300, 700, 1900, 0, -1, -1)]
+    r = d.net_routing(0)
+    assert r["wires"] == [("M3", 500, 1100, 2500, 1100, 0, -1, -1)]
+    assert r["patches"] == [("M2", 470, 933, 530, 1267), ("M2", 2470, 933, 2530, 1267)]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
 def test_a_reopened_region_clips_the_net_at_its_boundary(tmp_path: Path) -> None:

@@ -16,6 +16,31 @@ namespace {
 
 constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
 
+// Distance between two rects (0 when they touch or overlap; the larger of the x and y gaps).
+Dbu rectGap(const Rect& a, const Rect& b) {
+  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
+  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
+  return std::max(dx, dy);
+}
+
+// Parallel run length of two rects: their overlap along the axis where they
+// face each other (0 when they only face diagonally).
+Dbu runLength(const Rect& a, const Rect& b) {
+  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
+  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
+  if (dx > 0 && dy > 0) return 0;
+  return dx > 0 ? std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo) : std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
+}
+
+// True when `a` has a line end (an edge shorter than its other side) facing
+// `b`: b lies beyond that edge, within `within` of its sides.
+bool lineEndFaces(const Rect& a, const Rect& b, Dbu within) {
+  const bool alongX = a.width() > a.height();
+  if (a.width() == a.height()) return false;
+  if (alongX) return (b.xlo >= a.xhi || b.xhi <= a.xlo) && b.ylo < a.yhi + within && b.yhi > a.ylo - within;
+  return (b.ylo >= a.yhi || b.yhi <= a.ylo) && b.xlo < a.xhi + within && b.xhi > a.xlo - within;
+}
+
 struct TermSpec {
   std::vector<Point> points;  // DBU
   std::vector<int> zs;        // routing index per point
@@ -55,6 +80,10 @@ struct RegionRouter::Impl {
   std::vector<CrossingChoice> choices;
   int64_t rounds = 0;
   std::vector<int32_t> order;
+  // Per routing layer: routed metal (rect, net) of every net marked in the
+  // grid (committed routing near the box and this region's new routing), so
+  // a minimum-area patch is judged against real shapes.
+  std::vector<std::vector<std::pair<Rect, int32_t>>> routedMetal;
 
   Impl(const RouteContext& c, const RegionTask& t, const CrossingPlan* p, const RegionRepairSeed* s)
       : ctx(c), task(t), plan(p), seed(s) {}
@@ -198,7 +227,11 @@ struct RegionRouter::Impl {
     for (const NetShape& s : shapes) {
       if (!s.rect.overlaps(win)) continue;
       const Layer& l = ctx.tech.layer(s.layer);
-      if (l.routingIndex >= 0) markMetal(g, ctx.rules, l.routingIndex, s.rect, net, false);
+      if (l.routingIndex >= 0) {
+        markMetal(g, ctx.rules, l.routingIndex, s.rect, net, false);
+        if (routedMetal.size() <= size_t(l.routingIndex)) routedMetal.resize(l.routingIndex + 1);
+        routedMetal[l.routingIndex].emplace_back(s.rect, net);
+      }
       else if (l.cutIndex >= 0) {
         const int z = cutBelow(s.layer);
         if (z >= 0) markCut(g, ctx.rules, z, s.rect, net);
@@ -504,46 +537,53 @@ struct RegionRouter::Impl {
       if (plan && plan->crossings[c.crossing].net == ns.task.net) anchors.push_back({c.at, c.z});
     }
     const int32_t net = ns.task.net;
-    auto score = [&](int z, const Rect& r) -> int64_t {
-      // Other nets' fixed shapes and routing within the layer's spacing.
-      const Dbu s = std::max(ctx.rules.layers[z]->minSpacing(), ctx.rules.eolSpace[z]);
-      const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
-      int64_t bad = 0;
-      // Fixed shapes by the spacing table: a patch runs along them, so a
-      // wide one (a power rail) may need its wide-metal row.
-      const Layer& layer = *ctx.rules.layers[z];
-      const Dbu pw = std::min(r.width(), r.height());
-      const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
-                                                    std::numeric_limits<Dbu>::max() / 4));
-      const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
-      ctx.fixedIndex.query(far, [&](int32_t id) {
-        const DrcShape& sh = ctx.fixedShapes[id];
-        if (sh.net == net || routingIndex(sh.layer) != z) return;
-        const Rect& o = sh.rect;
-        const Dbu dx = std::max<Dbu>(0, std::max(o.xlo - r.xhi, r.xlo - o.xhi));
-        const Dbu dy = std::max<Dbu>(0, std::max(o.ylo - r.yhi, r.ylo - o.yhi));
-        const Dbu prl = dx > 0 && dy > 0 ? 0
-                        : dx > 0         ? std::min(o.yhi, r.yhi) - std::max(o.ylo, r.ylo)
-                                         : std::min(o.xhi, r.xhi) - std::max(o.xlo, r.xlo);
-        const Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, prl);
-        if (std::max(dx, dy) < need) bad += kPatchConflict;
-        else if (o.overlaps(grown)) bad += 10;
-      });
-      int x0, x1, y0, y1;
-      grid->xRangeOpen(grown.xlo, grown.xhi, x0, x1);
-      grid->yRangeOpen(grown.ylo, grown.yhi, y0, y1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const int32_t v = grid->index(x, y, z);
-          if (grid->routedNet[v] >= 0 && grid->routedNet[v] != net) bad += 10;
-          if (grid->accessNet[v] >= 0 && grid->accessNet[v] != net) bad += 5;
-          if (grid->wireUse[v] && grid->wireUseOwner[v] != net) bad += 1000;
-        }
-      return bad;
-    };
+    auto score = [&](int z, const Rect& r) { return patchScore(net, z, r); };
     fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
     markNewRouting(ns.task.net, ns.result.added);
     ns.paths = std::move(paths);
+  }
+
+  // How bad a minimum-area patch `r` of `net` on layer z would be (RepairScore):
+  // kPatchConflict and more when it would break a spacing rule with another
+  // net's metal, small sums for metal merely near it. Fixed shapes and routed
+  // metal by the spacing table with the run length (a patch runs along them,
+  // so a wide one, a power rail, may need its wide-metal row), and the
+  // end-of-line spacing where a line end of either faces the other.
+  int64_t patchScore(int32_t net, int z, const Rect& r) const {
+    const Layer& layer = *ctx.rules.layers[z];
+    const Dbu pw = std::min(r.width(), r.height());
+    const Dbu eol = ctx.rules.eolSpace[z], within = ctx.rules.eolWithin[z];
+    const Dbu s = std::max(layer.minSpacing(), eol);
+    const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
+                                                  std::numeric_limits<Dbu>::max() / 4));
+    const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
+    const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
+    int64_t bad = 0;
+    auto judge = [&](const Rect& o) {
+      Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, runLength(o, r));
+      if (eol > 0 && (lineEndFaces(r, o, within) || lineEndFaces(o, r, within))) need = std::max(need, eol);
+      if (rectGap(o, r) < need) bad += kPatchConflict;
+      else if (o.overlaps(grown)) bad += 10;
+    };
+    ctx.fixedIndex.query(far, [&](int32_t id) {
+      const DrcShape& sh = ctx.fixedShapes[id];
+      if (sh.net != net && routingIndex(sh.layer) == z) judge(sh.rect);
+    });
+    if (size_t(z) < routedMetal.size()) {
+      for (const auto& [o, owner] : routedMetal[z]) {
+        if (owner != net && o.overlaps(far)) judge(o);
+      }
+    }
+    const RegionGrid& g = *grid;
+    int x0, x1, y0, y1;
+    g.xRangeOpen(grown.xlo, grown.xhi, x0, x1);
+    g.yRangeOpen(grown.ylo, grown.yhi, y0, y1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const int32_t v = g.index(x, y, z);
+        if (g.accessNet[v] >= 0 && g.accessNet[v] != net) bad += 5;  // keep clear of others' pin access
+      }
+    return bad;
   }
 
   // A caller's node paths for net `index` (each step one maze edge), routed
