@@ -357,6 +357,7 @@ struct RegionRouter::Impl {
           const int32_t v = nodeAt(ap->at, ap->z);
           if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
           if (v >= 0 && (ap->dirs & kAccessUp) && ap->z + 1 < g.nz()) {
+            g.flags[v] |= kAccessVia;
             const int32_t above = nodeAt(ap->at, ap->z + 1);
             if (above >= 0) {
               g.flags[above] |= kLanding;

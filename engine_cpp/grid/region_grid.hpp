@@ -26,6 +26,7 @@ enum NodeFlag : uint8_t {
   kAccess = 2,    // an access point of a pin being routed in this region
   kTerminal = 4,  // a boundary terminal (where a net's outside routing ends)
   kLanding = 8,   // right above an access point: where its via lands (may be off-track)
+  kAccessVia = 16,  // an access point whose via up pin access checked against fixed shapes
 };
 
 // Observation node types (what the RL side sees).

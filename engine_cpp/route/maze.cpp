@@ -108,6 +108,10 @@ int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (own(v)) {
     if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
+    // Pin access checked the via only where it offers one (kAccessVia); a
+    // via at a point it left planar-only meets the footprint like any via.
+    const int32_t fo = g_.viaFixedOwner[v];
+    if (!(g_.flags[v] & kAccessVia) && fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
     return cost;
   }
   if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
