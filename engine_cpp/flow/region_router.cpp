@@ -32,13 +32,34 @@ Dbu runLength(const Rect& a, const Rect& b) {
   return dx > 0 ? std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo) : std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
 }
 
-// True when `a` has a line end (an edge shorter than its other side) facing
-// `b`: b lies beyond that edge, within `within` of its sides.
-bool lineEndFaces(const Rect& a, const Rect& b, Dbu within) {
-  const bool alongX = a.width() > a.height();
-  if (a.width() == a.height()) return false;
-  if (alongX) return (b.xlo >= a.xhi || b.xhi <= a.xlo) && b.ylo < a.yhi + within && b.yhi > a.ylo - within;
-  return (b.ylo >= a.yhi || b.yhi <= a.ylo) && b.xlo < a.xhi + within && b.xhi > a.xlo - within;
+// The end-of-line spacing `b` needs from `a` (0 if none): b lies beyond an
+// edge of `a` shorter than a rule's eolWidth, within the rule's reach of the
+// edge's ends. PARALLELEDGE conditions are taken as met.
+Dbu eolNeed(const Layer& layer, const Rect& a, const Rect& b) {
+  Dbu need = 0;
+  for (const EolRule& e : layer.eolRules) {
+    const bool pastX = (b.xlo >= a.xhi || b.xhi <= a.xlo) && b.ylo < a.yhi + e.within && b.yhi > a.ylo - e.within;
+    const bool pastY = (b.ylo >= a.yhi || b.yhi <= a.ylo) && b.xlo < a.xhi + e.within && b.xhi > a.xlo - e.within;
+    if ((pastX && a.height() < e.eolWidth) || (pastY && a.width() < e.eolWidth)) need = std::max(need, e.space);
+  }
+  return need;
+}
+
+// True when another rect of the same net continues the edge of metal[i]
+// that faces `r` (the merged edge is longer than the rect's side there), so
+// that edge is no line end.
+bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i, const Rect& r) {
+  const auto& [o, net] = metal[i];
+  for (size_t j = 0; j < metal.size(); ++j) {
+    const Rect& q = metal[j].first;
+    if (j == i || metal[j].second != net || !q.overlaps(o)) continue;
+    const bool sideways = q.xlo < o.xlo || q.xhi > o.xhi, upways = q.ylo < o.ylo || q.yhi > o.yhi;
+    if (r.ylo >= o.yhi && q.yhi == o.yhi && sideways) return true;
+    if (r.yhi <= o.ylo && q.ylo == o.ylo && sideways) return true;
+    if (r.xlo >= o.xhi && q.xhi == o.xhi && upways) return true;
+    if (r.xhi <= o.xlo && q.xlo == o.xlo && upways) return true;
+  }
+  return false;
 }
 
 struct TermSpec {
@@ -553,26 +574,27 @@ struct RegionRouter::Impl {
   int64_t patchScore(int32_t net, int z, const Rect& r) const {
     const Layer& layer = *ctx.rules.layers[z];
     const Dbu pw = std::min(r.width(), r.height());
-    const Dbu eol = ctx.rules.eolSpace[z], within = ctx.rules.eolWithin[z];
-    const Dbu s = std::max(layer.minSpacing(), eol);
+    const Dbu s = std::max(layer.minSpacing(), ctx.rules.eolSpace[z]);
     const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
                                                   std::numeric_limits<Dbu>::max() / 4));
     const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
     const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
     int64_t bad = 0;
-    auto judge = [&](const Rect& o) {
+    // `lineEnd`: whether o's edge facing the patch may be a line end.
+    auto judge = [&](const Rect& o, bool lineEnd) {
       Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, runLength(o, r));
-      if (eol > 0 && (lineEndFaces(r, o, within) || lineEndFaces(o, r, within))) need = std::max(need, eol);
+      need = std::max({need, eolNeed(layer, r, o), lineEnd ? eolNeed(layer, o, r) : Dbu(0)});
       if (rectGap(o, r) < need) bad += kPatchConflict;
       else if (o.overlaps(grown)) bad += 10;
     };
     ctx.fixedIndex.query(far, [&](int32_t id) {
       const DrcShape& sh = ctx.fixedShapes[id];
-      if (sh.net != net && routingIndex(sh.layer) == z) judge(sh.rect);
+      if (sh.net != net && routingIndex(sh.layer) == z) judge(sh.rect, true);
     });
     if (size_t(z) < routedMetal.size()) {
-      for (const auto& [o, owner] : routedMetal[z]) {
-        if (owner != net && o.overlaps(far)) judge(o);
+      const auto& metal = routedMetal[z];
+      for (size_t i = 0; i < metal.size(); ++i) {
+        if (metal[i].second != net && metal[i].first.overlaps(far)) judge(metal[i].first, !edgeContinues(metal, i, r));
       }
     }
     const RegionGrid& g = *grid;
