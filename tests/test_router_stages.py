@@ -98,11 +98,13 @@ END LIBRARY
 AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
 
 
-def drawn(tmp_path: Path, comps: dict[str, tuple[int, int]], nets: dict[str, list[str]], extra: str = "",
-          m1_area: bool = False, m2_area: bool = False, m2_rules: str = "") -> Any:
-    """A loaded Design: PIN1 cells at the given locations (N), nets of their pins A, `extra` DEF
-    statements (BLOCKAGES) after the components, `m2_rules` more LEF statements of M2."""
-    comp_lines = "".join(f"- {c} PIN1 + PLACED ( {x} {y} ) N ;\n" for c, (x, y) in comps.items())
+def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, list[str]], extra: str = "",
+          m1_area: bool = False, m2_area: bool = False, m2_rules: str = "", macros: str = "") -> Any:
+    """A loaded Design: cells at the given locations (N; PIN1 unless a third item names a macro
+    from `macros`, more LEF MACROs), nets of their pins A, `extra` DEF statements (BLOCKAGES)
+    after the components, `m2_rules` more LEF statements of M2."""
+    comp_lines = "".join(f"- {c} {m[0] if m else 'PIN1'} + PLACED ( {x} {y} ) N ;\n"
+                         for c, (x, y, *m) in comps.items())
     net_lines = "".join(f"- {n} " + " ".join(f"( {c} A )" for c in cs) + " ;\n" for n, cs in nets.items())
     def_text = (
         'VERSION 5.8 ;\nDIVIDERCHAR "/" ;\nBUSBITCHARS "[]" ;\nDESIGN stages ;\nUNITS DISTANCE MICRONS 1000 ;\n'
@@ -114,6 +116,7 @@ def drawn(tmp_path: Path, comps: dict[str, tuple[int, int]], nets: dict[str, lis
         f"NETS {len(nets)} ;\n{net_lines}END NETS\nEND DESIGN\n"
     )
     lef_text = LEF.format(m1_area=AREA if m1_area else "", m2_area=(AREA if m2_area else "") + m2_rules)
+    lef_text = lef_text.replace("END LIBRARY", macros + "END LIBRARY")
     lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
     return load_design(lef=lef, def_=def_)
 
@@ -239,6 +242,64 @@ def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Pa
     r = d.net_routing(0)
     assert r["wires"] == [("M3", 500, 1100, 2500, 1100, 0, -1, -1)]
     assert r["patches"] == [("M2", 470, 933, 530, 1267), ("M2", 2470, 933, 2530, 1267)]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
+def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path: Path) -> None:
+    # As the via-stack case, with M2 blockages around the left stack: on its track below and
+    # above it (y 800..900 and 1300..1400), so a wire-wide patch along the track (334 long)
+    # cannot keep spacing 70 to both (970..1230 is 260), and on the tracks beside it (x 260..340
+    # and 660..740), so a wire-wide patch across (334 long in x) cannot either. A patch 90 wide
+    # (x 455..545, 115 from the side blockages) needs 223 along the track: it fits. The repair
+    # used to try wire-wide patches only.
+    rects = [(460, 800, 540, 900), (460, 1300, 540, 1400), (260, 1000, 340, 1200), (660, 1000, 740, 1200)]
+    blocks = "".join(f"- LAYER M2 RECT ( {a} {b} ) ( {c} {e} ) ;\n" for a, b, c, e in rects)
+    extra = f"BLOCKAGES 5 ;\n- LAYER M1 RECT ( 1400 1000 ) ( 1600 1200 ) ;\n{blocks}END BLOCKAGES\n"
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, extra, m2_area=True)
+    _, _, metrics = route_die(d)
+    assert metrics["violations"] == 0
+    r = d.net_routing(0)
+    assert r["wires"] == [("M3", 500, 1100, 2500, 1100, 0, -1, -1)]
+    (_, x0, y0, x1, y1), right = r["patches"]
+    assert right == ("M2", 2470, 933, 2530, 1267)
+    assert x1 - x0 > 60 and 970 <= y0 and y1 <= 1230 and (x1 - x0) * (y1 - y0) >= 20000
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
+# PIN1 with an M1 obstruction ending 70 left of the pin's metal (x -0.1..0.0; placed at x = 400: 300..400).
+PINOBS = """\
+MACRO PINOBS
+  CLASS CORE ;
+  ORIGIN 0 0 ;
+  SIZE 0.2 BY 0.2 ;
+  PIN A
+    DIRECTION INOUT ;
+    USE SIGNAL ;
+    PORT
+      LAYER M1 ;
+        RECT 0.07 0.07 0.13 0.13 ;
+    END
+  END A
+  OBS
+    LAYER M1 ;
+      RECT -0.1 0.07 0.0 0.13 ;
+  END
+END PINOBS
+"""
+
+
+def test_no_via_at_an_access_point_that_pin_access_left_planar(tmp_path: Path) -> None:
+    # u1's obstruction ends 70 left of its pin's point (500, 1100): a wire there (metal
+    # 470..530) keeps spacing 70, a V12 (M1 metal 450..550) would be 50 away. Pin access offers
+    # the point for planar exits only; the maze used to put the via there anyway (it trusted
+    # every via at the net's own access points).
+    d = drawn(tmp_path, {"u1": (400, 1000, "PINOBS"), "u2": (400, 2400)}, {"n1": ["u1", "u2"]}, macros=PINOBS)
+    pa = d.engine.pin_access()
+    first = np.asarray(pa["points"])[pa["start"][0]]
+    assert first[:2].tolist() == [500, 1100] and not first[3] & 1  # no ACCESS_UP there
+    _, _, metrics = route_die(d)
+    assert metrics["violations"] == 0
+    assert ("V12", 500, 1100) not in d.net_routing(0)["vias"]
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
