@@ -303,6 +303,28 @@ def test_no_via_at_an_access_point_that_pin_access_left_planar(tmp_path: Path) -
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
+# A cell whose pin A sits at its left edge (x 0.0..0.06).
+EDGEPIN = PINOBS.replace("PINOBS", "EDGEPIN").replace("RECT 0.07 0.07 0.13 0.13", "RECT 0.0 0.07 0.06 0.13")
+
+
+def test_an_access_via_too_close_to_the_next_cells_pin_loses_its_via_exit(tmp_path: Path) -> None:
+    # u1's pin point (500, 1100): its V12 (M1 metal 450..550) would be 50 from the pin of the
+    # cell placed right of it at x = 600 (metal 600..660), a wire there (470..530) 70. Pin access
+    # computes u1's class alone, where the via is legal; checked among the neighbours it loses
+    # the via exit, and the router joins the pin with a planar step first.
+    edge = EDGEPIN.replace("  OBS\n    LAYER M1 ;\n      RECT -0.1 0.07 0.0 0.13 ;\n  END\n", "")
+    d = drawn(tmp_path, {"u1": (400, 1000), "u2": (600, 1000, "EDGEPIN"), "u3": (400, 2400)},
+              {"n1": ["u1", "u3"]}, macros=edge)
+    pa = d.engine.pin_access()
+    points = np.asarray(pa["points"])[pa["start"][0]:pa["start"][1]]
+    assert [500, 1100] in points[:, :2].tolist()
+    assert all(not p[3] & 1 for p in points if p[:2].tolist() == [500, 1100])  # no ACCESS_UP there
+    _, _, metrics = route_die(d)
+    assert metrics["violations"] == 0
+    assert ("V12", 500, 1100) not in d.net_routing(0)["vias"]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
 def test_a_reopened_region_clips_the_net_at_its_boundary(tmp_path: Path) -> None:
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
     session, _, _ = route_die(d)

@@ -17,14 +17,14 @@ using namespace nb::literals;
 namespace xroute {
 namespace {
 
-nb::dict pinAccessDict(const Database& db, int maxPointsPerPin, int threads, bool shareClasses) {
+nb::dict pinAccessDict(const Database& db, int maxPointsPerPin, int threads, bool shareClasses, bool checkInContext) {
   if (maxPointsPerPin < 1) throw nb::value_error("max_points_per_pin must be >= 1");
   if (threads < 1) throw nb::value_error("threads must be >= 1");
   PinAccessTable table;
   {
     nb::gil_scoped_release release;
     const TrackSet tracks = buildTracks(db.tech, db.design);
-    table = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{maxPointsPerPin, threads, shareClasses});
+    table = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{maxPointsPerPin, threads, shareClasses, checkInContext});
   }
   std::vector<int32_t> points, vias;
   points.reserve(table.points.size() * 5);
@@ -60,6 +60,7 @@ void bindPinAccess(nb::module_& m) {
 
   nb::class_<Database> cls = nb::borrow<nb::class_<Database>>(nb::type<Database>());
   cls.def("pin_access", &pinAccessDict, "max_points_per_pin"_a = PinAccessSettings{}.maxPointsPerPin, "threads"_a = 1, "share_classes"_a = true,
+          "check_in_context"_a = true,
           "Access points of every net pin (every entry of pin_refs), best first.\n\n"
           "Returns a dict:\n"
           "  start: int32[pin_refs + 1]; pin ref i owns rows start[i] .. start[i+1] of points.\n"
@@ -74,5 +75,7 @@ void bindPinAccess(nb::module_& m) {
           "  classes: number of component classes computed (same macro, orientation and track phase).\n"
           "threads > 1 splits the classes over worker threads; the result is the same.\n"
           "share_classes=False computes every component on its own (slow; to check the classes):\n"
-          "the points are the same, classes is then the number of components with net pins.");
+          "the points are the same, classes is then the number of components with net pins.\n"
+          "check_in_context=True checks each component pin's access vias again against the shapes its class\n"
+          "did not see (neighbouring cells, special nets, blockages): one too close loses ACCESS_UP (+8 cost).");
 }

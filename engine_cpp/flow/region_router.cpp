@@ -1,5 +1,6 @@
 #include "flow/region_router.hpp"
 
+#include "drc/pair_rules.hpp"
 #include "io/engine_errors.hpp"
 #include "route/min_area_fix.hpp"
 
@@ -15,35 +16,6 @@ namespace xroute {
 namespace {
 
 constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
-
-// Distance between two rects (0 when they touch or overlap; the larger of the x and y gaps).
-Dbu rectGap(const Rect& a, const Rect& b) {
-  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
-  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
-  return std::max(dx, dy);
-}
-
-// Parallel run length of two rects: their overlap along the axis where they
-// face each other (0 when they only face diagonally).
-Dbu runLength(const Rect& a, const Rect& b) {
-  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
-  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
-  if (dx > 0 && dy > 0) return 0;
-  return dx > 0 ? std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo) : std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
-}
-
-// The end-of-line spacing `b` needs from `a` (0 if none): b lies beyond an
-// edge of `a` shorter than a rule's eolWidth, within the rule's reach of the
-// edge's ends. PARALLELEDGE conditions are taken as met.
-Dbu eolNeed(const Layer& layer, const Rect& a, const Rect& b) {
-  Dbu need = 0;
-  for (const EolRule& e : layer.eolRules) {
-    const bool pastX = (b.xlo >= a.xhi || b.xhi <= a.xlo) && b.ylo < a.yhi + e.within && b.yhi > a.ylo - e.within;
-    const bool pastY = (b.ylo >= a.yhi || b.yhi <= a.ylo) && b.xlo < a.xhi + e.within && b.xhi > a.xlo - e.within;
-    if ((pastX && a.height() < e.eolWidth) || (pastY && a.width() < e.eolWidth)) need = std::max(need, e.space);
-  }
-  return need;
-}
 
 // True when another rect of the same net continues the edge of metal[i]
 // that faces `r` (the merged edge is longer than the rect's side there), so
@@ -582,9 +554,7 @@ struct RegionRouter::Impl {
     int64_t bad = 0;
     // `lineEnd`: whether o's edge facing the patch may be a line end.
     auto judge = [&](const Rect& o, bool lineEnd) {
-      Dbu need = requiredSpacing(layer, std::min(o.width(), o.height()), pw, runLength(o, r));
-      need = std::max({need, eolNeed(layer, r, o), lineEnd ? eolNeed(layer, o, r) : Dbu(0)});
-      if (rectGap(o, r) < need) bad += kPatchConflict;
+      if (drc::rectGap(o, r) < drc::metalNeed(layer, r, o, true, lineEnd)) bad += kPatchConflict;
       else if (o.overlaps(grown)) bad += 10;
     };
     ctx.fixedIndex.query(far, [&](int32_t id) {

@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "drc/layer_shapes.hpp"
+#include "drc/pair_rules.hpp"
 #include "geom/polygon.hpp"
 #include "pa/pa_internal.hpp"
 
@@ -241,6 +242,98 @@ JobResult runIoJob(const Tech& tech, const Design& design, const std::vector<pa:
   return out;
 }
 
+// Runs fn(i) for i in [0, n) on `threads` workers (each i once; fn writes only
+// its own slot, so the result does not depend on the thread count).
+template <typename Fn>
+void parallelFor(size_t n, int threads, Fn fn) {
+  std::atomic<size_t> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto work = [&]() {
+    for (size_t i; !failed && (i = next.fetch_add(1)) < n;) {
+      try {
+        fn(i);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::clamp(threads, 1, std::max(1, int(n))); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+// Whether an access via's shapes at `at` (net `net`) keep the spacing the
+// checker asks of them from `other`, a shape its component's class did not
+// see (drc/pair_rules.hpp: metal by the spacing table and end of line, cuts
+// by the plain cut spacing rules).
+bool viaClearOf(const Tech& tech, const Via& via, Point at, int32_t net, const DrcShape& other) {
+  if (other.net >= 0 && other.net == net) return true;
+  for (const ViaShape& vs : via.shapes) {
+    if (vs.layer != other.layer) continue;
+    const Rect r = vs.rect.translated(at);
+    const Layer& layer = tech.layer(vs.layer);
+    Dbu need = 0;
+    if (layer.type == LayerType::Routing) {
+      need = drc::metalNeed(layer, r, other.rect);
+    } else {
+      for (const CutSpacingRule& c : layer.cutSpacings) {
+        if (!c.sameNet && c.adjacentCuts == 0 && !c.centerToCenter) need = std::max(need, c.space);
+      }
+    }
+    if (r.overlaps(other.rect) || drc::rectGap(r, other.rect) < need) return false;
+  }
+  return true;
+}
+
+// A component pin's access vias were checked against its own component only
+// (its class). Each is checked again against every design shape around it
+// that the class did not see (neighbouring cells' pins and OBS, special nets,
+// blockages); one too close loses its via exit (the point stays, planar
+// only, dearer, and the pin's points are sorted again by cost).
+void checkViasInContext(const Tech& tech, const Design& design, const IoSurroundings& around, PinAccessTable& table,
+                        int threads) {
+  const int32_t refs = int32_t(design.pinRefs.size());
+  std::vector<int32_t> netOf(refs, -1);
+  for (size_t n = 0; n + 1 < design.netPinStart.size(); ++n)
+    for (int32_t r = design.netPinStart[n]; r < design.netPinStart[n + 1]; ++r) netOf[r] = int32_t(n);
+  Dbu range = 0;
+  for (const Layer& l : tech.layers) range = std::max(range, drc::interactionRange(l));
+  parallelFor(size_t(refs), threads, [&](size_t r) {
+    if (design.pinRefs[r].isIo()) return;
+    // The component's own pins and OBS lie inside its placed box: its class saw them.
+    const Component& c = design.components[*design.pinRefs[r].comp];
+    const Macro& mac = tech.macros[*c.macro];
+    const bool turned = c.orient == Orient::E || c.orient == Orient::W || c.orient == Orient::FE || c.orient == Orient::FW;
+    const Rect cell{c.location.x, c.location.y, c.location.x + (turned ? mac.height : mac.width),
+                    c.location.y + (turned ? mac.width : mac.height)};
+    AccessPoint* first = table.points.data() + table.start[r];
+    AccessPoint* last = table.points.data() + table.start[r + 1];
+    bool changed = false;
+    for (AccessPoint* p = first; p != last; ++p) {
+      if (!(p->dirs & kAccessUp) || !p->upVia.valid()) continue;
+      const Via& via = tech.vias[*p->upVia];
+      Rect reach{p->at.x, p->at.y, p->at.x, p->at.y};
+      for (const ViaShape& vs : via.shapes) reach.expandToInclude(vs.rect.translated(p->at));
+      bool clear = true;
+      around.index.query(Rect{reach.xlo - range, reach.ylo - range, reach.xhi + range, reach.yhi + range}, [&](int32_t i) {
+        const DrcShape& s = around.shapes[i];
+        const bool own = (s.origin == ShapeOrigin::Pin || s.origin == ShapeOrigin::Obstruction) && s.rect.xlo >= cell.xlo &&
+                         s.rect.xhi <= cell.xhi && s.rect.ylo >= cell.ylo && s.rect.yhi <= cell.yhi;
+        clear = clear && (own || viaClearOf(tech, via, p->at, netOf[r], s));
+      });
+      if (clear) continue;
+      p->dirs &= uint8_t(~kAccessUp);
+      p->upVia = ViaId();
+      p->cost += pa::kCostPlanarOnly;
+      changed = true;
+    }
+    if (changed) std::stable_sort(first, last, [](const AccessPoint& a, const AccessPoint& b) { return a.cost < b.cost; });
+  });
+}
+
 }  // namespace
 
 PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
@@ -284,28 +377,14 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
   // Compute the jobs, each into its own slot: the result does not depend on
   // the number of threads.
   const bool anyIo = std::any_of(jobs.begin(), jobs.end(), [](const PinJob& j) { return !j.comp.valid(); });
-  const IoSurroundings around = anyIo ? ioSurroundings(tech, design, layers) : IoSurroundings{};
+  const IoSurroundings around =
+      anyIo || settings.checkInContext ? ioSurroundings(tech, design, layers) : IoSurroundings{};
   std::vector<JobResult> results(jobs.size());
   const int maxPoints = std::max(settings.maxPointsPerPin, 1);
-  std::atomic<size_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto work = [&]() {
-    for (size_t j; !failed && (j = next.fetch_add(1)) < jobs.size();) {
-      try {
-        results[j] = jobs[j].comp.valid() ? runComponentJob(tech, design, layers, jobs[j], maxPoints)
-                                          : runIoJob(tech, design, layers, around, jobs[j], maxPoints);
-      } catch (...) {
-        if (!failed.exchange(true)) failure = std::current_exception();
-      }
-    }
-  };
-  const int threads = std::clamp(settings.threads, 1, std::max(1, int(jobs.size())));
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-  work();
-  for (std::thread& th : pool) th.join();
-  if (failure) std::rethrow_exception(failure);
+  parallelFor(jobs.size(), settings.threads, [&](size_t j) {
+    results[j] = jobs[j].comp.valid() ? runComponentJob(tech, design, layers, jobs[j], maxPoints)
+                                      : runIoJob(tech, design, layers, around, jobs[j], maxPoints);
+  });
 
   // The flat table, translated to each component's location.
   PinAccessTable table;
@@ -325,6 +404,7 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
     table.fallbackPins += results[j].fallback[slot];
     table.start.push_back(int32_t(table.points.size()));
   }
+  if (settings.checkInContext) checkViasInContext(tech, design, around, table, settings.threads);
   return table;
 }
 

@@ -39,6 +39,8 @@ struct PinAccessSettings {
   int maxPointsPerPin = kAccessPointsPerPin;  // keep at most this many, best first
   int threads = 1;
   bool shareClasses = true;  // false: compute every component on its own (to check the classes)
+  // Check component pins' access vias again among every design shape around them (see pin_access.cpp).
+  bool checkInContext = true;
 };
 
 // Flat per-pinRef table: pinRef i owns points[start[i] .. start[i+1]).
@@ -59,7 +61,9 @@ struct PinAccessTable {
 // one point (a fallback at the centre of its largest shape when no legal
 // point exists; such points have a high cost). Legality is checked against
 // the pin's own component only (its other pins and OBS); an IO pin against
-// every design shape around it (pad cells, rings); see pa/README.md.
+// every design shape around it (pad cells, rings); see pa/README.md. Then
+// (checkInContext) each component pin's access via is checked again among
+// every design shape around it, and loses its via exit if it adds a marker.
 PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
                                 const PinAccessSettings& settings);
 

@@ -220,7 +220,7 @@ class Database:
         file cannot be written (nothing is left behind).
         """
 
-    def pin_access(self, max_points_per_pin: int = 6, threads: int = 1, share_classes: bool = True) -> dict:
+    def pin_access(self, max_points_per_pin: int = 6, threads: int = 1, share_classes: bool = True, check_in_context: bool = True) -> dict:
         """
         Access points of every net pin (every entry of pin_refs), best first.
 
@@ -238,6 +238,8 @@ class Database:
         threads > 1 splits the classes over worker threads; the result is the same.
         share_classes=False computes every component on its own (slow; to check the classes):
         the points are the same, classes is then the number of components with net pins.
+        check_in_context=True checks each component pin's access vias again against the shapes its class
+        did not see (neighbouring cells, special nets, blockages): one too close loses ACCESS_UP (+8 cost).
         """
 
 def load(lef_paths: Sequence[str], def_path: str, guide_path: str | None = None) -> Database:
