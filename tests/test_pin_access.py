@@ -204,6 +204,59 @@ def test_drawn_case_blocked_pin_falls_back(tmp_path: Path) -> None:
     assert r["via"][0] == 0
 
 
+def test_drawn_pin_with_an_on_track_point_offers_only_on_track_points(tmp_path: Path) -> None:
+    # u4's pin B spans x 1440..1600, y 1300..1700: track x 1500 and track y 1500
+    # cross inside it with room for the cut. The old choice spread the three
+    # points over distinct x (1500, then off-track 1520 and 1570); now a pin
+    # with a legal on-track via point offers on-track points only. u1's pins
+    # have none (x track 100 is at A's edge, 300 / 500 outside or at B's
+    # edges): they keep their off-track points.
+    db = write_tiny(tmp_path, ["- u1 CELL + PLACED ( 0 0 ) N ;", "- u4 CELL + PLACED ( 1100 1000 ) N ;"], more="( u4 B )")
+    r = db.pin_access(max_points_per_pin=3)
+    assert points_of(r, 2) == [[1500, 1500, 0, UP | EAST | NORTH | SOUTH, 0]]
+    assert [p[4] for p in points_of(r, 0)] == [1, 2, 3]
+
+
+ROUTE_DEF = """\
+VERSION 5.8 ;
+DIVIDERCHAR "/" ;
+BUSBITCHARS "[]" ;
+DESIGN tiny ;
+UNITS DISTANCE MICRONS 1000 ;
+DIEAREA ( 0 0 ) ( 4000 4000 ) ;
+TRACKS Y 100 DO 20 STEP 200 LAYER M1 ;
+TRACKS X 100 DO 20 STEP 200 LAYER M1 ;
+TRACKS X 100 DO 20 STEP 200 LAYER M2 ;
+TRACKS Y 100 DO 20 STEP 200 LAYER M2 ;
+COMPONENTS 2 ;
+- u1 CELL + PLACED ( 1100 1000 ) N ;
+- u2 CELL + PLACED ( 1100 2200 ) N ;
+END COMPONENTS
+NETS 1 ;
+- n ( u1 B ) ( u2 B ) ;
+END NETS
+END DESIGN
+"""
+
+
+def test_drawn_route_uses_on_track_access_vias(tmp_path: Path) -> None:
+    # Two B pins stacked 1.2 um apart, each crossed by track x 1500 and by
+    # track y 1500 / 2700 with room for the cut. With off-track points on
+    # offer the router reached u2 at (1500, 2600), a half-track y off M1's
+    # tracks (100 shorter); with only the on-track points both vias sit on
+    # track crossings.
+    lef, def_ = write_design(tmp_path, TINY_LEF, ROUTE_DEF)
+    db = load_design(lef=lef, def_=def_).engine
+    _engine.route(db, threads=1)
+    c = db.check_routing()
+    assert (c["opens"], c["markers"], c["vias"]) == (0, [], 2)
+    assert c["off_track_vias"] == 0
+    vias = db.net_routing(0)["vias"]
+    assert len(vias) == 2
+    for _, x, y in vias:
+        assert (x - 100) % 200 == 0 and (y - 100) % 200 == 0, (x, y)
+
+
 # ---------------------------------------------------------------------------
 # Contest designs.
 # ---------------------------------------------------------------------------
@@ -427,7 +480,8 @@ def test_every_via_adds_no_marker(loaded_design: Any) -> None:
         else:
             batches.append(list(rs))
             placed.append([(x, y)])
-    assert sum(len(b) for b in batches) == (3 * 66 if SAMPLE == "ispd18_sample" else 3 * len(via_rows(db, r, "all")))
+    # ispd18_sample: 22 pins, 32 via points (a pin with an on-track via point offers only on-track ones).
+    assert sum(len(b) for b in batches) == (3 * 32 if SAMPLE == "ispd18_sample" else 3 * len(via_rows(db, r, "all")))
     for rows in batches:
         assert new_markers(db, rows) == []
 

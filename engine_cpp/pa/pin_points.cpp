@@ -8,6 +8,13 @@
 // only, at cost + kCostPlanarOnly (after every via point). On the top layer
 // planar exits are the only kind.
 //
+// On-track first: once a legal via point with both coordinates on track
+// (cost kCostOnTrack) is found, the scan ends with the on-track candidates:
+// the pin offers only on-track via points (the contest scorer counts every
+// via off its layers' tracks, and the router takes whichever offered point
+// is cheapest to reach). Off-track via points, and planar-only points, are
+// offered only by pins where no on-track via point is legal.
+//
 // Spreading: a point's spread key is the coordinate of the wire leaving it
 // (x when that wire is vertical, else y; with the axis, not the layer, so
 // that the layers of a stacked pin do not count as spread). The chosen points are first the
@@ -136,8 +143,13 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
   };
   std::vector<size_t> noVia;  // candidates on layers with vias up where no via is legal
   bool enough = false;
+  bool onTrackVia = false;  // a legal via point with both coordinates on track was found
   for (size_t i = 0; i < cands.size() && !enough; ++i) {
     const Candidate& c = cands[i];
+    if (onTrackVia && c.cost > kCostOnTrack) {
+      enough = true;  // on-track via points only: no off-track via where an on-track one is legal
+      break;
+    }
     const LayerAccess& la = layers[c.z];
     Legal l;
     l.point.at = c.at;
@@ -157,6 +169,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
         noVia.push_back(i);
         continue;
       }
+      onTrackVia = onTrackVia || c.cost == kCostOnTrack;
     } else {
       l.point.dirs = planarDirs(checker, la, c.at, net);
       l.planarKnown = true;
