@@ -123,6 +123,36 @@ auto legalKey(const Legal& l) {
   return std::make_tuple(l.point.cost, l.dist, -l.point.z, l.point.at.x, l.point.at.y);
 }
 
+// A legal-point shell for candidate c (no exits yet).
+Legal shellOf(const LayerAccess& la, const Candidate& c) {
+  Legal l;
+  l.point.at = c.at;
+  l.point.z = c.z;
+  l.point.cost = c.cost;
+  l.dist = c.dist;
+  l.spread = spreadKey(la, c.at);
+  return l;
+}
+
+// The spread choice (see the top of the file), best first; sorts `legal`.
+std::vector<const Legal*> spreadChoice(std::vector<Legal>& legal, int maxPoints) {
+  std::stable_sort(legal.begin(), legal.end(), [](const Legal& a, const Legal& b) { return legalKey(a) < legalKey(b); });
+  std::vector<const Legal*> chosen;
+  std::vector<int64_t> usedKeys;
+  for (const Legal& l : legal) {
+    if (int(chosen.size()) >= maxPoints) break;
+    if (std::find(usedKeys.begin(), usedKeys.end(), l.spread) != usedKeys.end()) continue;
+    usedKeys.push_back(l.spread);
+    chosen.push_back(&l);
+  }
+  for (const Legal& l : legal) {
+    if (int(chosen.size()) >= maxPoints) break;
+    if (std::find(chosen.begin(), chosen.end(), &l) == chosen.end()) chosen.push_back(&l);
+  }
+  std::sort(chosen.begin(), chosen.end(), [](const Legal* a, const Legal* b) { return legalKey(*a) < legalKey(*b); });
+  return chosen;
+}
+
 }  // namespace
 
 PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>& layers,
@@ -151,12 +181,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
       break;
     }
     const LayerAccess& la = layers[c.z];
-    Legal l;
-    l.point.at = c.at;
-    l.point.z = c.z;
-    l.point.cost = c.cost;
-    l.dist = c.dist;
-    l.spread = spreadKey(la, c.at);
+    Legal l = shellOf(la, c);
     if (la.hasUp()) {
       for (ViaId v : viasByFit(tech, la, pin, c.z, c.at)) {
         if (checker.viaLegal(tech.vias[*v], c.at, net, pin, c.z)) {
@@ -184,13 +209,9 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
   for (size_t k = 0; k < noVia.size() && !enough; ++k) {
     const Candidate& c = cands[noVia[k]];
     const LayerAccess& la = layers[c.z];
-    Legal l;
-    l.point.at = c.at;
-    l.point.z = c.z;
+    Legal l = shellOf(la, c);
     l.point.dirs = planarDirs(checker, la, c.at, net);
     l.point.cost = c.cost + kCostPlanarOnly;
-    l.dist = c.dist;
-    l.spread = spreadKey(la, c.at);
     l.planarKnown = true;
     if (l.point.dirs == 0) continue;
     legal.push_back(l);
@@ -203,22 +224,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     return result;
   }
 
-  std::stable_sort(legal.begin(), legal.end(), [](const Legal& a, const Legal& b) { return legalKey(a) < legalKey(b); });
-  std::vector<const Legal*> chosen;
-  std::vector<int64_t> usedKeys;
-  for (const Legal& l : legal) {
-    if (int(chosen.size()) >= maxPoints) break;
-    if (std::find(usedKeys.begin(), usedKeys.end(), l.spread) != usedKeys.end()) continue;
-    usedKeys.push_back(l.spread);
-    chosen.push_back(&l);
-  }
-  for (const Legal& l : legal) {
-    if (int(chosen.size()) >= maxPoints) break;
-    if (std::find(chosen.begin(), chosen.end(), &l) == chosen.end()) chosen.push_back(&l);
-  }
-  std::sort(chosen.begin(), chosen.end(), [](const Legal* a, const Legal* b) { return legalKey(*a) < legalKey(*b); });
-
-  for (const Legal* l : chosen) {
+  for (const Legal* l : spreadChoice(legal, maxPoints)) {
     AccessPoint p = l->point;
     if (!l->planarKnown) p.dirs |= planarDirs(checker, layers[p.z], p.at, net);
     result.points.push_back(p);
