@@ -1,7 +1,8 @@
 """Pin access (engine_cpp/pa): access points of every net pin.
 
 A drawn case with the exact points chosen, then the contest designs: every
-pin has a point inside its metal, every via cut lies in the pin's metal, the
+pin has a point inside its metal, every via cut lies in the pin's metal (or
+its via's metal stays inside the cell, away from its edges), the
 classes give the same points as computing each component on its own, threads
 do not change the result, and the chosen vias add no design-rule marker to
 the pins and obstructions around them.
@@ -35,11 +36,15 @@ UP, EAST, WEST, NORTH, SOUTH = 1, 2, 4, 8, 16
 #
 # A: x tracks 100 (edge: the cut would stick out), half track 200, centre
 # 180, enclosed edges 130 / 230; y track 500 (300 / 700 are edges).
-# (200, 500) costs 1, (180, 500) 2, then cost 3: (130, 500) and (230, 500)
-# at the same distance, 130 first (x order); (230, 500) would also be
-# illegal: its enclosure ends at 280, 60 from B. The three x differ, so all
-# three are taken. B mirrors it: (400, 500) 1, (420, 500) 2, (370, 500) is
-# illegal (enclosure from 320, 60 from A), (470, 500) 3.
+# On track, (100, 500), the cut sticks out of A onto the via's own M1, which
+# would reach x = 50, closer to the cell's edge than M1's spacing (70): not
+# taken. So (200, 500) costs 1, (180, 500) 2, then cost 3: (130, 500) and
+# (230, 500) at the same distance, 130 first (x order); (230, 500) would
+# also be illegal: its enclosure ends at 280, 60 from B. The three x differ,
+# so all three are taken. B: x track 500 is its right edge; the cut sticks
+# out onto the via's M1 (450..550, well inside the cell), so B has on-track
+# via points, (500, 500) and, at its ends, (500, 300) and (500, 700), and
+# offers only those.
 # Planar stubs (60 wide, 200 long): towards the other pin they hit it (or
 # come within 70), and west of x = 200 they leave the die.
 # ---------------------------------------------------------------------------
@@ -155,9 +160,9 @@ def test_drawn_case_exact_points(tmp_path: Path) -> None:
         [130, 500, 0, UP | NORTH | SOUTH, 3],
     ]
     assert points_of(r, 1) == [
-        [400, 500, 0, UP | EAST | NORTH | SOUTH, 1],
-        [420, 500, 0, UP | EAST | NORTH | SOUTH, 2],
-        [470, 500, 0, UP | EAST | NORTH | SOUTH, 3],
+        [500, 500, 0, UP | EAST | NORTH | SOUTH, 0],
+        [500, 300, 0, UP | EAST | NORTH | SOUTH, 0],
+        [500, 700, 0, UP | EAST | NORTH | SOUTH, 0],
     ]
     assert r["via"].tolist() == [0] * 6
 
@@ -180,9 +185,9 @@ def test_drawn_case_max_points_and_translation(tmp_path: Path) -> None:
     r = db.pin_access(max_points_per_pin=1)
     assert np.diff(r["start"]).tolist() == [1] * 5
     assert points_of(r, 0) == [[200, 500, 0, UP | WEST | NORTH | SOUTH, 1]]  # u1 A
-    assert points_of(r, 1) == [[400, 500, 0, UP | EAST | NORTH | SOUTH, 1]]  # u1 B
-    assert points_of(r, 2) == [[800, 900, 0, UP | EAST | NORTH | SOUTH, 1]]  # u2 B
-    assert points_of(r, 3) == [[1200, 500, 0, UP | EAST | NORTH | SOUTH, 1]]  # u3 B
+    assert points_of(r, 1) == [[500, 500, 0, UP | EAST | NORTH | SOUTH, 0]]  # u1 B
+    assert points_of(r, 2) == [[900, 900, 0, UP | EAST | NORTH | SOUTH, 0]]  # u2 B
+    assert points_of(r, 3) == [[1300, 500, 0, UP | EAST | NORTH | SOUTH, 0]]  # u3 B
     # u4 B spans x 1440..1600, y 1300..1700: track x 1500 and track y 1500.
     assert points_of(r, 4) == [[1500, 1500, 0, UP | EAST | NORTH | SOUTH, 0]]
     assert r["classes"] == 3
@@ -202,6 +207,60 @@ def test_drawn_case_blocked_pin_falls_back(tmp_path: Path) -> None:
     assert r["fallback_pins"] == 1
     assert points_of(r, 0) == [[20, 500, 0, UP, 100]]
     assert r["via"][0] == 0
+
+
+def test_drawn_pin_with_an_on_track_point_offers_only_on_track_points(tmp_path: Path) -> None:
+    # u4's pin B spans x 1440..1600, y 1300..1700: track x 1500 and track y 1500
+    # cross inside it with room for the cut (1300 and 1700, its ends, with the
+    # cut sticking out onto the via's metal). The old choice spread the three
+    # points over distinct x (1500, then off-track 1520 and 1570); now a pin
+    # with a legal on-track via point offers on-track points only. u1's pin A
+    # has none (see the drawn case): it keeps its off-track points.
+    db = write_tiny(tmp_path, ["- u1 CELL + PLACED ( 0 0 ) N ;", "- u4 CELL + PLACED ( 1100 1000 ) N ;"], more="( u4 B )")
+    r = db.pin_access(max_points_per_pin=3)
+    on = UP | EAST | NORTH | SOUTH
+    assert points_of(r, 2) == [[1500, 1500, 0, on, 0], [1500, 1300, 0, on, 0], [1500, 1700, 0, on, 0]]
+    assert [p[4] for p in points_of(r, 0)] == [1, 2, 3]
+
+
+ROUTE_DEF = """\
+VERSION 5.8 ;
+DIVIDERCHAR "/" ;
+BUSBITCHARS "[]" ;
+DESIGN tiny ;
+UNITS DISTANCE MICRONS 1000 ;
+DIEAREA ( 0 0 ) ( 4000 4000 ) ;
+TRACKS Y 100 DO 20 STEP 200 LAYER M1 ;
+TRACKS X 100 DO 20 STEP 200 LAYER M1 ;
+TRACKS X 100 DO 20 STEP 200 LAYER M2 ;
+TRACKS Y 100 DO 20 STEP 200 LAYER M2 ;
+COMPONENTS 2 ;
+- u1 CELL + PLACED ( 1100 1000 ) N ;
+- u2 CELL + PLACED ( 1100 2200 ) N ;
+END COMPONENTS
+NETS 1 ;
+- n ( u1 B ) ( u2 B ) ;
+END NETS
+END DESIGN
+"""
+
+
+def test_drawn_route_uses_on_track_access_vias(tmp_path: Path) -> None:
+    # Two B pins stacked 1.2 um apart, each crossed by track x 1500 and by
+    # track y 1500 / 2700 with room for the cut. With off-track points on
+    # offer the router reached u2 at (1500, 2600), a half-track y off M1's
+    # tracks (100 shorter); with only the on-track points both vias sit on
+    # track crossings.
+    lef, def_ = write_design(tmp_path, TINY_LEF, ROUTE_DEF)
+    db = load_design(lef=lef, def_=def_).engine
+    _engine.route(db, threads=1)
+    c = db.check_routing()
+    assert (c["opens"], c["markers"], c["vias"]) == (0, [], 2)
+    assert c["off_track_vias"] == 0
+    vias = db.net_routing(0)["vias"]
+    assert len(vias) == 2
+    for _, x, y in vias:
+        assert (x - 100) % 200 == 0 and (y - 100) % 200 == 0, (x, y)
 
 
 # ---------------------------------------------------------------------------
@@ -267,6 +326,12 @@ def test_points_lie_in_pin_metal(loaded_design: Any, name: str) -> None:
         cut_of[v] = (routing_of[info["bottom"]], cut)
 
     shapes = pin_shapes(db)
+    cells = cell_boxes(db)
+    margin = {l["routing_index"]: keep_in_margin(l) for l in layers if l["routing_index"] >= 0}
+    bottom_metal = {
+        v: [tuple(s[1:]) for s in db.via(r["via_names"][v])["shapes"] if s[0] == db.via(r["via_names"][v])["bottom"]]
+        for v in cut_of
+    }
     for ref in range(refs):
         mine = shapes[ref]
         pts = points[start[ref]:start[ref + 1]]
@@ -280,10 +345,40 @@ def test_points_lie_in_pin_metal(loaded_design: Any, name: str) -> None:
             if dirs & UP:
                 bottom, cuts = cut_of[v]
                 assert bottom == z
-                for a, b, c, d in cuts:
-                    assert covered((a + x, b + y, c + x, d + y), metal), (ref, x, y, r["via_names"][v])
+                if all(covered((a + x, b + y, c + x, d + y), metal) for a, b, c, d in cuts):
+                    continue
+                # A cut sticking out of the pin: a component's pin, the via's metal
+                # on the pin's layer inside the cell by the layer's keep-in margin.
+                assert ref in cells, (ref, x, y, r["via_names"][v])
+                cx0, cy0, cx1, cy1 = cells[ref]
+                m = margin[z]
+                for a, b, c, d in bottom_metal[v]:
+                    assert cx0 + m <= a + x and cy0 + m <= b + y and c + x <= cx1 - m and d + y <= cy1 - m, (ref, x, y)
             else:
                 assert v == -1
+
+
+def keep_in_margin(layer: dict[str, Any]) -> int:
+    """How far inside its cell a via's metal must stay when its cut sticks out of the pin: the
+    layer's min spacing or largest end-of-line space."""
+    return max([layer["min_spacing"], *[e["space"] for e in layer["eol_rules"]]])
+
+
+def cell_boxes(db: Any) -> dict[int, tuple[int, int, int, int]]:
+    """pinRef -> its component's placed box (SIZE, rotated by the orientation); IO pins absent."""
+    start = np.asarray(db.net_pin_start)
+    out: dict[int, tuple[int, int, int, int]] = {}
+    for net in range(len(start) - 1):
+        for local, (comp, _) in enumerate(db.net_pins(net)):
+            if comp == "PIN":
+                continue
+            c = db.component(comp)
+            w, h = db.macro(c["macro"])["size"]
+            if c["orient"] in ("E", "W", "FE", "FW"):
+                w, h = h, w
+            x, y = c["location"]
+            out[int(start[net]) + local] = (x, y, x + w, y + h)
+    return out
 
 
 @pytest.mark.parametrize(("name", "fallback", "classes"), [("ispd18_sample", 0, 20), ("ispd18_test1", 0, 219)])
@@ -429,7 +524,8 @@ def test_every_via_adds_no_marker(loaded_design: Any) -> None:
         else:
             batches.append(list(rs))
             placed.append([(x, y)])
-    assert sum(len(b) for b in batches) == (3 * 66 if SAMPLE == "ispd18_sample" else 3 * len(via_rows(db, r, "all")))
+    # ispd18_sample: 22 pins, 54 via points (a pin with an on-track via point offers only on-track ones).
+    assert sum(len(b) for b in batches) == (3 * 54 if SAMPLE == "ispd18_sample" else 3 * len(via_rows(db, r, "all")))
     for rows in batches:
         assert new_markers(db, rows) == []
 

@@ -54,10 +54,20 @@ bool isCheckedLayer(const Tech& tech, LayerId id) {
 
 }  // namespace
 
-AccessChecker::AccessChecker(const Tech& tech, std::vector<DrcShape> context, Rect die)
-    : tech_(tech), context_(std::move(context)), index_(rectsOf(context_)), die_(die) {
+Dbu keepInMargin(const Layer& layer) {
+  Dbu m = layer.minSpacing();
+  for (const EolRule& r : layer.eolRules) m = std::max(m, r.space);
+  return m;
+}
+
+AccessChecker::AccessChecker(const Tech& tech, std::vector<DrcShape> context, Rect die, Rect cell)
+    : tech_(tech), context_(std::move(context)), index_(rectsOf(context_)), die_(die), cell_(cell) {
   range_.reserve(tech.layers.size());
-  for (const Layer& l : tech.layers) range_.push_back(drc::interactionRange(l));
+  keepIn_.reserve(tech.layers.size());
+  for (const Layer& l : tech.layers) {
+    range_.push_back(drc::interactionRange(l));
+    keepIn_.push_back(keepInMargin(l));
+  }
 }
 
 bool AccessChecker::addsMarker(const std::vector<DrcShape>& added) const {
@@ -102,12 +112,21 @@ bool AccessChecker::addsMarker(const std::vector<DrcShape>& added) const {
 bool AccessChecker::viaLegal(const Via& via, Point at, int32_t net, const std::vector<PinRect>& metal,
                              int32_t z) const {
   std::vector<DrcShape> added;
+  bool covered = true;
   for (const ViaShape& s : via.shapes) {
     const Rect r = s.rect.translated(at);
-    if (s.layer == via.cut && (!inside(r, die_) || !coveredBy(metal, z, r))) return false;
+    if (s.layer == via.cut && !inside(r, die_)) return false;
+    if (s.layer == via.cut) covered = covered && coveredBy(metal, z, r);
     added.push_back({s.layer, r, net, ShapeOrigin::Via});
   }
   if (added.empty()) return false;
+  if (!covered) {
+    if (cell_.xlo >= cell_.xhi || cell_.ylo >= cell_.yhi) return false;
+    const Dbu m = keepIn_[*via.bottom];
+    const Rect keep{cell_.xlo + m, cell_.ylo + m, cell_.xhi - m, cell_.yhi - m};
+    for (const DrcShape& s : added)
+      if (s.layer == via.bottom && !inside(s.rect, keep)) return false;
+  }
   return !addsMarker(added);
 }
 

@@ -85,6 +85,11 @@ Point pinCentre2(const std::vector<PinRect>& pin);
 
 // ---- access_checker.cpp ----
 
+// How far inside its cell a via's metal on `layer` must stay when its cut
+// is not covered by the pin: the largest spacing the layer asks of a line
+// end or of min-width shapes (DBU).
+Dbu keepInMargin(const Layer& layer);
+
 // Checks vias and planar stubs at points of one pin against a fixed context
 // (the other pins of its component with their own ids, its OBS as -1). A
 // candidate is illegal when adding its shapes creates a design-rule marker
@@ -93,10 +98,15 @@ Point pinCentre2(const std::vector<PinRect>& pin);
 // within the layers' interaction range of it (see access_checker.cpp).
 class AccessChecker {
  public:
-  AccessChecker(const Tech& tech, std::vector<DrcShape> context, Rect die);
+  // cell: the placed box of the pin's component (SIZE); empty (zero area)
+  // for an IO pin.
+  AccessChecker(const Tech& tech, std::vector<DrcShape> context, Rect die, Rect cell = {});
 
-  // The via's shapes at `at` on net `net`: every cut inside `metal` (layer
-  // z) and inside the die, and no new marker.
+  // The via's shapes at `at` on net `net`: every cut inside the die and no
+  // new marker; every cut inside `metal` (layer z), or, in a component,
+  // the via's metal on z at least keepInMargin of z inside the cell (the
+  // cut then sticks out of a narrow pin onto the via's own metal, away from
+  // the neighbouring cells, which the context does not hold).
   bool viaLegal(const Via& via, Point at, int32_t net, const std::vector<PinRect>& metal, int32_t z) const;
 
   // A stub of the layer's width from `at` one stub length towards `dir`.
@@ -113,6 +123,8 @@ class AccessChecker {
   BoxIndex index_;                      // over context_ rects
   std::vector<Dbu> range_;              // DBU, per LEF layer: drc interaction range
   Rect die_;                            // DBU
+  Rect cell_;                           // DBU, the component's box (zero area: none)
+  std::vector<Dbu> keepIn_;             // DBU, per LEF layer: keepInMargin
   // The last local context (ids into context_) and its markers, sorted,
   // min area removed: consecutive candidates of a pin usually share it.
   mutable std::vector<int32_t> lastIds_;

@@ -175,7 +175,7 @@ JobResult runComponentJob(const Tech& tech, const Design& design, const std::vec
     for (const Rect& r : pieces) context.push_back({s.layer, r, -1, ShapeOrigin::Obstruction});
   }
 
-  const pa::AccessChecker checker(tech, std::move(context), design.dieArea);
+  const pa::AccessChecker checker(tech, std::move(context), design.dieArea, t.apply(Rect{0, 0, m.width, m.height}));
   JobResult out;
   const Point origin = c.location;
   for (int32_t k : job.pins) {

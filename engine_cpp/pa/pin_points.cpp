@@ -8,6 +8,13 @@
 // only, at cost + kCostPlanarOnly (after every via point). On the top layer
 // planar exits are the only kind.
 //
+// On-track first: once a legal via point with both coordinates on track
+// (cost kCostOnTrack) is found, the scan ends with the on-track candidates:
+// the pin offers only on-track via points (the contest scorer counts every
+// via off its layers' tracks, and the router takes whichever offered point
+// is cheapest to reach). Off-track via points, and planar-only points, are
+// offered only by pins where no on-track via point is legal.
+//
 // Spreading: a point's spread key is the coordinate of the wire leaving it
 // (x when that wire is vertical, else y; with the axis, not the layer, so
 // that the layers of a stacked pin do not count as spread). The chosen points are first the
@@ -116,6 +123,36 @@ auto legalKey(const Legal& l) {
   return std::make_tuple(l.point.cost, l.dist, -l.point.z, l.point.at.x, l.point.at.y);
 }
 
+// A legal-point shell for candidate c (no exits yet).
+Legal shellOf(const LayerAccess& la, const Candidate& c) {
+  Legal l;
+  l.point.at = c.at;
+  l.point.z = c.z;
+  l.point.cost = c.cost;
+  l.dist = c.dist;
+  l.spread = spreadKey(la, c.at);
+  return l;
+}
+
+// The spread choice (see the top of the file), best first; sorts `legal`.
+std::vector<const Legal*> spreadChoice(std::vector<Legal>& legal, int maxPoints) {
+  std::stable_sort(legal.begin(), legal.end(), [](const Legal& a, const Legal& b) { return legalKey(a) < legalKey(b); });
+  std::vector<const Legal*> chosen;
+  std::vector<int64_t> usedKeys;
+  for (const Legal& l : legal) {
+    if (int(chosen.size()) >= maxPoints) break;
+    if (std::find(usedKeys.begin(), usedKeys.end(), l.spread) != usedKeys.end()) continue;
+    usedKeys.push_back(l.spread);
+    chosen.push_back(&l);
+  }
+  for (const Legal& l : legal) {
+    if (int(chosen.size()) >= maxPoints) break;
+    if (std::find(chosen.begin(), chosen.end(), &l) == chosen.end()) chosen.push_back(&l);
+  }
+  std::sort(chosen.begin(), chosen.end(), [](const Legal* a, const Legal* b) { return legalKey(*a) < legalKey(*b); });
+  return chosen;
+}
+
 }  // namespace
 
 PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>& layers,
@@ -136,15 +173,15 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
   };
   std::vector<size_t> noVia;  // candidates on layers with vias up where no via is legal
   bool enough = false;
+  bool onTrackVia = false;  // a legal via point with both coordinates on track was found
   for (size_t i = 0; i < cands.size() && !enough; ++i) {
     const Candidate& c = cands[i];
+    if (onTrackVia && c.cost > kCostOnTrack) {
+      enough = true;  // on-track via points only: no off-track via where an on-track one is legal
+      break;
+    }
     const LayerAccess& la = layers[c.z];
-    Legal l;
-    l.point.at = c.at;
-    l.point.z = c.z;
-    l.point.cost = c.cost;
-    l.dist = c.dist;
-    l.spread = spreadKey(la, c.at);
+    Legal l = shellOf(la, c);
     if (la.hasUp()) {
       for (ViaId v : viasByFit(tech, la, pin, c.z, c.at)) {
         if (checker.viaLegal(tech.vias[*v], c.at, net, pin, c.z)) {
@@ -157,6 +194,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
         noVia.push_back(i);
         continue;
       }
+      onTrackVia = onTrackVia || c.cost == kCostOnTrack;
     } else {
       l.point.dirs = planarDirs(checker, la, c.at, net);
       l.planarKnown = true;
@@ -171,13 +209,9 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
   for (size_t k = 0; k < noVia.size() && !enough; ++k) {
     const Candidate& c = cands[noVia[k]];
     const LayerAccess& la = layers[c.z];
-    Legal l;
-    l.point.at = c.at;
-    l.point.z = c.z;
+    Legal l = shellOf(la, c);
     l.point.dirs = planarDirs(checker, la, c.at, net);
     l.point.cost = c.cost + kCostPlanarOnly;
-    l.dist = c.dist;
-    l.spread = spreadKey(la, c.at);
     l.planarKnown = true;
     if (l.point.dirs == 0) continue;
     legal.push_back(l);
@@ -190,22 +224,7 @@ PinPointsResult choosePinPoints(const Tech& tech, const std::vector<LayerAccess>
     return result;
   }
 
-  std::stable_sort(legal.begin(), legal.end(), [](const Legal& a, const Legal& b) { return legalKey(a) < legalKey(b); });
-  std::vector<const Legal*> chosen;
-  std::vector<int64_t> usedKeys;
-  for (const Legal& l : legal) {
-    if (int(chosen.size()) >= maxPoints) break;
-    if (std::find(usedKeys.begin(), usedKeys.end(), l.spread) != usedKeys.end()) continue;
-    usedKeys.push_back(l.spread);
-    chosen.push_back(&l);
-  }
-  for (const Legal& l : legal) {
-    if (int(chosen.size()) >= maxPoints) break;
-    if (std::find(chosen.begin(), chosen.end(), &l) == chosen.end()) chosen.push_back(&l);
-  }
-  std::sort(chosen.begin(), chosen.end(), [](const Legal* a, const Legal* b) { return legalKey(*a) < legalKey(*b); });
-
-  for (const Legal* l : chosen) {
+  for (const Legal* l : spreadChoice(legal, maxPoints)) {
     AccessPoint p = l->point;
     if (!l->planarKnown) p.dirs |= planarDirs(checker, layers[p.z], p.at, net);
     result.points.push_back(p);
