@@ -38,7 +38,8 @@ inline constexpr int kMaxSearchBudget = 1024;  // trial routings per region at m
 struct SearchSettings {
   // Trial routings per region: each routes the region's unrouted nets to the end in one order
   // and checks it (rollout: at most this many; best-of-K: K). 1 = the heuristic alone.
-  // Default 4: ispd18_test1 (2 threads) takes about 3-4x the heuristic's time.
+  // Default 4: rollout's first pass (2 threads, loaded machine) took 3.6x the heuristic's time on
+  // ispd18_test1 and 4.8x on ispd19_test1 (policies/models/MODEL_CARD.md).
   int budget = 4;
   // Rollout: candidates tried as the next net at each step, the first by heuristic rank
   // (0 = all of them); a smaller width spreads the budget over more steps.
