@@ -2,7 +2,8 @@
 
     python bench/rl_holdout.py [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 5]
                                [--hold-out-every 3] [--min-candidates 2] [--random-seeds 5]
-                               [--best-of 20] [--limit N] [--json out.json] [POLICY ...]
+                               [--best-of 20] [--search-budget 4] [--limit N] [--json out.json]
+                               [POLICY ...]
 
 Per testcase: the router's first pass (iteration 0, heuristic, regions of ``--region-size`` GCells,
 default the router's) is routed once and kept (:func:`xroute.session.first_pass`); the held-out
@@ -15,9 +16,10 @@ dropped, so every policy starts from the same state. Score: the region's first-p
 regions (:mod:`xroute.policies.rl.holdout`).
 
 Rows: heuristic (the router's order, so exactly what the first pass routed there); random (mean
-over ``--random-seeds`` seeds); best-of-K random orders (per region the cheapest of seeds 1..K,
-its time the K routings); then each POLICY: a built-in name (``xroute.policy.BUILTIN_POLICIES``,
-routed by the engine via ``Region.route_rest``), a ``.py`` policy file or an ``.onnx`` model.
+over ``--random-seeds`` seeds); random-best-of-K (per region the cheapest of K random orders, seeds
+1..K, its time the K routings); then each POLICY: a built-in name (``heuristic``, ``random``,
+the engine's searches ``rollout`` / ``bestof`` / ``best-of-K`` with ``--search-budget``, routed
+by the engine via ``Region.route_rest``), a ``.py`` policy file or an ``.onnx`` model.
 """
 
 from __future__ import annotations
@@ -30,8 +32,8 @@ from pathlib import Path
 from typing import Any
 
 from xroute import load_design
-from xroute.defaults import REGION_SIZE
-from xroute.policy import BUILTIN_POLICIES
+from xroute.defaults import REGION_SIZE, SEARCH_BUDGET
+from xroute.policy import is_builtin_name
 from xroute.policies.registry import get_policy
 from xroute.policies.rl.holdout import (
     FIGURES,
@@ -55,7 +57,7 @@ def bench_testcase(name: str, args: argparse.Namespace, policies: dict[str, Any]
     regions = list(held_out_regions(fp, args.hold_out_every, args.region_size, args.min_candidates))
     if args.limit:
         regions = regions[: args.limit]
-    best_name = f"best-of-{args.best_of}"
+    best_name = f"random-best-of-{args.best_of}"
     names = ["heuristic", "random", best_name, *policies]
     rows = []
     for reg in regions:
@@ -66,7 +68,7 @@ def bench_testcase(name: str, args: argparse.Namespace, policies: dict[str, Any]
         scores["random"] = mean_score(samples[: args.random_seeds])
         scores[best_name] = best_score(samples[: args.best_of])
         for pname, spec in policies.items():
-            scores[pname] = route_in_context(fp, reg, spec, args.seed, dbu)
+            scores[pname] = route_in_context(fp, reg, spec, args.seed, dbu, search_budget=args.search_budget)
         row.update({k: asdict(v) for k, v in scores.items()})
         rows.append(row)
     totals: dict[str, dict[str, float]] = {}
@@ -113,13 +115,15 @@ def main() -> None:
     ap.add_argument("--random-seeds", type=int, default=5)
     ap.add_argument("--best-of", type=int, default=20)
     ap.add_argument("--seed", type=int, default=1, help="seed passed to the named policies")
+    ap.add_argument("--search-budget", type=int, default=SEARCH_BUDGET,
+                    help="trial routings per region of rollout (bestof's K)")
     ap.add_argument("--threads", type=int, default=1, help="threads of the first pass")
     ap.add_argument("--limit", type=int, default=0, help="score only the first N held-out regions (0: all)")
     ap.add_argument("--json", type=Path)
     args = ap.parse_args()
     policies: dict[str, Any] = {}
     for spec in args.policies:
-        policies[Path(spec).stem] = spec if spec in BUILTIN_POLICIES else get_policy(spec, args.seed)
+        policies[Path(spec).stem] = spec if is_builtin_name(spec) else get_policy(spec, args.seed)
     results = []
     for name in args.testcase or ["ispd18_test1"]:
         res = bench_testcase(name, args, policies)

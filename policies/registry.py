@@ -1,4 +1,4 @@
-"""Policies by name: ``get_policy("heuristic" | "random" | "path/to/file.py", seed)``.
+"""Policies by name: ``get_policy("heuristic" | "random" | "rollout" | "best-of-8" | "path/to/file.py", seed)``.
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
 define ``order(region, features)`` (see :mod:`xroute.policy`); it may also set ``NAME`` (default:
@@ -14,11 +14,20 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from xroute.policy import BUILTIN_POLICIES, CallablePolicy, NetOrderPolicy, PolicyError, builtin_policy
+from xroute.policy import (
+    BUILTIN_POLICIES,
+    CallablePolicy,
+    CallableSequentialPolicy,
+    NetOrderPolicy,
+    PolicyError,
+    builtin_policy,
+    is_builtin_name,
+)
 
 
-def load_policy_file(path: str | Path) -> CallablePolicy:
-    """The policy defined by a Python file's ``order(region, features)`` function."""
+def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPolicy:
+    """The policy defined by a Python file's ``next_net(region, features)`` function (sequential:
+    asked after every routed net) or else its ``order(region, features)`` function."""
     p = Path(path)
     if not p.is_file():
         raise PolicyError(f"policy file not found: {p}")
@@ -39,19 +48,24 @@ def load_policy_file(path: str | Path) -> CallablePolicy:
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
         where = f"{p}:{line}: " if line else ""
         raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+    name = getattr(module, "NAME", None) or p.stem
+    step: Any = getattr(module, "next_net", None)
+    if callable(step):
+        return CallableSequentialPolicy(step, name=str(name))
     fn: Any = getattr(module, "order", None)
     if not callable(fn):
-        raise PolicyError(f"policy file {p} defines no function order(region, features)")
-    name = getattr(module, "NAME", None) or p.stem
+        raise PolicyError(f"policy file {p} defines no function order(region, features) or next_net(region, features)")
     return CallablePolicy(fn, name=str(name))
 
 
-def get_policy(spec: str, seed: int = 1) -> NetOrderPolicy:
-    """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), or a ``.py``
-    file defining ``order(region, features)``, or a ``.onnx`` net-order model. Raises
-    :class:`PolicyError` (an ``XrouteError``) for anything else or a file that cannot be used."""
-    if spec in BUILTIN_POLICIES:
-        return builtin_policy(spec, seed)
+def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:
+    """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), ``rollout``
+    (``search_budget`` trial routings per region; None: the engine's default), ``bestof`` (K =
+    ``search_budget``), ``best-of-K``, a ``.py`` file defining ``order(region, features)`` (or
+    ``next_net(region, features)``), or a ``.onnx`` net-order model. Raises :class:`PolicyError`
+    (an ``XrouteError``) for anything else or a file that cannot be used."""
+    if is_builtin_name(spec):
+        return builtin_policy(spec, seed, search_budget)
     suffix = Path(spec).suffix.lower()
     if suffix == ".onnx":
         from xroute.policies.onnx_policy import OnnxPolicy
@@ -60,6 +74,6 @@ def get_policy(spec: str, seed: int = 1) -> NetOrderPolicy:
     if suffix == ".py":
         return load_policy_file(spec)
     raise PolicyError(
-        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)}, a .py file defining order(region, features) "
+        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)}, best-of-K, a .py file defining order(region, features) "
         "or a .onnx net-order model"
     )

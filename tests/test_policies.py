@@ -29,10 +29,11 @@ REGION = {"iteration": 0, "region": 3, "box": (0, 0, 1000, 1000)}
 
 
 def features(rows: list[tuple[int, int, int, int, int, int]]) -> np.ndarray:
-    """int32[n, 9] from (net, terminals, xlo, ylo, xhi, yhi) rows (pins = access points = terminals)."""
+    """int32[n, len(FEATURE_COLUMNS)] from (net, terminals, xlo, ylo, xhi, yhi) rows (pins = access points =
+    terminals; the later columns 0)."""
     out = np.zeros((len(rows), len(FEATURE_COLUMNS)), dtype=np.int32)
     for i, (net, terms, xlo, ylo, xhi, yhi) in enumerate(rows):
-        out[i] = (net, terms, terms, terms, xlo, ylo, xhi, yhi, terms)
+        out[i, :9] = (net, terms, terms, terms, xlo, ylo, xhi, yhi, terms)
     return out
 
 

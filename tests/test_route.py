@@ -17,6 +17,7 @@ import pytest
 
 from conftest import available, contest_found, is_standin, pick, require_testcase
 from xroute.policies import CallablePolicy, HeuristicPolicy, PolicyError, RandomPolicy, get_policy
+from xroute.policy import FEATURE_COLUMNS
 from xroute.errors import XrouteError
 from xroute.outputs import RouteOutputs, write_route_outputs
 from xroute.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, route_design
@@ -190,8 +191,11 @@ def test_python_policy_is_called_once_per_region_with_features(name: str) -> Non
         seen.add((region["iteration"], region["region"]))
         bx0, by0, bx1, by1 = region["box"]
         assert xlo <= bx0 < bx1 <= xhi and ylo <= by0 < by1 <= yhi
-        assert f.dtype == np.int32 and f.ndim == 2 and f.shape[1] == 9 and f.shape[0] >= 1
-        net, pins, terminals, access, fx0, fy0, fx1, fy1, net_pins = f.T
+        assert f.dtype == np.int32 and f.ndim == 2 and f.shape[1] == len(FEATURE_COLUMNS) and f.shape[0] >= 1
+        net, pins, terminals, access, fx0, fy0, fx1, fy1, net_pins = f.T[:9]
+        crossings, gx0, gy0, gx1, gy1, nearby = f.T[9:]
+        assert (crossings == terminals - pins).all() and (nearby == 0).all()  # nothing routed before the order
+        assert ((bx0 <= gx0) & (gx0 <= gx1) & (gx1 <= bx1) & (by0 <= gy0) & (gy0 <= gy1) & (gy1 <= by1)).all()
         assert ((net >= 0) & (net < nets)).all() and len(set(net.tolist())) == len(net)
         assert (net_pins == ppn[net]).all() and (pins <= net_pins).all() and (pins <= terminals).all()
         assert (terminals >= 1).all() and (access >= 1).all()

@@ -145,8 +145,9 @@ def test_a_two_pin_net_on_one_track_is_one_straight_wire(tmp_path: Path) -> None
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
     session = _engine.RoutingSession(d.engine)
     region = session.open_region((0, 0, 4000, 4000))
-    # net, pins, terminals, access points, bounding box of the access points, pins of the net
-    assert region.candidates.tolist() == [[0, 2, 2, 2, 500, 1100, 2500, 1100, 2]]
+    # net, pins, terminals, access points, bounding box of the access points, pins of the net,
+    # crossings, the guide span (no guides: the region box), grid nodes new routing uses in the bbox
+    assert region.candidates.tolist() == [[0, 2, 2, 2, 500, 1100, 2500, 1100, 2, 0, 0, 0, 4000, 4000, 0]]
     assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 2000, "vias": 0, "unreached": 0}
     assert region.metrics()["violations"] == 0
     region.commit()
@@ -331,9 +332,12 @@ def test_a_reopened_region_clips_the_net_at_its_boundary(tmp_path: Path) -> None
     # The left half: u1's pin inside, the routed wire leaves the box at x = 2000, where the part
     # kept outside ends: a boundary terminal on M1 at (2000, 1100).
     region = session.open_region((0, 0, 2000, 2000))
-    # pins inside 1, terminals 2 (the pin and the boundary point), their bounding box
-    assert region.candidates.tolist() == [[0, 1, 2, 2, 500, 1100, 2000, 1100, 2]]
+    # pins inside 1, terminals 2 (the pin and the boundary point, one crossing), their bounding box
+    assert region.candidates.tolist() == [[0, 1, 2, 2, 500, 1100, 2000, 1100, 2, 1, 0, 0, 2000, 2000, 0]]
     assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 1500, "vias": 0, "unreached": 0}
+    # routed_nearby: the new wire's grid nodes on y = 1100 from x = 500 to 2000, all inside the bbox
+    xs = [int(x) for x in region.grid()["xs"] if 500 <= x <= 2000]
+    assert region.candidates[0, -1] == len(xs) > 1
     region.commit()
     assert d.net_routing(0) == {
         "wires": [("M1", 2000, 1100, 2500, 1100, 0, -1, -1), ("M1", 500, 1100, 2000, 1100, 0, -1, -1)],

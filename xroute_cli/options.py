@@ -11,6 +11,7 @@ from typing import Annotated
 
 import typer
 
+from xroute.defaults import MAX_SEARCH_BUDGET, SEARCH_BUDGET
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
 
 ConfigOption = Annotated[
@@ -45,7 +46,9 @@ RepairRoundsOption = Annotated[
 PolicyOption = Annotated[
     str | None,
     typer.Option("--policy",
-                 help="Net-order policy: heuristic, random, or a policy file (.py defining order(region, features)). "
+                 help="Net-order policy: heuristic, random, rollout, bestof, best-of-K (search: fewer violations "
+                      "for more time, see --search-budget), or a policy file (.py defining order(region, features) "
+                      "or next_net(region, features)). "
                       "Default: heuristic.", show_default=False),
 ]
 NetRouterOption = Annotated[
@@ -53,6 +56,12 @@ NetRouterOption = Annotated[
     typer.Option("--net-router",
                  help="A net-router ONNX model (policies/models/net_router_dqn.onnx): it routes each net step by step, "
                       "A* taking over every net it does not connect. Not with --policy.", show_default=False),
+]
+SearchBudgetOption = Annotated[
+    int | None,
+    typer.Option("--search-budget", min=1, max=MAX_SEARCH_BUDGET,
+                 help=f"Trial routings per region of the rollout policy (and bestof's K). Default: {SEARCH_BUDGET}.",
+                 show_default=False),
 ]
 SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]

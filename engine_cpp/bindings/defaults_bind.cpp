@@ -3,6 +3,7 @@
 #include <nanobind/nanobind.h>
 
 #include "flow/router.hpp"
+#include "flow/search_policy.hpp"
 #include "grid/region_grid.hpp"
 #include "groute/global_router.hpp"
 #include "pa/pin_access.hpp"
@@ -26,6 +27,11 @@ void bindDefaults(nb::module_& m) {
   d["max_repair_rounds"] = kMaxRepairRounds;
   d["marker_penalty"] = router.markerPenalty;
   d["history_penalty"] = router.historyPenalty;
+  const SearchSettings search;
+  d["search_budget"] = search.budget;
+  d["search_width"] = search.width;
+  d["max_search_budget"] = kMaxSearchBudget;
+  d["region_cost_weights"] = nb::make_tuple(search.weights.wirelength, search.weights.via, search.weights.violation);
   d["max_region_nodes"] = static_cast<int64_t>(kMaxRegionNodes);
   d["groute_iterations"] = groute.iterations;
   d["groute_capacity_percent"] = groute.capacityPercent;

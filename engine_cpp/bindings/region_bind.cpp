@@ -14,6 +14,7 @@
 
 #include "bindings/arrays.hpp"
 #include "bindings/region_handle.hpp"
+#include "flow/search_policy.hpp"
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
 #include "flow/route_context.hpp"
@@ -126,9 +127,13 @@ void bindRegionState(RegionClass& cls) {
       .def_prop_ro(
           "candidates",
           [](const RegionHandle& h) {
-            return ownedInt32(featureRows(h.get().candidates()), kFeatureCount);
+            return ownedInt32(featureRows(h.get().candidatesNow()), kFeatureCount);
           },
-          nb::rv_policy::move, "int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.")
+          nb::rv_policy::move, "int32[candidates, len(POLICY_FEATURES)]: one row per candidate net, columns as _engine.POLICY_FEATURES "
+          "(routed_nearby as the region is now).")
+      .def_prop_ro(
+          "route_order", [](const RegionHandle& h) { return h.get().routedOrder(); },
+          "Candidate indices in the order they were routed so far (a search policy's: the order it kept).")
       .def(
           "is_routed", [](const RegionHandle& h, int32_t i) { return h.get().isRouted(h.candidate(i)); }, "index"_a,
           "Whether candidate i has been routed.")
@@ -212,16 +217,25 @@ void bindRegionRouting(RegionClass& cls) {
           "The node paths candidate i was routed along (by the maze or route_net_paths); empty before.")
       .def(
           "route_rest",
-          [](RegionHandle& h, const std::string& policy, uint64_t seed) {
+          [](RegionHandle& h, const std::string& policy, uint64_t seed, int search_budget, int search_width) {
             h.checkOpen();
+            SearchSettings search;
+            search.budget = search_budget;
+            search.width = search_width;
+            search.seed = seed;
             std::unique_ptr<NetOrderPolicy> p;
-            if (policy == "heuristic") p = makeHeuristicPolicy();
-            else if (policy == "random") p = makeRandomPolicy(seed);
-            else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
+            try {
+              p = makeBuiltinPolicy(policy, search);
+            } catch (const std::invalid_argument& e) {
+              throw nb::value_error(e.what());
+            }
             nb::gil_scoped_release release;
             h.get().routeAll(*p, h.ws);
           },
-          "policy"_a = "heuristic", "seed"_a = 1, "Routes every candidate not routed yet in a built-in policy's order.");
+          "policy"_a = "heuristic", "seed"_a = 1, "search_budget"_a = SearchSettings{}.budget,
+          "search_width"_a = SearchSettings{}.width,
+          "Routes every candidate not routed yet in a built-in policy's order (heuristic, random, rollout, bestof, "
+          "best-of-K; the searches route trial orders on copies of the region and keep the cheapest).");
 }
 
 // Region: metrics.

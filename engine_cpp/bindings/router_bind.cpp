@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <type_traits>
 
 #include "bindings/arrays.hpp"
 #include "bindings/region_handle.hpp"
@@ -20,6 +21,7 @@
 #include "db/database.hpp"
 #include "flow/policy.hpp"
 #include "flow/router.hpp"
+#include "flow/search_policy.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -32,28 +34,49 @@ namespace {
 // With `needsRegion`, region["engine_region"] is the Region being routed (a
 // _engine.Region lent for this call: grid views, route_net...). Its name, in
 // errors, is fn.name when the callable has one (the Python policy's), else "python".
+// With `next` (not None) the policy is sequential: next(region, features) -> index of the
+// net to route next, called after every routed net with the unrouted candidates' rows.
 class PythonPolicy final : public NetOrderPolicy {
  public:
-  PythonPolicy(nb::object fn, bool needsRegion)
+  PythonPolicy(nb::object fn, bool needsRegion, nb::object next)
       : fn_(std::move(fn)),
+        next_(std::move(next)),
         needsRegion_(needsRegion),
         name_(nb::hasattr(fn_, "name") ? nb::cast<std::string>(nb::str(fn_.attr("name"))) : "python") {}
   ~PythonPolicy() override {
     nb::gil_scoped_acquire gil;
     fn_.reset();
+    next_.reset();
+  }
+
+  bool sequential() const override { return !next_.is_none(); }
+  int32_t next(RegionRouter& router, const RegionInfo& region, const std::vector<NetCandidate>& c) override {
+    return call(next_, needsRegion_ ? &router : nullptr, region, c,
+                [](const nb::object& r) { return nb::cast<int32_t>(r); });
   }
 
   std::vector<int32_t> order(const RegionInfo& region, const std::vector<NetCandidate>& c) override {
-    return call(nullptr, region, c);
+    return call(fn_, nullptr, region, c, permutation);
   }
   std::vector<int32_t> orderRegion(RegionRouter& router, const RegionInfo& region,
                                    const std::vector<NetCandidate>& c) override {
-    return call(needsRegion_ ? &router : nullptr, region, c);
+    return call(fn_, needsRegion_ ? &router : nullptr, region, c, permutation);
   }
   std::string name() const override { return name_; }
 
  private:
-  std::vector<int32_t> call(RegionRouter* router, const RegionInfo& region, const std::vector<NetCandidate>& c) {
+  static std::vector<int32_t> permutation(const nb::object& result) {
+    std::vector<int32_t> out;
+    for (nb::handle h : result) out.push_back(nb::cast<int32_t>(h));
+    return out;
+  }
+
+  // Calls fn(region, features) with the GIL held (one call at a time) and converts its result
+  // there: `convert` sees the returned object while the GIL is still held.
+  template <class Convert>
+  std::invoke_result_t<Convert, const nb::object&> call(const nb::object& fn, RegionRouter* router,
+                                                        const RegionInfo& region, const std::vector<NetCandidate>& c,
+                                                        Convert convert) {
     std::lock_guard<std::mutex> lock(mutex_);
     nb::gil_scoped_acquire gil;
     IntArray features = ownedInt32(featureRows(c), kFeatureCount);
@@ -75,13 +98,11 @@ class PythonPolicy final : public NetOrderPolicy {
         if (h) h->router = nullptr;
       }
     } expire{lent};
-    nb::object result = fn_(info, features);
-    std::vector<int32_t> out;
-    for (nb::handle h : result) out.push_back(nb::cast<int32_t>(h));
-    return out;
+    return convert(fn(info, features));
   }
 
   nb::object fn_;
+  nb::object next_;
   bool needsRegion_ = false;
   std::string name_;  // in error messages
   std::mutex mutex_;
@@ -97,7 +118,8 @@ void bindRouter(nb::module_& m) {
       "route",
       [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
          nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs,
-         const std::optional<std::vector<std::pair<int, int>>>& schedule) {
+         const std::optional<std::vector<std::pair<int, int>>>& schedule, int search_budget, int search_width,
+         nb::object policy_next) {
         if (region_size < 1 || region_size > kMaxRegionSize) {
           throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
         }
@@ -108,10 +130,19 @@ void bindRouter(nb::module_& m) {
           throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
         }
         std::unique_ptr<NetOrderPolicy> p;
-        if (!policy_fn.is_none()) p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region);
-        else if (policy == "heuristic") p = makeHeuristicPolicy();
-        else if (policy == "random") p = makeRandomPolicy(seed);
-        else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
+        if (!policy_fn.is_none() || !policy_next.is_none()) {
+          p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region, policy_next);
+        } else {
+          SearchSettings search;
+          search.budget = search_budget;
+          search.width = search_width;
+          search.seed = seed;
+          try {
+            p = makeBuiltinPolicy(policy, search);
+          } catch (const std::invalid_argument& e) {
+            throw nb::value_error(e.what());
+          }
+        }
         RouterSettings s;
         s.regionSize = region_size;
         s.iterations = iterations;
@@ -160,14 +191,19 @@ void bindRouter(nb::module_& m) {
         for (const IterationReport& r : out.iterations) its.append(reportDict(r, dbu));
         nb::dict result;
         result["iterations"] = its;
-        result["policy"] = policy_fn.is_none() ? policy : std::string("python");
+        result["policy"] = policy_fn.is_none() && policy_next.is_none() ? policy : std::string("python");
         return result;
       },
       "db"_a, "region_size"_a = RouterSettings{}.regionSize, "iterations"_a = RouterSettings{}.iterations, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
       "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(), "costs"_a = nb::dict(),
-      "schedule"_a = nb::none(),
-      "Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' "
-      "(seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with "
+      "schedule"_a = nb::none(), "search_budget"_a = SearchSettings{}.budget, "search_width"_a = SearchSettings{}.width,
+      "policy_next"_a = nb::none(),
+      "Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' "
+      "(seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), "
+      "'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or "
+      "policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, "
+      "policy_next(region, features) -> index of the next net, called after every routed net with the unrouted "
+      "candidates' rows as they are then. With "
       "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
       "route nets with it; the order applies to the rest). progress(report, "
       "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "

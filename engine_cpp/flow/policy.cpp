@@ -13,13 +13,7 @@ class HeuristicPolicy final : public NetOrderPolicy {
   std::vector<int32_t> order(const RegionInfo&, const std::vector<NetCandidate>& c) override {
     std::vector<int32_t> idx(c.size());
     std::iota(idx.begin(), idx.end(), 0);
-    std::stable_sort(idx.begin(), idx.end(), [&](int32_t a, int32_t b) {
-      const int64_t pa = int64_t(c[a].bbox.width()) + c[a].bbox.height();
-      const int64_t pb = int64_t(c[b].bbox.width()) + c[b].bbox.height();
-      if (pa != pb) return pa < pb;
-      if (c[a].terminals != c[b].terminals) return c[a].terminals > c[b].terminals;
-      return c[a].net < c[b].net;
-    });
+    std::stable_sort(idx.begin(), idx.end(), [&](int32_t a, int32_t b) { return heuristicBefore(c[a], c[b]); });
     return idx;
   }
   std::string name() const override { return "heuristic"; }
@@ -49,6 +43,14 @@ class RandomPolicy final : public NetOrderPolicy {
 
 }  // namespace
 
+bool heuristicBefore(const NetCandidate& a, const NetCandidate& b) {
+  const int64_t pa = int64_t(a.bbox.width()) + a.bbox.height();
+  const int64_t pb = int64_t(b.bbox.width()) + b.bbox.height();
+  if (pa != pb) return pa < pb;
+  if (a.terminals != b.terminals) return a.terminals > b.terminals;
+  return a.net < b.net;
+}
+
 std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy() { return std::make_unique<HeuristicPolicy>(); }
 std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed) { return std::make_unique<RandomPolicy>(seed); }
 
@@ -56,8 +58,9 @@ std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates) {
   std::vector<int32_t> flat;
   flat.reserve(candidates.size() * kFeatureCount);
   for (const NetCandidate& k : candidates) {
-    const int32_t row[kFeatureCount] = {k.net,       k.pins,      k.terminals, k.accessPoints, k.bbox.xlo,
-                                        k.bbox.ylo, k.bbox.xhi, k.bbox.yhi, k.netPins};
+    const int32_t row[kFeatureCount] = {k.net,         k.pins,        k.terminals,   k.accessPoints, k.bbox.xlo,
+                                        k.bbox.ylo,    k.bbox.xhi,    k.bbox.yhi,    k.netPins,      k.crossings,
+                                        k.guide.xlo,   k.guide.ylo,   k.guide.xhi,   k.guide.yhi,    k.routedNearby};
     flat.insert(flat.end(), row, row + kFeatureCount);
   }
   return flat;

@@ -1,6 +1,8 @@
 // The net-order seam: in every region the router asks a policy in which
 // order to route the region's nets. A policy sees the region and one
-// feature row per candidate net, and returns a permutation.
+// feature row per candidate net, and returns a permutation (the fast path),
+// or, when sequential(), is asked for the next net after every routed net
+// with the candidates still unrouted and their updated features (the MDP).
 #pragma once
 
 #include <cstdint>
@@ -28,12 +30,18 @@ struct NetCandidate {
   int32_t accessPoints = 0;  // terminal nodes in the grid
   Rect bbox;                 // DBU, bounding box of the terminal nodes
   int32_t netPins = 0;       // pins of the whole net
+  int32_t crossings = 0;     // terminals on the region edge (boundary cuts and planned crossings)
+  Rect guide;                // DBU, bounding box of the net's guides clipped to the region (the box: no guide there)
+  int32_t routedNearby = 0;  // updated state: grid nodes (all layers) in `bbox` that routing of this region
+                             // already uses (other nets' new routing); 0 until nets are routed
 };
 
 // The candidates as a flat row-major table, one row of kFeatureCount int32
 // per candidate, columns named by kFeatureColumns (what Python policies see).
-inline constexpr const char* kFeatureColumns[] = {"net",      "pins",     "terminals", "access_points", "bbox_xlo",
-                                                  "bbox_ylo", "bbox_xhi", "bbox_yhi",  "net_pins"};
+// New columns go at the end: Python policies read them by name, old ones keep their place.
+inline constexpr const char* kFeatureColumns[] = {
+    "net",       "pins",      "terminals", "access_points", "bbox_xlo",  "bbox_ylo",     "bbox_xhi", "bbox_yhi",
+    "net_pins",  "crossings", "guide_xlo", "guide_ylo",     "guide_xhi", "guide_yhi", "routed_nearby"};
 inline constexpr size_t kFeatureCount = sizeof(kFeatureColumns) / sizeof(kFeatureColumns[0]);
 std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates);
 
@@ -50,6 +58,14 @@ class NetOrderPolicy {
     (void)router;
     return order(region, candidates);
   }
+  // A sequential policy is asked for one net at a time (next()) instead of a whole order.
+  virtual bool sequential() const { return false; }
+  // The index (into `unrouted`) of the net to route next; `unrouted` holds the candidates not
+  // routed yet with their features as they are now. Default: the first of order().
+  virtual int32_t next(RegionRouter& router, const RegionInfo& region, const std::vector<NetCandidate>& unrouted) {
+    const std::vector<int32_t> o = orderRegion(router, region, unrouted);
+    return o.empty() ? -1 : o.front();
+  }
   virtual std::string name() const = 0;
 };
 
@@ -60,6 +76,9 @@ std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy();
 
 // A uniformly random order, reproducible: seeded from (seed, iteration, region).
 std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed);
+
+// The heuristic's comparison: true when candidate a goes before b.
+bool heuristicBefore(const NetCandidate& a, const NetCandidate& b);
 
 // Checks that `order` is a permutation of 0..n-1.
 bool isPermutation(const std::vector<int32_t>& order, size_t n);

@@ -359,22 +359,67 @@ struct RegionRouter::Impl {
           }
         }
       }
-      NetCandidate c;
-      c.net = ns.task.net;
-      c.netPins = ctx.design.pinCount(NetId(ns.task.net));
-      bool first = true;
-      for (const TermSpec& s : ns.terms) {
-        if (s.pinRef >= 0) ++c.pins;
-        ++c.terminals;
-        for (const Point& p : s.points) {
-          ++c.accessPoints;
-          const Rect r{p.x, p.y, p.x, p.y};
-          if (first) c.bbox = r;
-          else c.bbox.expandToInclude(r);
-          first = false;
-        }
+      candidates.push_back(makeCandidate(ns));
+    }
+  }
+
+  // A net's static features (routedNearby is filled in by refreshNearby).
+  NetCandidate makeCandidate(const NetState& ns) const {
+    NetCandidate c;
+    c.net = ns.task.net;
+    c.netPins = ctx.design.pinCount(NetId(ns.task.net));
+    bool first = true;
+    for (const TermSpec& s : ns.terms) {
+      if (s.pinRef >= 0) ++c.pins;
+      else ++c.crossings;
+      ++c.terminals;
+      for (const Point& p : s.points) {
+        ++c.accessPoints;
+        const Rect r{p.x, p.y, p.x, p.y};
+        if (first) c.bbox = r;
+        else c.bbox.expandToInclude(r);
+        first = false;
       }
-      candidates.push_back(c);
+    }
+    c.guide = guideSpan(ns.task.net);
+    return c;
+  }
+
+  // The bounding box of a net's guides clipped to the region; the region box when none overlaps it.
+  Rect guideSpan(int32_t net) const {
+    const Design& d = ctx.design;
+    Rect span = box();
+    bool any = false;
+    for (int32_t gi = d.hasGuides() ? d.guideStart[net] : 0; d.hasGuides() && gi < d.guideStart[net + 1]; ++gi) {
+      const Rect& r = d.guideRects[gi];
+      if (!r.overlaps(box())) continue;
+      const Rect clipped{std::max(r.xlo, box().xlo), std::max(r.ylo, box().ylo), std::min(r.xhi, box().xhi),
+                         std::min(r.yhi, box().yhi)};
+      if (any) span.expandToInclude(clipped);
+      else span = clipped;
+      any = true;
+    }
+    return span;
+  }
+
+  // routedNearby of each candidate: nodes in its terminal box that new routing uses (a 2-D
+  // prefix sum over the grid's (x, y) columns, all layers counted).
+  void refreshNearby(std::vector<NetCandidate>& cands) const {
+    const RegionGrid& g = *grid;
+    const int nx = g.nx(), ny = g.ny();
+    std::vector<int32_t> sum(size_t(nx + 1) * (ny + 1), 0);
+    auto at = [&](int x, int y) -> int32_t& { return sum[size_t(y) * (nx + 1) + x]; };
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) {
+        int32_t used = 0;
+        for (int z = 0; z < g.nz(); ++z) used += g.routedNet[g.index(x, y, z)] >= 0 ? 1 : 0;
+        at(x + 1, y + 1) = used + at(x, y + 1) + at(x + 1, y) - at(x, y);
+      }
+    for (NetCandidate& c : cands) {
+      int x0, x1, y0, y1;
+      closedRange(g.xs(), c.bbox.xlo, c.bbox.xhi, x0, x1);
+      closedRange(g.ys(), c.bbox.ylo, c.bbox.yhi, y0, y1);
+      c.routedNearby = x0 > x1 || y0 > y1 ? 0 : at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
     }
   }
 
@@ -644,6 +689,7 @@ void RegionRouter::prepare() { impl_->prepare(); }
 const RegionGrid& RegionRouter::grid() const { return *impl_->grid; }
 const std::vector<NetCandidate>& RegionRouter::candidates() const { return impl_->candidates; }
 bool RegionRouter::isRouted(int32_t candidate) const { return impl_->nets[candidate].routed; }
+const std::vector<int32_t>& RegionRouter::routedOrder() const { return impl_->order; }
 void RegionRouter::routeNet(int32_t index, MazeWorkspace& ws) { impl_->routeNet(index, ws); }
 void RegionRouter::routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths) {
   impl_->routeNetPaths(index, std::move(paths));
@@ -669,16 +715,71 @@ void RegionRouter::moves(int32_t candidate, int32_t node, std::array<MazeMove, k
   impl_->moves(candidate, node, out);
 }
 
-void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
-  std::vector<int32_t> pending;
+std::vector<NetCandidate> RegionRouter::unrouted(std::vector<int32_t>& index) const {
+  index.clear();
   std::vector<NetCandidate> cands;
   for (size_t i = 0; i < impl_->candidates.size(); ++i) {
     if (impl_->nets[i].routed) continue;
-    pending.push_back(static_cast<int32_t>(i));
+    index.push_back(static_cast<int32_t>(i));
     cands.push_back(impl_->candidates[i]);
   }
+  if (!cands.empty()) impl_->refreshNearby(cands);
+  return cands;
+}
+
+std::vector<NetCandidate> RegionRouter::candidatesNow() const {
+  std::vector<NetCandidate> cands = impl_->candidates;
+  if (!cands.empty()) impl_->refreshNearby(cands);
+  return cands;
+}
+
+std::unique_ptr<RegionRouter> RegionRouter::clone() const {
+  const Impl& s = *impl_;
+  std::unique_ptr<RegionRouter> out(new RegionRouter(s.ctx, s.task, s.plan, s.seed));
+  Impl& d = *out->impl_;
+  if (s.grid) d.grid = std::make_unique<RegionGrid>(*s.grid);
+  d.nets = s.nets;
+  d.candidates = s.candidates;
+  d.apVia = s.apVia;
+  d.choices = s.choices;
+  d.rounds = s.rounds;
+  d.order = s.order;
+  return out;
+}
+
+void RegionRouter::adopt(std::unique_ptr<RegionRouter> other) {
+  if (&other->impl_->task != &impl_->task) throw std::logic_error("RegionRouter::adopt: not a copy of this region");
+  std::swap(impl_, other->impl_);
+}
+
+const RouteContext& RegionRouter::context() const { return impl_->ctx; }
+RegionInfo RegionRouter::info() const {
+  return RegionInfo{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
+}
+
+// A sequential policy: one net at a time, the candidates' features refreshed after each.
+void RegionRouter::routeSequential(NetOrderPolicy& policy, MazeWorkspace& ws) {
+  const RegionInfo region = info();
+  std::vector<int32_t> pending;
+  for (std::vector<NetCandidate> cands = unrouted(pending); !pending.empty(); cands = unrouted(pending)) {
+    const int32_t k = policy.next(*this, region, cands);
+    if (k < 0 || static_cast<size_t>(k) >= cands.size()) {
+      throw PolicyOrderError("net-order policy '" + policy.name() + "' chose candidate " + std::to_string(k) +
+                             ", outside 0.." + std::to_string(cands.size() - 1));
+    }
+    if (!isRouted(pending[k])) routeNet(pending[k], ws);  // the policy may have routed it itself
+  }
+}
+
+void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
+  if (policy.sequential()) {
+    routeSequential(policy, ws);
+    return;
+  }
+  std::vector<int32_t> pending;
+  const std::vector<NetCandidate> cands = unrouted(pending);
   if (pending.empty()) return;
-  RegionInfo info{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
+  const RegionInfo info = this->info();
   const std::vector<int32_t> order = policy.orderRegion(*this, info, cands);
   if (!isPermutation(order, cands.size())) {
     throw PolicyOrderError("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +

@@ -89,6 +89,8 @@ class RegionRouter {
   const RegionGrid& grid() const;
   const std::vector<NetCandidate>& candidates() const;
   bool isRouted(int32_t candidate) const;
+  // Candidate indices in the order they were routed so far.
+  const std::vector<int32_t>& routedOrder() const;
   // Routes candidate `index` (an index into candidates()).
   void routeNet(int32_t index, MazeWorkspace& ws);
   // Routes candidate `index` along the caller's node paths (each step one
@@ -104,8 +106,20 @@ class RegionRouter {
   std::vector<bool> terminalJoined(int32_t candidate) const;
   // The six maze moves from `node` for the candidate's net (see mazeMoves).
   void moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const;
-  // Routes every candidate not yet routed in the policy's order.
+  // Routes every candidate not yet routed in the policy's order (a sequential policy: one
+  // net at a time, asked again after each with the unrouted candidates' updated features).
   void routeAll(NetOrderPolicy& policy, MazeWorkspace& ws);
+  // The candidates not routed yet (their features as they are now) and their indices in candidates().
+  std::vector<NetCandidate> unrouted(std::vector<int32_t>& index) const;
+  // All candidates with their features as they are now (candidates() has routedNearby = 0).
+  std::vector<NetCandidate> candidatesNow() const;
+  // An independent copy of the region in its current state (grid, routed nets, choices): a
+  // search routes trial orders on copies and keeps the original as it was.
+  std::unique_ptr<RegionRouter> clone() const;
+  // Takes the state of `other`, a clone of this region routed further (a search's best trial).
+  void adopt(std::unique_ptr<RegionRouter> other);
+  const RouteContext& context() const;
+  RegionInfo info() const;
   // The new routing of a candidate so far (empty until routed).
   const RegionNetResult& result(int32_t candidate) const;
   // Design-rule markers inside the box with the new routing in place of the
@@ -114,6 +128,8 @@ class RegionRouter {
   RegionResult finish();
 
  private:
+  void routeSequential(NetOrderPolicy& policy, MazeWorkspace& ws);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

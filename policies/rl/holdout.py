@@ -8,10 +8,11 @@ its nets; the score is the region's first-pass cost ``0.5 WL(um) + 4 vias + 500 
 (:class:`xroute.config.CostSection`): the region's new routing and the design-rule markers inside
 its box. Every policy starts from the same state (nothing is committed).
 
-A policy is named by a spec: a built-in name the engine routes itself (``heuristic``, ``random``
-and whatever else :data:`xroute.policy.BUILTIN_POLICIES` lists, through
-``Region.route_rest(name, seed)``), or anything :func:`xroute.policies.registry.get_policy`
-resolves (a ``.py`` file, an ``.onnx`` model), asked once per region for an order.
+A policy is named by a spec: a built-in name the engine routes itself (``heuristic``, ``random``,
+the searches ``rollout``, ``bestof`` and ``best-of-K``: :func:`xroute.policy.is_builtin_name`,
+through ``Region.route_rest(name, seed, search_budget)``), or anything
+:func:`xroute.policies.registry.get_policy` resolves (a ``.py`` file, an ``.onnx`` model), asked
+once per region for an order (a sequential one, with ``next_net``, once per net).
 """
 
 from __future__ import annotations
@@ -23,7 +24,8 @@ from typing import Any, Iterator
 import numpy as np
 
 from xroute.config import CostSection
-from xroute.policy import BUILTIN_POLICIES, check_order
+from xroute.defaults import SEARCH_BUDGET
+from xroute.policy import BUILTIN_POLICIES, check_order, is_builtin_name
 from xroute.policies.rl.region_filter import held_out
 
 FIGURES = ("cost", "wl_um", "vias", "drvs")
@@ -72,15 +74,18 @@ def held_out_regions(first_pass: Any, hold_out_every: int, region_size: int,
 
 
 def route_in_context(first_pass: Any, region: HeldOutRegion, spec: str | Any, seed: int, dbu_per_micron: int,
-                     weights: CostSection = CostSection()) -> PolicyScore:
+                     weights: CostSection = CostSection(), search_budget: int = SEARCH_BUDGET) -> PolicyScore:
     """Opens ``region`` in context and routes it with ``spec`` (a built-in name, or a policy object with
-    ``order(region, features)``); returns its score."""
+    ``order(region, features)`` or ``next_net(region, features)``); returns its score. ``search_budget``:
+    rollout's trial routings per region (and ``bestof``'s K)."""
     r = first_pass.open_region(region.index)
     t0 = time.perf_counter()
     if isinstance(spec, str):
-        if spec not in BUILTIN_POLICIES:
-            raise ValueError(f"{spec!r} is not a built-in policy ({', '.join(BUILTIN_POLICIES)})")
-        r.route_rest(spec, seed)
+        if not is_builtin_name(spec):
+            raise ValueError(f"{spec!r} is not a built-in policy ({', '.join(BUILTIN_POLICIES)}, best-of-K)")
+        r.route_rest(spec, seed, search_budget)
+    elif callable(getattr(spec, "next_net", None)):
+        _route_sequential(r, spec, {"iteration": 0, "region": region.index, "box": region.box})
     else:
         info = {"iteration": 0, "region": region.index, "box": region.box}
         if getattr(spec, "needs_region", False):
@@ -96,6 +101,19 @@ def route_in_context(first_pass: Any, region: HeldOutRegion, spec: str | Any, se
     score = region_score(r, dbu_per_micron, weights)
     score.seconds = time.perf_counter() - t0
     return score
+
+
+def _route_sequential(r: Any, spec: Any, info: dict[str, Any]) -> None:
+    """Routes the region one net at a time as the router does for a sequential policy: ``next_net``
+    sees the unrouted candidates' rows (``routed_nearby`` as the region is now)."""
+    if getattr(spec, "needs_region", False):
+        info = {**info, "engine_region": r}
+    while pending := list(r.unrouted()):
+        k = int(spec.next_net(info, r.candidates[pending]))
+        if not 0 <= k < len(pending):
+            raise ValueError(f"policy {getattr(spec, 'name', spec)!r}: next_net returned {k}, outside range({len(pending)})")
+        if not r.is_routed(pending[k]):
+            r.route_net(pending[k])
 
 
 def best_of_random(first_pass: Any, region: HeldOutRegion, seeds: int, dbu_per_micron: int,

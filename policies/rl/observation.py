@@ -31,6 +31,8 @@ from typing import Any
 
 import numpy as np
 
+from xroute.policy import FEATURE_COLUMNS
+
 ALIGNED_SHAPE: tuple[int, int, int] = (3, 64, 64)
 """The standard grid (z, y, x) every region is aligned to."""
 
@@ -54,8 +56,17 @@ NET_FEATURES: tuple[str, ...] = (
 # Grid flag bits (engine_cpp/grid/region_grid.hpp NodeFlag).
 _ACCESS = 2
 _OWNER_MIXED = -2
-# Columns of the engine's candidate rows (xroute.policy.FEATURE_COLUMNS).
-_NET, _PINS, _TERMINALS, _APS, _XLO, _YLO, _XHI, _YHI, _NET_PINS = range(9)
+# Columns of the engine's candidate rows, by name (xroute.policy.FEATURE_COLUMNS; later columns are
+# not read here, and rows from before they were added, 9 columns wide, still work).
+_NET, _PINS, _TERMINALS, _APS, _XLO, _YLO, _XHI, _YHI, _NET_PINS = (
+    FEATURE_COLUMNS.index(c) for c in ("net", "pins", "terminals", "access_points", "bbox_xlo", "bbox_ylo", "bbox_xhi",
+                                      "bbox_yhi", "net_pins"))
+
+
+def _rows(rows: Any, dtype: type) -> np.ndarray:
+    """Candidate rows as a 2-D array (an empty or flat input as rows of FEATURE_COLUMNS)."""
+    r = np.asarray(rows, dtype=dtype)
+    return r if r.ndim == 2 else r.reshape(-1, len(FEATURE_COLUMNS))
 
 
 @dataclass
@@ -110,9 +121,9 @@ def _heuristic_rank(rows: np.ndarray) -> np.ndarray:
 
 
 def net_features(rows: np.ndarray, mask: np.ndarray, box: tuple[int, int, int, int]) -> np.ndarray:
-    """float32[N, len(NET_FEATURES)] from the engine's candidate rows (int32[N, 9]), the unrouted
+    """float32[N, len(NET_FEATURES)] from the engine's candidate rows (int32[N, len(FEATURE_COLUMNS)]), the unrouted
     mask and the region box (DBU)."""
-    r = np.asarray(rows, dtype=np.int64).reshape(-1, 9)
+    r = _rows(rows, np.int64)
     n = len(r)
     width = max(1, int(box[2]) - int(box[0]))
     height = max(1, int(box[3]) - int(box[1]))
@@ -176,7 +187,7 @@ def observe_arrays(grid: dict[str, np.ndarray], rows: np.ndarray, mask: np.ndarr
     ``(len(rows), 7, 3, 64, 64)`` to fill instead of a new one (the returned ``nets`` is a view of it);
     ``with_nets=False`` skips them (``nets`` is then empty: for a caller that keeps them, as they
     depend only on the terminals)."""
-    rows = np.asarray(rows, dtype=np.int32).reshape(-1, 9)
+    rows = _rows(rows, np.int32)
     mask = np.asarray(mask, dtype=bool)
     all_ids = rows[:, _NET].astype(np.int32)
     obstacle = align(obstacle_grid(grid, all_ids[mask], all_ids[~mask]))

@@ -265,9 +265,9 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None) -> dict:
+def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic' or 'random' (seeded), or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; with policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
     """
 
 ACCESS_UP: int = 1
@@ -320,7 +320,13 @@ class Region:
     @property
     def candidates(self) -> NDArray[numpy.int32]:
         """
-        int32[candidates, 9]: one row per candidate net, columns as _engine.POLICY_FEATURES.
+        int32[candidates, len(POLICY_FEATURES)]: one row per candidate net, columns as _engine.POLICY_FEATURES (routed_nearby as the region is now).
+        """
+
+    @property
+    def route_order(self) -> list[int]:
+        """
+        Candidate indices in the order they were routed so far (a search policy's: the order it kept).
         """
 
     def is_routed(self, index: int) -> bool:
@@ -359,8 +365,10 @@ class Region:
         The node paths candidate i was routed along (by the maze or route_net_paths); empty before.
         """
 
-    def route_rest(self, policy: str = 'heuristic', seed: int = 1) -> None:
-        """Routes every candidate not routed yet in a built-in policy's order."""
+    def route_rest(self, policy: str = 'heuristic', seed: int = 1, search_budget: int = 4, search_width: int = 0) -> None:
+        """
+        Routes every candidate not routed yet in a built-in policy's order (heuristic, random, rollout, bestof, best-of-K; the searches route trial orders on copies of the region and keep the cheapest).
+        """
 
     def metrics(self) -> dict:
         """

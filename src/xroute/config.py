@@ -32,7 +32,7 @@ from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
 from xroute.errors import XrouteError
-from xroute.defaults import MAX_REPAIR_ROUNDS, MAX_THREADS, REPAIR_ROUNDS
+from xroute.defaults import MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REPAIR_ROUNDS, SEARCH_BUDGET
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
 
 __all__ = [
@@ -67,14 +67,16 @@ def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
 def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     """A built-in policy name stays as it is; anything else is a policy file, which must be
     readable (relative to the config file's folder). Its format is checked when it is loaded."""
-    from xroute.policy import BUILTIN_POLICIES
+    from xroute.policy import BUILTIN_POLICIES, is_builtin_name
 
-    if value in BUILTIN_POLICIES:
+    if is_builtin_name(value):
+        if value.startswith("best-of-") and not 1 <= int(value[len("best-of-"):]) <= MAX_SEARCH_BUDGET:
+            return value, f"best-of-K: K must be in 1..{MAX_SEARCH_BUDGET}, got {value!r}"
         return value, None
     path = ctx.resolve(value)
     if not path.suffix and os.sep not in value and "/" not in value and not path.exists():
         names = ", ".join(BUILTIN_POLICIES)
-        return value, f"unknown policy '{value}': use {names}, or the path of a policy file (.py, .onnx)"
+        return value, f"unknown policy '{value}': use {names}, best-of-K, or the path of a policy file (.py, .onnx)"
     if path.exists() and not path.is_file():
         return value, f"policy file {path} is not a file"
     if not path.is_file():
@@ -154,6 +156,8 @@ class PolicySection:
     seed: int = setting(1, min=0, max=2**64 - 1)
     call_timeout: float = setting(300.0, min=0.0, max=86400.0, unit="seconds",
                                   help="time limit of one order() call of a policy file (0: none)")
+    search_budget: int = setting(SEARCH_BUDGET, min=1, max=MAX_SEARCH_BUDGET,
+                                 help="trial routings per region of the rollout policy (and bestof's K)")
 
 
 @dataclass(frozen=True)
@@ -216,6 +220,7 @@ class RunSettings:
     net_loop: int = 1
     policy_timeout: float | None = None  # seconds per policy call (None: the default)
     repair_rounds: int = REPAIR_ROUNDS  # check-and-reroute rounds inside each region
+    search_budget: int = SEARCH_BUDGET  # trial routings per region (rollout; bestof's K)
 
     def route_settings(self) -> RouteSettings:
         """The detailed router's settings (validated: RouteArgumentError when invalid)."""
@@ -229,13 +234,13 @@ class RunSettings:
     def to_dict(self) -> dict[str, Any]:
         return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
                 "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in self.schedule],
-                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds}
+                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds, "search_budget": self.search_budget}
 
 
 def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iterations: int | None = None,
                  threads: int | None = None, policy: str | None = None, seed: int | None = None,
                  schedule: tuple[tuple[int, int], ...] | None = None,
-                 repair_rounds: int | None = None) -> RunSettings:
+                 repair_rounds: int | None = None, search_budget: int | None = None) -> RunSettings:
     """The run's settings: each flag that was given (not None) overrides the config value."""
     if schedule is None:
         schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
@@ -249,6 +254,7 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         net_loop=cfg.router.net_loop,
         policy_timeout=cfg.policy.call_timeout,
         repair_rounds=repair_rounds if repair_rounds is not None else cfg.router.repair_rounds,
+        search_budget=search_budget if search_budget is not None else cfg.policy.search_budget,
     )
 
 

@@ -18,6 +18,8 @@ MAX_THREADS: int = int(_D["max_threads"])
 REPAIR_ROUNDS: int = int(_D["repair_rounds"])  # check-and-reroute rounds inside a region (later iterations)
 MAX_REPAIR_ROUNDS: int = int(_D["max_repair_rounds"])
 ACCESS_POINTS_PER_PIN: int = int(_D["access_points_per_pin"])
+SEARCH_BUDGET: int = int(_D["search_budget"])  # trial routings per region of the rollout / bestof policies
+MAX_SEARCH_BUDGET: int = int(_D["max_search_budget"])
 MAX_REGION_NODES: int = int(_D["max_region_nodes"])  # grid nodes of one region at most
 
 GROUTE_ITERATIONS: int = int(_D["groute_iterations"])  # rip-up-and-reroute rounds at most

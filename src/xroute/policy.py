@@ -4,8 +4,9 @@ A policy is any object with a ``name`` and an ``order(region, features)`` method
 :class:`NetOrderPolicy` protocol):
 
 * ``region`` is a dict ``{"iteration": int, "region": int, "box": (xlo, ylo, xhi, yhi)}`` (box in DBU);
-* ``features`` is an ``int32[n, 9]`` array, one row per candidate net of the region, columns
-  :data:`FEATURE_COLUMNS` (the engine's ``POLICY_FEATURES``):
+* ``features`` is an ``int32[n, len(FEATURE_COLUMNS)]`` array, one row per candidate net of the
+  region, columns :data:`FEATURE_COLUMNS` (the engine's ``POLICY_FEATURES``; read them by name,
+  new columns are added at the end):
 
   ========== ===================================================================
   net        net id (index into the design's nets)
@@ -14,9 +15,27 @@ A policy is any object with a ``name`` and an ``order(region, features)`` method
   access_points  terminal nodes in the region's grid
   bbox_xlo .. bbox_yhi  bounding box of those terminal nodes (DBU)
   net_pins   pins of the whole net
+  crossings  terminals on the region edge (where the net crosses into a neighbour)
+  guide_xlo .. guide_yhi  bounding box of the net's route guides inside the region (DBU; the
+             region box when no guide of the net overlaps it)
+  routed_nearby  grid nodes (all layers) inside the net's terminal bounding box that routing
+             of this region already uses: 0 before any net is routed, then updated
   ========== ===================================================================
 
 * the result is a permutation of ``range(n)``: the candidates' row indices, first routed first.
+
+**Sequential policies** (the MDP of the XRoute paper): an object with ``name`` and
+``next_net(region, features) -> int`` (the :class:`SequentialPolicy` protocol) is asked for one
+net at a time: the router calls it after every routed net with the candidates still unrouted
+(``features`` has their rows only, ``routed_nearby`` as the region is now) and routes the row it
+returns. A policy with ``next_net`` is used that way even if it also has ``order``; one with
+``order`` only gives the whole order in one call (the fast path).
+
+**Search policies** ``rollout`` and ``best-of-K`` (:class:`RolloutPolicy`, :class:`BestOfPolicy`)
+run in the engine: they route trial orders on copies of the region, score each by the region's
+cost (0.5 WL(um) + 4 vias + 500 markers inside the region) and keep the cheapest, the
+heuristic's order among the trials, so a region never ends costlier than the heuristic's
+routing. ``budget`` = trial routings per region (see engine_cpp/flow/README.md).
 
 A policy that sets ``needs_region = True`` (an ONNX model, a learning environment) also finds, in
 ``region["engine_region"]``, the engine's Region being routed, lent for that one call: its live
@@ -33,6 +52,7 @@ This module imports no engine and no torch.
 
 from __future__ import annotations
 
+import re
 from typing import Any, Callable, Protocol, Sequence, runtime_checkable
 
 import numpy as np
@@ -49,14 +69,29 @@ FEATURE_COLUMNS: tuple[str, ...] = (
     "bbox_xhi",
     "bbox_yhi",
     "net_pins",
+    "crossings",
+    "guide_xlo",
+    "guide_ylo",
+    "guide_xhi",
+    "guide_yhi",
+    "routed_nearby",
 )
 """Columns of the ``features`` array (the same as ``xroute._engine.POLICY_FEATURES``)."""
 
 _COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
 
 
-BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random")
-"""Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`)."""
+BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random", "rollout", "bestof")
+"""Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`);
+``best-of-K`` (K an integer, e.g. ``best-of-8``) names :class:`BestOfPolicy` with that K too
+(:func:`is_builtin_name`)."""
+
+_BEST_OF = re.compile(r"best-of-([0-9]{1,6})")
+
+
+def is_builtin_name(name: str) -> bool:
+    """True for a built-in policy's name: one of :data:`BUILTIN_POLICIES` or ``best-of-K``."""
+    return name in BUILTIN_POLICIES or _BEST_OF.fullmatch(name) is not None
 
 
 
@@ -68,6 +103,17 @@ class NetOrderPolicy(Protocol):
 
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         """A permutation of ``range(len(features))``: the order in which the region's nets are routed."""
+        ...
+
+
+@runtime_checkable
+class SequentialPolicy(Protocol):
+    """A policy asked for one net at a time, after every routed net."""
+
+    name: str
+
+    def next_net(self, region: dict[str, Any], features: np.ndarray) -> int:
+        """The row index (into ``features``, the unrouted candidates) of the net to route next."""
         ...
 
 
@@ -120,6 +166,58 @@ class RandomPolicy:
         return f"RandomPolicy(seed={self.seed})"
 
 
+def _check_count(what: str, value: Any) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise PolicyError(f"{what} must be an integer >= 1, got {value!r}")
+    return int(value)
+
+
+class RolloutPolicy:
+    """The engine's rollout search (see the module doc): in each region, nets named by the cheapest
+    trial's markers are tried as the next net, the rest finished in heuristic order, and the best
+    is committed, until none is left or ``budget`` trial routings are spent (None: the engine's
+    default, ``xroute.defaults.SEARCH_BUDGET``). ``width``: at most this many candidates per step
+    (0: all). Outside the router (no region to try orders on) :meth:`order` is the heuristic's."""
+
+    name = "rollout"
+    builtin = "rollout"
+
+    def __init__(self, budget: int | None = None, width: int = 0) -> None:
+        self.budget = _check_count("rollout search budget (trial routings per region)", budget)
+        if isinstance(width, bool) or not isinstance(width, (int, np.integer)) or width < 0:
+            raise PolicyError(f"rollout width must be an integer >= 0 (0: every candidate), got {width!r}")
+        self.width = int(width)
+
+    def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
+        return heuristic_order(features)
+
+    def __repr__(self) -> str:
+        return f"RolloutPolicy(budget={self.budget}, width={self.width})"
+
+
+class BestOfPolicy:
+    """The engine's best-of-K search: each region routed in K orders (the heuristic's and K-1
+    random orders seeded from ``seed``, the iteration, the region and the trial), the cheapest
+    kept. ``k`` None: the engine's default budget. Outside the router :meth:`order` is the heuristic's."""
+
+    builtin = "bestof"
+
+    def __init__(self, k: int | None = None, seed: int = 1) -> None:
+        self.k = _check_count("best-of-K: K (trial routings per region)", k)
+        if seed < 0:
+            raise PolicyError(f"best-of-K seed must be >= 0, got {seed}")
+        self.seed = int(seed)
+        self.name = f"best-of-{self.k}" if self.k is not None else "bestof"
+
+    def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
+        return heuristic_order(features)
+
+    def __repr__(self) -> str:
+        return f"BestOfPolicy(k={self.k}, seed={self.seed})"
+
+
 class CallablePolicy:
     """Wraps any Python callable ``fn(region, features) -> order`` as a policy.
 
@@ -139,6 +237,25 @@ class CallablePolicy:
 
     def __repr__(self) -> str:
         return f"CallablePolicy({self.name!r})"
+
+
+class CallableSequentialPolicy:
+    """Wraps a Python callable ``fn(region, features) -> int`` as a sequential policy (its
+    ``next_net``): asked after every routed net, with the unrouted candidates' rows."""
+
+    builtin = None
+
+    def __init__(self, fn: Callable[[dict[str, Any], np.ndarray], int], name: str | None = None) -> None:
+        if not callable(fn):
+            raise PolicyError(f"a sequential policy needs a callable next_net(region, features), got {type(fn).__name__}")
+        self.fn = fn
+        self.name = name or getattr(fn, "__name__", None) or type(fn).__name__
+
+    def next_net(self, region: dict[str, Any], features: np.ndarray) -> int:
+        return self.fn(region, features)
+
+    def __repr__(self) -> str:
+        return f"CallableSequentialPolicy({self.name!r})"
 
 
 def check_order(order: Any, n: int, policy_name: str) -> list[int]:
@@ -166,13 +283,22 @@ def check_order(order: Any, n: int, policy_name: str) -> list[int]:
     return out
 
 
-def builtin_policy(name: str, seed: int = 1) -> NetOrderPolicy:
-    """The built-in policy called ``name`` (one of :data:`BUILTIN_POLICIES`); ``random`` is seeded with ``seed``."""
+def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:
+    """The built-in policy called ``name`` (:func:`is_builtin_name`); ``random`` and best-of-K are
+    seeded with ``seed``; ``search_budget`` is rollout's budget and ``bestof``'s K (None: the
+    engine's default); ``best-of-K`` takes its K from the name."""
     if name == "heuristic":
         return HeuristicPolicy()
     if name == "random":
         return RandomPolicy(seed)
+    if name == "rollout":
+        return RolloutPolicy(search_budget)
+    if name == "bestof":
+        return BestOfPolicy(search_budget, seed)
+    m = _BEST_OF.fullmatch(name)
+    if m is not None:
+        return BestOfPolicy(int(m.group(1)), seed)
     raise PolicyError(
-        f"unknown policy '{name}': use {', '.join(BUILTIN_POLICIES)}, or load a policy file or model with "
+        f"unknown policy '{name}': use {', '.join(BUILTIN_POLICIES)}, best-of-K, or load a policy file or model with "
         "xroute.policies.get_policy"
     )

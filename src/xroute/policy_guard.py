@@ -144,13 +144,14 @@ class Watchdog:
                                                                    ctypes.py_object(self._timeout_class))
 
 
-def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | None) -> Any:
-    """``policy.order(region, features)`` under the guards described in the module doc."""
+def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | None, method: str = "order") -> Any:
+    """``policy.order(region, features)`` (or ``policy.next_net`` with ``method="next_net"``) under the
+    guards described in the module doc."""
     if watchdog is not None:
         watchdog.begin()
     try:
         try:
-            return policy.order(region, features)
+            return getattr(policy, method)(region, features)
         finally:
             if watchdog is not None:
                 watchdog.end()
@@ -160,7 +161,7 @@ def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | No
         file, line = _where(exc, policy_source(policy))
         where = f"{file}:{line}" if line else file
         raise PolicyCallError(f"{where}: policy '{getattr(policy, 'name', 'policy')}' called sys.exit({exc.code!r}) "
-                              "inside order(): a policy cannot end the run") from None
+                              f"inside {method}(): a policy cannot end the run") from None
     except KeyboardInterrupt:
         raise
     except Exception as exc:

@@ -16,7 +16,18 @@ import time
 from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
-from xroute.policy import HeuristicPolicy, NetOrderPolicy, RandomPolicy, builtin_policy, check_order
+import numpy as np
+
+from xroute.policy import (
+    BestOfPolicy,
+    HeuristicPolicy,
+    NetOrderPolicy,
+    RandomPolicy,
+    RolloutPolicy,
+    SequentialPolicy,
+    builtin_policy,
+    check_order,
+)
 from xroute import defaults
 from xroute.errors import PolicyError, RouteArgumentError
 
@@ -206,15 +217,28 @@ def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
     :func:`xroute.policies.get_policy`)."""
     if isinstance(policy, str):
         return builtin_policy(policy, seed)
-    if not isinstance(policy, NetOrderPolicy):
-        raise PolicyError(f"not a net-order policy (needs name and order(region, features)): {policy!r}")
+    if not isinstance(policy, (NetOrderPolicy, SequentialPolicy)):
+        raise PolicyError(f"not a net-order policy (needs name and order(region, features) or "
+                          f"next_net(region, features)): {policy!r}")
     return policy
+
+
+def check_search_budget(what: str, value: int | None) -> int:
+    """A search policy's trial routings per region (None: the engine's default), checked against
+    the engine's limit; :class:`RouteArgumentError` (one line) otherwise."""
+    if value is None:
+        return defaults.SEARCH_BUDGET
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= defaults.MAX_SEARCH_BUDGET:
+        raise RouteArgumentError(f"{what} must be an integer in 1..{defaults.MAX_SEARCH_BUDGET}, got {value!r}")
+    return value
 
 
 def _builtin(policy: NetOrderPolicy) -> str | None:
     """The engine's name for a built-in policy; None for one that must be called from Python
     (including a subclass of a built-in that overrides ``order``)."""
-    for cls in (HeuristicPolicy, RandomPolicy):
+    if isinstance(policy, SequentialPolicy):
+        return None
+    for cls in (HeuristicPolicy, RandomPolicy, RolloutPolicy, BestOfPolicy):
         if isinstance(policy, cls) and type(policy).order is cls.order:
             return cls.builtin
     return None
@@ -245,6 +269,28 @@ class _PolicyCallback:
             self.seconds += time.perf_counter() - start
             self.calls += 1
 
+    def next_net(self, region: dict[str, Any], features: Any) -> int:
+        """A sequential policy's ``next_net``, checked: a row index of ``features``."""
+        from xroute.policy_guard import call_policy
+
+        start = time.perf_counter()
+        try:
+            index = call_policy(self.policy, region, features, self.watchdog, method="next_net")
+            return check_next(index, len(features), self.policy.name)
+        finally:
+            self.seconds += time.perf_counter() - start
+            self.calls += 1
+
+
+def check_next(index: Any, n: int, policy_name: str) -> int:
+    """``index`` as an int if it is a row of ``n`` unrouted candidates; otherwise a :class:`PolicyError`."""
+    where = f"net-order policy '{policy_name}'"
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
+        raise PolicyError(f"{where}: next_net returned {type(index).__name__}, not the int index of a candidate row")
+    if not 0 <= int(index) < n:
+        raise PolicyError(f"{where}: next_net returned {int(index)}, outside range({n}) (the unrouted candidates)")
+    return int(index)
+
 
 def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[str, Any], _PolicyCallback | None]:
     """The engine's policy arguments: a built-in's name (run in C++), or a checked, timed callback."""
@@ -253,10 +299,21 @@ def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[s
         return {"policy": "heuristic"}, None
     if builtin == "random":
         return {"policy": "random", "seed": pol.seed if isinstance(pol, RandomPolicy) else settings.seed}, None
+    if builtin == "rollout":
+        budget = check_search_budget("rollout search budget", pol.budget)
+        return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
+    if builtin == "bestof":
+        k = check_search_budget("best-of-K: K", pol.k)
+        return {"policy": f"best-of-{k}", "seed": pol.seed}, None
     callback = _PolicyCallback(pol, settings.policy_timeout)  # seconds per call (None: default, 0: none)
     # A policy that declares needs_region = True finds the region being routed (an _engine.Region
     # lent for the call: grid views, candidates, route_net) in region["engine_region"].
-    return {"policy_fn": callback, "policy_needs_region": bool(getattr(pol, "needs_region", False))}, callback
+    kwargs: dict[str, Any] = {"policy_needs_region": bool(getattr(pol, "needs_region", False))}
+    if isinstance(pol, SequentialPolicy):
+        kwargs["policy_next"] = callback.next_net  # asked after every routed net
+    else:
+        kwargs["policy_fn"] = callback
+    return kwargs, callback
 
 
 def route_design(
@@ -274,12 +331,14 @@ def route_design(
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
-    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), or a policy object
+    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"bestof"``,
+    ``"best-of-K"`` (the engine's search policies with their default budget), or a policy object
     (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
-    ``CallablePolicy(fn)``, anything with ``name`` and ``order``; policy files and ONNX models
-    through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
+    ``RolloutPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
+    ``name`` and ``order``, or with ``name`` and ``next_net`` (asked after every routed net);
+    policy files and ONNX models through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
     fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
-    Built-in policies run in C++; any other is called once per region. Raises
+    Built-in policies run in C++; any other is called once per region (a sequential one once per net). Raises
     :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing

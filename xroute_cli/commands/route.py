@@ -35,6 +35,7 @@ from xroute.cli.options import (
     RepairRoundsOption,
     RegionSizeOption,
     ScheduleOption,
+    SearchBudgetOption,
     SeedOption,
     ThreadsOption,
 )
@@ -120,6 +121,7 @@ def route(
     threads: ThreadsOption = None,
     repair_rounds: RepairRoundsOption = None,
     policy: PolicyOption = None,
+    search_budget: SearchBudgetOption = None,
     seed: SeedOption = None,
     schedule: ScheduleOption = None,
     net_router: NetRouterOption = None,
@@ -160,10 +162,10 @@ def route(
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
-                      repair_rounds=repair_rounds,
+                      repair_rounds=repair_rounds, search_budget=search_budget,
                       schedule=steps)
     settings = rs.route_settings()  # fail before loading
-    pol = get_policy(rs.policy, rs.seed)
+    pol = get_policy(rs.policy, rs.seed, rs.search_budget)
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
     design = load_design_args(testcase, lef, def_, guide, prepare=True)

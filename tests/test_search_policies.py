@@ -1,0 +1,258 @@
+"""Search as a net-order policy (rollout, best-of-K), the sequential seam (next_net after every
+routed net) and the features that came with it (crossings, guide span, routed_nearby).
+
+The design is a generated one (testcases.generator, 400 cells), large enough for regions whose
+heuristic order leaves design-rule markers that another order avoids."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from xroute.config_schema import ConfigError
+from xroute.errors import PolicyError, RouteArgumentError
+from xroute.policy import FEATURE_COLUMNS, BestOfPolicy, RolloutPolicy, builtin_policy, heuristic_order
+from xroute.router import route_design
+
+COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
+WEIGHTS = (0.5, 4.0, 500.0)  # the paper's cost: per um of wire, per via, per marker
+
+
+@pytest.fixture(scope="module")
+def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from xroute.testcases.generator import make_testcase
+
+    return make_testcase(400, 3, tmp_path_factory.mktemp("search"))
+
+
+def load(folder: Path) -> Any:
+    from xroute import load_design
+
+    stem = folder / folder.name  # the generator names the files after their folder
+    return load_design(lef=f"{stem}.lef", def_=f"{stem}.def", guide=f"{stem}.guide")
+
+
+def region_cost(region: Any, dbu: int) -> float:
+    m = region.metrics()
+    return WEIGHTS[0] * m["wirelength_dbu"] / dbu + WEIGHTS[1] * m["vias"] + WEIGHTS[2] * m["violations"]
+
+
+def boxes(session: Any, size: int = 3) -> list[tuple[int, int, int, int]]:
+    xs, ys = (np.asarray(a) for a in session.gcell_lines)
+    out = []
+    for gx in range(0, len(xs) - 1, size):
+        for gy in range(0, len(ys) - 1, size):
+            out.append((int(xs[gx]), int(ys[gy]), int(xs[min(gx + size, len(xs) - 1)]),
+                        int(ys[min(gy + size, len(ys) - 1)])))
+    return out
+
+
+def test_search_is_never_costlier_than_the_heuristic_and_better_somewhere(generated: Path) -> None:
+    from xroute.session import open_session
+
+    design = load(generated)
+    session = open_session(design)
+    dbu = design.dbu_per_micron
+    totals = {"heuristic": 0.0, "rollout": 0.0, "best-of-4": 0.0}
+    for box in boxes(session):
+        costs = {}
+        for name in totals:
+            region = session.open_region(box)
+            region.route_rest(name, 1, search_budget=8)
+            costs[name] = region_cost(region, dbu)
+            totals[name] += costs[name]
+        # Both keep the heuristic's order among their trials and keep the cheapest.
+        assert costs["rollout"] <= costs["heuristic"] + 1e-9, (box, costs)
+        assert costs["best-of-4"] <= costs["heuristic"] + 1e-9, (box, costs)
+    # ... and on this design some regions have markers that another order avoids.
+    assert totals["rollout"] < 0.95 * totals["heuristic"], totals
+    assert totals["best-of-4"] < 0.95 * totals["heuristic"], totals
+
+
+def test_a_search_routes_the_order_it_returns(generated: Path) -> None:
+    """The region adopts the cheapest trial's routing: replaying its order net by net gives the same cost."""
+    from xroute.session import open_session
+
+    design = load(generated)
+    session = open_session(design)
+    dbu = design.dbu_per_micron
+    checked = 0
+    for box in boxes(session)[:6]:
+        region = session.open_region(box)
+        region.route_rest("best-of-4", 3)
+        searched = region_cost(region, dbu)
+        order = list(region.route_order)
+        again = session.open_region(box)
+        for i in order:
+            again.route_net(int(i))
+        assert region_cost(again, dbu) == pytest.approx(searched, abs=1e-9)
+        checked += 1
+    assert checked == 6
+
+
+@pytest.mark.parametrize("policy", [RolloutPolicy(4), BestOfPolicy(3, seed=2)], ids=["rollout", "best-of-3"])
+def test_search_policies_route_the_same_def_for_any_thread_count(generated: Path, policy: Any) -> None:
+    defs = []
+    for threads in (1, 2):
+        design = load(generated)
+        result = route_design(design, policy=policy, threads=threads, iterations=2, region_size=3)
+        assert result.policy == policy.name
+        defs.append(design.def_text())
+    assert defs[0] == defs[1]
+    heuristic = load(generated)
+    route_design(heuristic, iterations=2, region_size=3)
+    assert heuristic.def_text() != defs[0]  # the search changed some region's routing
+
+
+def test_search_policy_names_and_bad_budgets() -> None:
+    assert builtin_policy("best-of-8").name == "best-of-8" and builtin_policy("best-of-8").k == 8
+    assert builtin_policy("bestof", search_budget=5).k == 5
+    assert builtin_policy("rollout", search_budget=6).budget == 6
+    for bad in (0, -3, 2.5, True):
+        with pytest.raises(PolicyError, match=r"must be an integer >= 1"):
+            RolloutPolicy(bad)
+    with pytest.raises(PolicyError, match=r"best-of-K: K .* must be an integer >= 1, got 0"):
+        builtin_policy("best-of-0")
+    with pytest.raises(PolicyError, match="unknown policy 'best-of-x'"):
+        builtin_policy("best-of-x")
+
+
+def test_a_budget_above_the_engine_limit_is_one_line_error(generated: Path) -> None:
+    from xroute.defaults import MAX_SEARCH_BUDGET
+
+    with pytest.raises(RouteArgumentError, match=rf"rollout search budget must be an integer in 1..{MAX_SEARCH_BUDGET}"):
+        route_design(load(generated), policy=RolloutPolicy(MAX_SEARCH_BUDGET + 1), iterations=1)
+    from xroute import _engine
+
+    with pytest.raises(ValueError, match=r"search budget must be in 1\.\.\d+, got 0"):
+        _engine.route(load(generated).engine, policy="rollout", search_budget=0, iterations=1)
+
+
+def test_cli_and_config_reject_bad_budgets(generated: Path, tmp_path: Path) -> None:
+    from xroute.cli.app import app
+    from xroute.config import load_config
+
+    runner = CliRunner()
+    stem = generated / generated.name
+    args = ["route", "--lef", f"{stem}.lef", "--def", f"{stem}.def", "--guide", f"{stem}.guide", "--out", str(tmp_path)]
+    result = runner.invoke(app, [*args, "--policy", "rollout", "--search-budget", "0"])
+    assert result.exit_code == 2 and "--search-budget" in result.output + result.stderr
+    result = runner.invoke(app, [*args, "--policy", "best-of-0"])
+    assert result.exit_code == 2
+    lines = [line for line in result.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and "best-of-K: K" in lines[0], lines
+    cfg = tmp_path / "c.yaml"
+    cfg.write_text("policy:\n  policy: rollout\n  search_budget: 0\n")
+    with pytest.raises(ConfigError, match=r"c\.yaml:3: .*search_budget"):
+        load_config(cfg)
+    cfg.write_text("policy:\n  policy: best-of-99999\n")
+    with pytest.raises(ConfigError, match=r"c\.yaml:2: .*K must be in 1\.\."):
+        load_config(cfg)
+    cfg.write_text("policy:\n  policy: best-of-6\n  search_budget: 9\n")
+    assert load_config(cfg).policy.policy == "best-of-6" and load_config(cfg).policy.search_budget == 9
+
+
+class Stepper:
+    """A sequential policy: records each call and picks the heuristic's first unrouted net."""
+
+    name = "stepper"
+
+    def __init__(self) -> None:
+        self.calls: list[tuple[int, int, np.ndarray]] = []
+
+    def next_net(self, region: dict[str, Any], features: np.ndarray) -> int:
+        self.calls.append((int(region["iteration"]), int(region["region"]), features.copy()))
+        return int(heuristic_order(features)[0])
+
+
+def test_the_sequential_seam_is_asked_once_per_net_with_shrinking_candidates(generated: Path) -> None:
+    stepper = Stepper()
+    design = load(generated)
+    result = route_design(design, policy=stepper, iterations=1, region_size=3, threads=2)
+    assert result.policy_calls == len(stepper.calls) == result.iterations[0].net_routes
+    by_region: dict[tuple[int, int], list[np.ndarray]] = {}
+    for it, reg, rows in stepper.calls:
+        by_region.setdefault((it, reg), []).append(rows)
+    nearby_grew = False
+    for calls in by_region.values():
+        n = len(calls[0])
+        assert [len(rows) for rows in calls] == list(range(n, 0, -1))
+        assert calls[0][:, COL["routed_nearby"]].sum() == 0  # nothing routed yet
+        for before, after in zip(calls, calls[1:]):
+            routed = set(before[:, COL["net"]]) - set(after[:, COL["net"]])
+            assert len(routed) == 1  # exactly the net it chose is gone
+            common = np.isin(after[:, COL["net"]], before[:, COL["net"]])
+            prev = {int(r[COL["net"]]): int(r[COL["routed_nearby"]]) for r in before}
+            now = after[common]
+            assert all(int(r[COL["routed_nearby"]]) >= prev[int(r[COL["net"]])] for r in now)
+            nearby_grew |= any(int(r[COL["routed_nearby"]]) > prev[int(r[COL["net"]])] for r in now)
+    assert nearby_grew  # the features are updated as nets are routed
+    # Choosing the heuristic's first net each time is the heuristic order: the same routing.
+    heuristic = load(generated)
+    route_design(heuristic, iterations=1, region_size=3)
+    assert heuristic.def_text() == design.def_text()
+
+
+def test_a_sequential_policy_index_out_of_range_is_a_policy_error(generated: Path) -> None:
+    class Bad:
+        name = "bad"
+
+        def next_net(self, region: dict[str, Any], features: np.ndarray) -> int:
+            return len(features)
+
+    with pytest.raises(PolicyError, match=r"net-order policy 'bad': next_net returned \d+, outside range\(\d+\)"):
+        route_design(load(generated), policy=Bad(), iterations=1)
+
+
+def test_crossings_and_guide_span_in_the_features(generated: Path) -> None:
+    from xroute.session import open_session
+
+    design = load(generated)
+    session = open_session(design)
+    saw_crossing_only = False
+    for box in boxes(session, size=1)[:40]:
+        region = session.open_region(box)
+        rows = region.candidates
+        if not len(rows):
+            continue
+        c = {name: rows[:, i] for name, i in COL.items()}
+        assert (c["crossings"] == c["terminals"] - c["pins"]).all()
+        assert ((c["guide_xlo"] >= box[0]) & (c["guide_ylo"] >= box[1]) & (c["guide_xhi"] <= box[2])
+                & (c["guide_yhi"] <= box[3])).all()
+        assert ((c["guide_xlo"] <= c["guide_xhi"]) & (c["guide_ylo"] <= c["guide_yhi"])).all()
+        saw_crossing_only |= bool(((c["pins"] == 0) & (c["crossings"] >= 2)).any())
+    assert saw_crossing_only  # nets that only cross a region now show how
+
+
+def test_a_budget_of_one_is_the_heuristic(generated: Path) -> None:
+    """One trial routing per region is the heuristic's order alone: the same DEF."""
+    heuristic = load(generated)
+    route_design(heuristic, iterations=1, region_size=3)
+    for policy in (RolloutPolicy(1), BestOfPolicy(1)):
+        design = load(generated)
+        route_design(design, policy=policy, iterations=1, region_size=3)
+        assert design.def_text() == heuristic.def_text(), policy
+
+
+def test_a_policy_file_with_next_net_is_sequential(generated: Path, tmp_path: Path) -> None:
+    from xroute.policies.registry import get_policy
+    from xroute.policy import CallableSequentialPolicy
+
+    path = tmp_path / "last_first.py"
+    path.write_text(
+        "NAME = 'last-first'\n"
+        "CALLS = []\n"
+        "def next_net(region, features):\n"
+        "    CALLS.append(len(features))\n"
+        "    return len(features) - 1\n"
+    )
+    pol = get_policy(str(path))
+    assert isinstance(pol, CallableSequentialPolicy) and pol.name == "last-first"
+    design = load(generated)
+    result = route_design(design, policy=pol, iterations=1, region_size=3)
+    assert result.policy == "last-first"
+    assert result.policy_calls == result.iterations[0].net_routes > 0
