@@ -99,10 +99,11 @@ AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
 
 
 def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, list[str]], extra: str = "",
-          m1_area: bool = False, m2_area: bool = False, m2_rules: str = "", macros: str = "") -> Any:
+          m1_area: bool = False, m2_area: bool = False, m2_rules: str = "", macros: str = "",
+          m1_rules: str = "") -> Any:
     """A loaded Design: cells at the given locations (N; PIN1 unless a third item names a macro
     from `macros`, more LEF MACROs), nets of their pins A, `extra` DEF statements (BLOCKAGES)
-    after the components, `m2_rules` more LEF statements of M2."""
+    after the components, `m1_rules` / `m2_rules` more LEF statements of M1 / M2."""
     comp_lines = "".join(f"- {c} {m[0] if m else 'PIN1'} + PLACED ( {x} {y} ) N ;\n"
                          for c, (x, y, *m) in comps.items())
     net_lines = "".join(f"- {n} " + " ".join(f"( {c} A )" for c in cs) + " ;\n" for n, cs in nets.items())
@@ -115,7 +116,7 @@ def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, lis
         f"COMPONENTS {len(comps)} ;\n{comp_lines}END COMPONENTS\n{extra}"
         f"NETS {len(nets)} ;\n{net_lines}END NETS\nEND DESIGN\n"
     )
-    lef_text = LEF.format(m1_area=AREA if m1_area else "", m2_area=(AREA if m2_area else "") + m2_rules)
+    lef_text = LEF.format(m1_area=(AREA if m1_area else "") + m1_rules, m2_area=(AREA if m2_area else "") + m2_rules)
     lef_text = lef_text.replace("END LIBRARY", macros + "END LIBRARY")
     lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
     return load_design(lef=lef, def_=def_)
@@ -323,6 +324,28 @@ def test_an_access_via_too_close_to_the_next_cells_pin_loses_its_via_exit(tmp_pa
     _, _, metrics = route_die(d)
     assert metrics["violations"] == 0
     assert ("V12", 500, 1100) not in d.net_routing(0)["vias"]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
+def test_the_route_leaves_an_access_point_only_where_pin_access_allows(tmp_path: Path) -> None:
+    # M1 end-of-line spacing 0.12 um for line ends under 0.07 um. u1's pin is 485..515 x
+    # 1060..1140 (its 80 tall sides are no line ends), its obstruction ends 105 left of it
+    # (x 300..380). A wire leaving the pin's point (500, 1100) east has its west end at 470, a
+    # 60 tall line end 90 from the obstruction; pin access allows only north and south (and
+    # no via: its cut would stick out of the pin). The maze used to take the straight M1 wire
+    # east to u2 anyway (it trusted every step at the net's own access points).
+    eol = "\n  SPACING 0.12 ENDOFLINE 0.07 WITHIN 0.025 ;"
+    west = (PINOBS.replace("PINOBS", "PINWEST").replace("RECT -0.1 0.07 0.0 0.13", "RECT -0.1 0.07 -0.02 0.13")
+            .replace("RECT 0.07 0.07 0.13 0.13", "RECT 0.085 0.06 0.115 0.14"))
+    d = drawn(tmp_path, {"u1": (400, 1000, "PINWEST"), "u2": (2400, 1000)}, {"n1": ["u1", "u2"]},
+              macros=west, m1_rules=eol)
+    pa = d.engine.pin_access()
+    points = np.asarray(pa["points"])[pa["start"][0]:pa["start"][1]]
+    assert points[:, 0].tolist() == [500] * len(points)
+    assert all(p[3] == _engine.ACCESS_NORTH | _engine.ACCESS_SOUTH for p in points)
+    _, _, metrics = route_die(d)
+    assert metrics["violations"] == 0
+    assert ("M1", 500, 1100, 2500, 1100, 0, -1, -1) not in d.net_routing(0)["wires"]
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 

@@ -348,6 +348,10 @@ struct RegionRouter::Impl {
         if (s.pinRef < 0) continue;
         for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
           const int32_t v = nodeAt(ap->at, ap->z);
+          if (v >= 0) {
+            const uint8_t planar = ap->dirs & (kAccessEast | kAccessWest | kAccessNorth | kAccessSouth);
+            g.accessExits[v] = g.accessExits[v] == kAnyExit ? planar : uint8_t(g.accessExits[v] | planar);
+          }
           if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
           if (v >= 0 && (ap->dirs & kAccessUp) && ap->z + 1 < g.nz()) {
             g.flags[v] |= kAccessVia;

@@ -66,6 +66,7 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
   markerCost.assign(n, 0);
   accessNet.assign(n, -1);
   accessPin.assign(n, -1);
+  accessExits.assign(n, kAnyExit);
   routedNet.assign(n, -1);
   reservedNet.assign(n, -1);
 

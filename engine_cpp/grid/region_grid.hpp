@@ -38,6 +38,7 @@ inline constexpr size_t kMaxRegionNodes = 20'000'000;
 
 inline constexpr int32_t kOwnerNone = -1;   // no shape claims the node
 inline constexpr int32_t kOwnerMixed = -2;  // shapes of several nets / an obstruction
+inline constexpr uint8_t kAnyExit = 0xFF;   // accessExits of a node that is no access point
 
 class RegionGrid {
  public:
@@ -86,6 +87,9 @@ class RegionGrid {
   std::vector<int32_t> markerCost;     // cost units from DRC markers and history
   std::vector<int32_t> accessNet;      // net of the access point / terminal here, else -1
   std::vector<int32_t> accessPin;      // pinRef of the access point here, else -1
+  // At an access point: the planar exits pin access found legal there (AccessDir bits
+  // 2 east, 4 west, 8 north, 16 south, of every point of the node); kAnyExit elsewhere.
+  std::vector<uint8_t> accessExits;
   std::vector<int32_t> routedNet;      // net whose new route uses the node, else -1
   std::vector<int32_t> reservedNet;    // node right above an access point: kept for that net's via, else -1
 

@@ -31,6 +31,17 @@ class Search {
     return (net_.inGuide && !(*net_.inGuide)[v]) ? c_.outOfGuideFactor : 1;
   }
   bool own(int32_t v) const { return g_.accessNet[v] == net_.net; }
+  // A planar step u -> v in direction `dir` leaves u that way and v the
+  // opposite way: at the net's own access points, a way pin access did not
+  // find legal (its stub that way adds a marker) costs like a fixed shape.
+  int64_t exitCost(int32_t u, int32_t v, int dir) const {
+    static constexpr uint8_t kOut[kMoveCount] = {0, 0, 8, 16, 2, 4};   // AccessDir bit leaving that way
+    static constexpr uint8_t kBack[kMoveCount] = {0, 0, 16, 8, 4, 2};  // ... and arriving from it
+    int64_t cost = 0;
+    if (own(u) && !(g_.accessExits[u] & kOut[dir])) cost += c_.fixedPenalty;
+    if (own(v) && !(g_.accessExits[v] & kBack[dir])) cost += c_.fixedPenalty;
+    return cost;
+  }
   int64_t heuristic(int32_t v) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
   int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
@@ -61,7 +72,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
       const Point q = g_.point(v);
       const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
       const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
-      fn(v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), dir);
+      fn(v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir), dir);
     }
   }
   // Against it, to the next existing node.
@@ -71,7 +82,9 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     const Point q = g_.point(v);
     const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
     const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
-    fn(v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v), dir);
+    fn(v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
+              exitCost(u, v, dir),
+       dir);
   }
   // Vias.
   for (int d = -1; d <= 1; d += 2) {
