@@ -132,7 +132,7 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
         sched.step()
         running.append(float(loss.detach()))
         if step % cfg.log_every == 0 or step == cfg.steps:
-            row = {"step": step, "loss": float(np.mean(running)), "prior": float(model.prior),
+            row = {"step": step, "loss": float(np.mean(running)), "prior": float(model.prior.detach()),
                    "seconds": round(time.perf_counter() - t0, 2)}
             running = []
             log.append(row)
@@ -163,9 +163,13 @@ def main() -> None:  # python -m xroute.policies.rl.imitation TEACHER.npz --out 
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             ap.add_argument("--" + name.replace("_", "-"), type=type(value), default=value)
     ap.add_argument("--no-mirror", action="store_true")
+    ap.add_argument("--val-every", type=int, default=0,
+                    help="leave out teacher regions with index %% K == 0 (validate_imitation routes them)")
     a = ap.parse_args()
     torch.set_num_threads(1)
     regions = [r for p in a.teacher for r in load(p)]
+    if a.val_every:
+        regions = [r for r in regions if r.index % a.val_every != 0]
     cfg = ImitationConfig(**{k: getattr(a, k) for k in ImitationConfig().__dict__ if hasattr(a, k) and k != "extra"},
                           mirror=not a.no_mirror)
     a.out.mkdir(parents=True, exist_ok=True)

@@ -88,6 +88,18 @@ def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | 
     return out
 
 
+def score_orders(first_pass: Any, indices: list[int], order_fns: dict[str, Any], dbu_per_micron: int,
+                 ) -> dict[str, list[float]]:
+    """Per named order function (set features float32[N, F] -> order): the cost of each region of ``indices``
+    routed in context in that function's order."""
+    out: dict[str, list[float]] = {name: [] for name in order_fns}
+    for index in indices:
+        features = region_set_features(first_pass.open_region(index))
+        for name, fn in order_fns.items():
+            out[name].append(route_order(first_pass, index, np.asarray(fn(features)), dbu_per_micron))
+    return out
+
+
 def _run_shard(args: tuple[str, int, int, dict[str, Any]]) -> list[TeacherRegion]:
     testcase, shard, shards, kwargs = args
     return collect_shard(testcase, shard, shards, **kwargs)
