@@ -130,3 +130,30 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(de
     onnx.save(proto, str(tmp_path / "bad.onnx"))
     with pytest.raises(PolicyError, match="bad.onnx: not an xroute net-order model: metadata xroute_set_features"):
         OnnxPolicy(tmp_path / "bad.onnx")
+
+
+def test_xroute_train_imitate_writes_a_model_the_router_takes(design_name: str, tmp_path) -> None:
+    import json
+
+    from typer.testing import CliRunner
+
+    from xroute.cli.app import app
+    from xroute.policies.onnx_policy import OnnxPolicy
+
+    out = tmp_path / "run"
+    runner = CliRunner()
+    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "20", "--region-size",
+                              str(SIZE), "--hold-out-every", "3", "--orders", "2", "--workers", "1", "--out", str(out),
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)["summary"]
+    assert summary["teacher_regions"] >= 30 and summary["steps"] == 20
+    assert OnnxPolicy(out / "set.onnx").kind == "set" and (out / "teacher.npz").is_file()
+    # Training again from the saved teacher data routes nothing; bad teacher data is one line.
+    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "5", "--teacher",
+                              str(out / "teacher.npz"), "--out", str(tmp_path / "again"), "--json"])
+    assert res.exit_code == 0, res.output
+    (tmp_path / "junk.npz").write_bytes(b"junk")
+    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "5", "--teacher",
+                              str(tmp_path / "junk.npz"), "--out", str(tmp_path / "bad")])
+    assert res.exit_code == 2 and "junk.npz: not teacher data" in res.output
