@@ -43,6 +43,7 @@ class ImitationConfig:
     weight_decay: float = 1e-4
     temperature: float = 200.0  # cost units (one violation = 500)
     mirror: bool = True
+    loss: str = "pl"  # "pl": imitate the cheap orders; "contrast": rank the region's orders by cost; "both"
     seed: int = 1
     log_every: int = 50
     extra: dict[str, Any] = field(default_factory=dict)
@@ -63,7 +64,7 @@ def order_weights(costs: np.ndarray, temperature: float) -> np.ndarray:
     c = np.asarray(costs, dtype=np.float64)
     z = -(c - c.min()) / max(temperature, 1e-9)
     w = np.exp(z - z.max())
-    return w / w.sum()
+    return np.maximum(w / w.sum(), 1e-12)
 
 
 def informative(regions: list[TeacherRegion]) -> list[TeacherRegion]:
@@ -92,17 +93,32 @@ def batch_tensors(regions: list[TeacherRegion], temperature: float,
     return torch.from_numpy(feats), torch.from_numpy(mask), torch.from_numpy(orders), torch.from_numpy(weights)
 
 
-def plackett_luce_loss(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor,
-                       weights: torch.Tensor) -> torch.Tensor:
-    """Mean over regions of ``-sum_k w_k log P(order_k) / N`` (scores [B, N], orders [B, K1, N])."""
+def order_log_probs(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor) -> torch.Tensor:
+    """[B, K1]: log P(order_k) under the Plackett-Luce model of ``scores`` (padding rows left out)."""
     b, k1, n = orders.shape
     s = torch.where(mask, scores, torch.full_like(scores, -1e4))
     s_ord = torch.gather(s[:, None, :].expand(b, k1, n), 2, orders)
     valid = torch.gather(mask[:, None, :].expand(b, k1, n), 2, orders)
     suffix = torch.logcumsumexp(s_ord.flip(-1), dim=-1).flip(-1)
-    logp = torch.where(valid, s_ord - suffix, torch.zeros_like(s_ord)).sum(-1)  # [B, K1]
+    return torch.where(valid, s_ord - suffix, torch.zeros_like(s_ord)).sum(-1)
+
+
+def plackett_luce_loss(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor,
+                       weights: torch.Tensor) -> torch.Tensor:
+    """Mean over regions of ``-sum_k w_k log P(order_k) / N`` (scores [B, N], orders [B, K1, N])."""
+    logp = order_log_probs(scores, mask, orders)
     count = mask.sum(-1).clamp(min=1).float()
     return (-(weights * logp).sum(-1) / count).mean()
+
+
+def contrast_loss(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor,
+                  weights: torch.Tensor) -> torch.Tensor:
+    """Cross-entropy between the cost weights and the softmax over the region's orders of their
+    log-probabilities: only the differences between orders count (not how sure the model is of any)."""
+    logp = order_log_probs(scores, mask, orders)
+    tried = weights > 0
+    logp = torch.where(tried, logp, torch.full_like(logp, -1e4))
+    return -(weights * torch.log_softmax(logp, dim=-1)).sum(-1).mean()
 
 
 def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig(),
@@ -124,7 +140,12 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
         pick = rng.choice(len(data), size=min(cfg.batch, len(data)), replace=False)
         flips = [(bool(rng.integers(2)), bool(rng.integers(2))) if cfg.mirror else (False, False) for _ in pick]
         feats, mask, orders, weights = batch_tensors([data[i] for i in pick], cfg.temperature, flips)
-        loss = plackett_luce_loss(model(feats, mask), mask, orders, weights)
+        scores = model(feats, mask)
+        loss = torch.zeros(())
+        if cfg.loss in ("pl", "both"):
+            loss = loss + plackett_luce_loss(scores, mask, orders, weights)
+        if cfg.loss in ("contrast", "both"):
+            loss = loss + contrast_loss(scores, mask, orders, weights)
         opt.zero_grad()
         loss.backward()
         torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
@@ -139,6 +160,22 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
             if on_log:
                 on_log(row)
     return model.eval(), log
+
+
+def merge(regions: list[TeacherRegion]) -> list[TeacherRegion]:
+    """One region per (testcase, index): the orders and costs of several teacher runs put together."""
+    by_key: dict[tuple[str, int], TeacherRegion] = {}
+    for r in regions:
+        key = (r.testcase, r.index)
+        if key not in by_key:
+            by_key[key] = TeacherRegion(r.testcase, r.index, r.features, r.orders, r.costs)
+            continue
+        old = by_key[key]
+        if old.features.shape != r.features.shape or not np.allclose(old.features, r.features, atol=1e-5):
+            raise ValueError(f"teacher runs disagree on the features of {r.testcase} region {r.index}")
+        by_key[key] = TeacherRegion(r.testcase, r.index, r.features, np.concatenate([old.orders, r.orders]),
+                                    np.concatenate([old.costs, r.costs]))
+    return [by_key[k] for k in sorted(by_key)]
 
 
 def model_order(model: SetScorer, features: np.ndarray) -> np.ndarray:
@@ -163,15 +200,16 @@ def main() -> None:  # python -m xroute.policies.rl.imitation TEACHER.npz --out 
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             ap.add_argument("--" + name.replace("_", "-"), type=type(value), default=value)
     ap.add_argument("--no-mirror", action="store_true")
+    ap.add_argument("--loss", choices=("pl", "contrast", "both"), default="pl")
     ap.add_argument("--val-every", type=int, default=0,
                     help="leave out teacher regions with index %% K == 0 (validate_imitation routes them)")
     a = ap.parse_args()
     torch.set_num_threads(1)
-    regions = [r for p in a.teacher for r in load(p)]
+    regions = merge([r for p in a.teacher for r in load(p)])
     if a.val_every:
         regions = [r for r in regions if r.index % a.val_every != 0]
-    cfg = ImitationConfig(**{k: getattr(a, k) for k in ImitationConfig().__dict__ if hasattr(a, k) and k != "extra"},
-                          mirror=not a.no_mirror)
+    cfg = ImitationConfig(**{k: getattr(a, k) for k in ImitationConfig().__dict__ if hasattr(a, k) and k not in ("extra", "loss", "mirror")},
+                          mirror=not a.no_mirror, loss=a.loss)
     a.out.mkdir(parents=True, exist_ok=True)
     model, log = train(regions, cfg, on_log=lambda row: print(json.dumps(row), flush=True))
     save_checkpoint(model, a.out / "set-final.pt", {"imitation": cfg.__dict__, "log": log})

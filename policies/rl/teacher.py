@@ -58,8 +58,10 @@ def training_indices(first_pass: Any, region_size: int, hold_out_every: int) -> 
 
 def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | None = None,
                   hold_out_every: int = 3, orders: int = 8, min_candidates: int = 2, seed: int = 1,
-                  max_regions: int = 0) -> list[TeacherRegion]:
-    """The teacher regions of shard ``shard`` of ``shards`` (see the module docstring)."""
+                  max_regions: int = 0, jitter: float = 0.0) -> list[TeacherRegion]:
+    """The teacher regions of shard ``shard`` of ``shards`` (see the module docstring). ``jitter`` > 0: the
+    random orders are the heuristic's perturbed (sorted by heuristic position / N + normal noise of that
+    deviation) instead of uniform permutations."""
     from xroute import load_design
     from xroute.defaults import REGION_SIZE
     from xroute.session import first_pass, open_session
@@ -82,7 +84,13 @@ def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | 
         features = region_set_features(region)
         rng = np.random.default_rng([seed, index])
         tried = [np.asarray(heuristic_order(rows), dtype=np.int32)]
-        tried += [rng.permutation(n).astype(np.int32) for _ in range(orders)]
+        if jitter > 0:
+            position = np.empty(n)
+            position[tried[0]] = np.arange(n) / n
+            tried += [np.argsort(position + rng.normal(0, jitter, n), kind="stable").astype(np.int32)
+                      for _ in range(orders)]
+        else:
+            tried += [rng.permutation(n).astype(np.int32) for _ in range(orders)]
         costs = np.array([route_order(fp, index, o, dbu) for o in tried], dtype=np.float64)
         out.append(TeacherRegion(testcase, index, features, np.stack(tried), costs))
     return out
@@ -161,10 +169,11 @@ def main() -> None:  # python -m xroute.policies.rl.teacher OUT.npz TESTCASE...
     ap.add_argument("--region-size", type=int, default=None)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--max-regions", type=int, default=0)
+    ap.add_argument("--jitter", type=float, default=0.0, help="perturbed heuristic orders (noise / N) instead of random")
     a = ap.parse_args()
     t0 = time.perf_counter()
     regions = collect(a.testcases, workers=a.workers, orders=a.orders, hold_out_every=a.hold_out_every,
-                      region_size=a.region_size, seed=a.seed, max_regions=a.max_regions)
+                      region_size=a.region_size, seed=a.seed, max_regions=a.max_regions, jitter=a.jitter)
     save(regions, a.out)
     heur = sum(r.costs[0] for r in regions)
     best = sum(r.costs.min() for r in regions)
