@@ -12,8 +12,17 @@ heuristic order. Signature (written by ``xroute export``, checked on load)::
     metadata xroute_model = net-order, xroute_algorithm = ppo | dqn,
              xroute_net_features = ",".join(NET_FEATURES)
 
-A model with other inputs, outputs, shapes or metadata is refused with a :class:`PolicyError`
-naming the file and this signature. onnxruntime is imported when a model is loaded (the ``rl``
+A second kind, the set scorer (:mod:`xroute.policies.rl.set_scorer`), is recognised by its inputs::
+
+    inputs   set_features  float32 [N, F]               F = len(SET_FEATURES)
+             mask          bool    [N]
+    output   scores        float32 [N]
+    metadata xroute_model = net-order, xroute_algorithm = set,
+             xroute_set_features = ",".join(SET_FEATURES)
+
+its features (:func:`xroute.policies.rl.set_features.set_features`, a few numbers per net)
+computed from the region's grid when it opens. A model with other inputs, outputs, shapes or
+metadata is refused with a :class:`PolicyError` naming the file and both signatures. onnxruntime is imported when a model is loaded (the ``rl``
 extra), never when this module is.
 """
 
@@ -26,6 +35,7 @@ import numpy as np
 
 from xroute.policy import PolicyError, heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+from xroute.policies.rl.set_features import SET_FEATURES, set_features
 
 ALGORITHMS: tuple[str, ...] = ("ppo", "dqn")
 
@@ -37,6 +47,10 @@ INPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {
     "mask": ("tensor(bool)", (None,)),
 }
 OUTPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {"scores": ("tensor(float)", (None,))}
+SET_INPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {
+    "set_features": ("tensor(float)", (None, len(SET_FEATURES))),
+    "mask": ("tensor(bool)", (None,)),
+}
 
 
 def _dims(shape: tuple[int | None, ...]) -> str:
@@ -48,8 +62,10 @@ EXPECTED_SIGNATURE = (
     + "; output " + ", ".join(f"{n} float32{_dims(s)}" for n, (_, s) in OUTPUTS.items())
     + "; metadata xroute_model=net-order, xroute_algorithm=ppo|dqn, xroute_net_features="
     + ",".join(NET_FEATURES)
+    + "; or (set scorer) inputs set_features float32[N," + str(len(SET_FEATURES)) + "], mask bool[N]; output scores "
+    "float32[N]; metadata xroute_model=net-order, xroute_algorithm=set, xroute_set_features=" + ",".join(SET_FEATURES)
 )
-"""The model signature an ONNX net-order policy must have, as printed in errors."""
+"""The model signatures an ONNX net-order policy may have, as printed in errors."""
 
 
 def _check_args(kind: str, got: Sequence[Any], expected: dict[str, tuple[str, tuple[int | None, ...]]]) -> str | None:
@@ -96,7 +112,9 @@ class OnnxPolicy:
         except Exception as exc:  # noqa: BLE001 - any load failure is a bad model file
             first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
             raise PolicyError(f"{self.path}: not a readable ONNX model ({first}); expected {EXPECTED_SIGNATURE}") from exc
-        problem = (_check_args("inputs", self.session.get_inputs(), INPUTS)
+        names = {a.name for a in self.session.get_inputs()}
+        self.kind = "set" if "set_features" in names else "grid"
+        problem = (_check_args("inputs", self.session.get_inputs(), SET_INPUTS if self.kind == "set" else INPUTS)
                    or _check_args("outputs", self.session.get_outputs(), OUTPUTS)
                    or self._check_metadata())
         if problem:
@@ -107,6 +125,12 @@ class OnnxPolicy:
         if meta.get("xroute_model") != "net-order":
             return f"metadata xroute_model is {meta.get('xroute_model')!r}"
         self.algorithm = meta.get("xroute_algorithm", "")
+        if self.kind == "set":
+            if self.algorithm != "set":
+                return f"metadata xroute_algorithm is {self.algorithm!r} (a set scorer's is 'set')"
+            if meta.get("xroute_set_features") != ",".join(SET_FEATURES):
+                return f"metadata xroute_set_features is {meta.get('xroute_set_features')!r}"
+            return None
         if self.algorithm not in ALGORITHMS:
             return f"metadata xroute_algorithm is {self.algorithm!r}"
         if meta.get("xroute_net_features") != ",".join(NET_FEATURES):
@@ -123,6 +147,14 @@ class OnnxPolicy:
         })[0]
         return np.asarray(out, dtype=np.float32).reshape(-1)
 
+    def set_scores(self, features: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """float32[N]: a set scorer's scores of N candidates (one call)."""
+        out = self.session.run(["scores"], {
+            "set_features": np.ascontiguousarray(features, dtype=np.float32),
+            "mask": np.ascontiguousarray(mask, dtype=bool),
+        })[0]
+        return np.asarray(out, dtype=np.float32).reshape(-1)
+
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         """The unrouted candidates (rows of ``features``) by descending score, ties in heuristic order."""
         n = len(features)
@@ -134,9 +166,13 @@ class OnnxPolicy:
                               "route with xroute.router.route_design, which lends it")
         mask = unrouted_mask(engine_region)
         pending = np.flatnonzero(mask)  # the rows of `features`, in order
-        obs = observe_arrays(engine_region.grid(), engine_region.candidates, mask, tuple(engine_region.box),
-                             select=pending)
-        s = self.scores(obs.obstacle, obs.nets, obs.net_features, obs.mask)
+        if self.kind == "set":
+            rows = set_features(engine_region.grid(), engine_region.candidates, mask, tuple(engine_region.box))
+            s = self.set_scores(rows[pending], mask[pending])
+        else:
+            obs = observe_arrays(engine_region.grid(), engine_region.candidates, mask, tuple(engine_region.box),
+                                 select=pending)
+            s = self.scores(obs.obstacle, obs.nets, obs.net_features, obs.mask)
         if s.shape != (n,):
             raise PolicyError(f"ONNX policy {self.name} returned {s.shape} scores for {n} candidate nets")
         rank = np.empty(n, dtype=np.int64)

@@ -16,13 +16,13 @@ pytest.importorskip("onnxruntime", reason="the rl extra (onnxruntime) is not ins
 MODELS = Path(__file__).resolve().parent.parent / "policies" / "models"
 
 
-@pytest.mark.parametrize("algorithm", ["ppo", "dqn"])
-def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(algorithm: str) -> None:
+@pytest.mark.parametrize("algorithm,name", [("ppo", "ppo"), ("dqn", "dqn"), ("set", "set_imitation")])
+def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(algorithm: str, name: str) -> None:
     from xroute.policies.onnx_policy import OnnxPolicy
     from xroute.policies.registry import get_policy
     from xroute import _engine, load_design
 
-    path = MODELS / f"{algorithm}.onnx"
+    path = MODELS / f"{name}.onnx"
     assert path.is_file() and path.stat().st_size < 2_000_000
     policy = get_policy(str(path))
     assert isinstance(policy, OnnxPolicy) and policy.algorithm == algorithm

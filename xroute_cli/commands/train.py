@@ -1,4 +1,10 @@
-"""``xroute train ppo|dqn``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
+"""``xroute train ppo|dqn|imitate``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
+
+``imitate`` trains the set scorer (:mod:`xroute.policies.rl.imitation`) instead: teacher orders
+routed on the first pass's training regions in context (``--testcase`` may list several, comma
+separated; ``--orders`` random orders besides the heuristic's, ``--workers`` processes; or
+``--teacher`` an .npz made before), then ``--episodes`` gradient steps of imitation; it writes
+``teacher.npz``, ``set-final.pt``, ``set.onnx`` (ready for ``--policy``) and ``log.json``.
 
 Writes into ``--out`` (default ``runs/train-<algorithm>-<testcase>``): ``metrics.jsonl`` (one line
 per episode = region) and checkpoints ``<algorithm>-epNNNNN.pt`` / ``<algorithm>-final.pt``, which
@@ -17,7 +23,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from xroute.cli.console import print_json, stdout_console
 from xroute.errors import XrouteError
 
-ALGORITHMS = ("ppo", "dqn")
+ALGORITHMS = ("ppo", "dqn", "imitate")
 
 
 class TrainError(XrouteError):
@@ -70,9 +76,14 @@ def _require_torch() -> None:
         raise TrainError(f"training needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
 
 
-AlgorithmArg = Annotated[str, typer.Argument(help="ppo or dqn.", show_default=False)]
+AlgorithmArg = Annotated[str, typer.Argument(help="ppo, dqn or imitate (the set scorer).", show_default=False)]
 TestcaseOpt = Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")]
-EpisodesOpt = Annotated[int, typer.Option("--episodes", min=1, help="Episodes (regions) to train on.")]
+EpisodesOpt = Annotated[int, typer.Option(
+    "--episodes", min=1, help="Episodes (regions) to train on; for imitate, gradient steps.")]
+OrdersOpt = Annotated[int, typer.Option("--orders", min=1, help="imitate: random teacher orders per region.")]
+WorkersOpt = Annotated[int, typer.Option("--workers", min=1, help="imitate: processes routing teacher orders.")]
+TeacherOpt = Annotated[Path | None, typer.Option(
+    "--teacher", help="imitate: teacher .npz to train on instead of routing one.", show_default=False)]
 ConfigOpt = Annotated[Path | None, typer.Option(
     "--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)]
 OutOpt = Annotated[Path | None, typer.Option(
@@ -108,10 +119,18 @@ def train(
     min_candidates: MinCandOpt = 1,
     in_context: InContextOpt = False,
     json_out: JsonOpt = False,
+    orders: OrdersOpt = 8,
+    workers: WorkersOpt = 2,
+    teacher: TeacherOpt = None,
 ) -> None:
-    """Train a PPO or DQN net-order policy on a testcase's regions; write checkpoints and a metrics log."""
+    """Train a PPO or DQN net-order policy (or imitate: the set scorer) on a testcase's regions; write checkpoints."""
     if algorithm not in ALGORITHMS:
-        raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo or dqn", param_hint="ALGORITHM")
+        raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo, dqn or imitate", param_hint="ALGORITHM")
+    if algorithm == "imitate":
+        _require_torch()
+        _imitate(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, orders, workers, teacher,
+                 json_out)
+        return
     if region_order not in ("sequential", "random"):
         raise typer.BadParameter(f"use sequential or random, got {region_order!r}", param_hint="--region-order")
     location = parse_location(region_location)
@@ -149,3 +168,57 @@ def train(
     console.print(f"trained {algorithm} on {testcase}: {episodes} episodes, {summary['steps']} steps, "
                   f"{summary['seconds']:.1f} s, mean region cost {summary['mean_cost']:,.1f}")
     console.print(f"checkpoint {summary['checkpoint']}  log {summary['metrics_log']}", highlight=False)
+
+
+def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size: int | None, hold_out_every: int,
+             min_candidates: int, orders: int, workers: int, teacher: Path | None, json_out: bool) -> None:
+    """``xroute train imitate``: teacher orders (or ``--teacher``), imitation, checkpoint and ONNX model."""
+    import json
+    import time
+
+    import torch
+
+    from xroute.policies.rl import teacher as teacher_data
+    from xroute.policies.rl.imitation import ImitationConfig, train as imitate
+    from xroute.policies.rl.set_scorer import export_onnx, save_checkpoint
+    from xroute.testcases import find_testcase
+
+    names = [t.strip() for t in testcase.split(",") if t.strip()]
+    for name in names:
+        find_testcase(name)  # unknown testcase: one-line error before any work
+    out_dir = out or Path("runs") / f"imitate-{'-'.join(names)}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    torch.set_num_threads(1)
+    console = stdout_console()
+    t0 = time.perf_counter()
+    if teacher is not None:
+        if not teacher.is_file():
+            raise TrainError(f"teacher data not found: {teacher}")
+        try:
+            regions = teacher_data.load(teacher)
+        except (OSError, ValueError, KeyError) as exc:
+            raise TrainError(f"{teacher}: not teacher data of xroute train imitate ({exc})") from exc
+    else:
+        if not json_out:
+            console.print(f"routing teacher orders on {', '.join(names)} ({orders} random + heuristic per region, "
+                          f"{workers} workers)")
+        regions = teacher_data.collect(names, workers=workers, region_size=region_size, hold_out_every=hold_out_every,
+                                       orders=orders, min_candidates=min_candidates, seed=seed)
+        teacher_data.save(regions, out_dir / "teacher.npz")
+    teacher_seconds = time.perf_counter() - t0
+    cfg = ImitationConfig(steps=steps, seed=seed)
+    model, log = imitate(regions, cfg, on_log=None if json_out else lambda row: console.print(
+        f"step {row['step']}  loss {row['loss']:.4f}  {row['seconds']:.1f} s", highlight=False))
+    save_checkpoint(model, out_dir / "set-final.pt", {"imitation": cfg.__dict__, "log": log})
+    onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_steps": str(steps),
+                                                          "xroute_teacher_regions": str(len(regions))})
+    (out_dir / "log.json").write_text(json.dumps(log, indent=1))
+    summary = {"algorithm": "imitate", "testcases": names, "teacher_regions": len(regions),
+               "teacher_seconds": round(teacher_seconds, 2), "steps": steps,
+               "seconds": round(time.perf_counter() - t0, 2), "checkpoint": str(out_dir / "set-final.pt"),
+               "model": str(onnx_path)}
+    if json_out:
+        print_json({"summary": summary, "log": log})
+        return
+    console.print(f"imitated {len(regions)} teacher regions of {', '.join(names)}: {steps} steps, "
+                  f"{summary['seconds']:.1f} s; model {onnx_path}", highlight=False)
