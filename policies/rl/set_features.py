@@ -44,9 +44,10 @@ def _box_cells(coords: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> tuple[np.n
 def set_features(grid: dict[str, np.ndarray], rows: np.ndarray, mask: np.ndarray,
                  box: tuple[int, int, int, int]) -> np.ndarray:
     """float32[N, len(SET_FEATURES)] from a region's grid views (:meth:`Region.grid`), its candidate
-    rows (int32[N, 9]), the unrouted mask and the region box (DBU)."""
-    r = np.asarray(rows, dtype=np.int64).reshape(-1, 9)
+    rows (int32[N, C], the engine's feature columns; the first 9 are read, which keep their place
+    as columns are added), the unrouted mask and the region box (DBU)."""
     mask = np.asarray(mask, dtype=bool)
+    r = np.asarray(rows, dtype=np.int64).reshape(len(mask), -1)[:, :9]
     n = len(r)
     out = np.zeros((n, len(SET_FEATURES)), dtype=np.float32)
     if n == 0:
