@@ -1,7 +1,9 @@
 // Minimum-area repair of freshly routed metal: a piece of a net's new
 // routing on one layer (wires and via metal that touch) whose area is below
 // the layer's AREA gets a patch of wire width along the preferred direction
-// (or across it, where that conflicts less), long enough to reach it. Pin
+// (or across it, where that conflicts less), long enough to reach it; where
+// every such patch meets another net's metal, a thicker and shorter one or
+// one off the wire's centre line (still along the preferred direction). Pin
 // metal of the net joins the pieces it touches and counts in their area;
 // pieces touching an anchor (a boundary terminal: the routing outside adds
 // area) are left alone.
@@ -31,7 +33,7 @@ struct PinMetal {
 // How bad a repair rect on layer z would be (0 = harmless, >= 1000 = it
 // would meet another net's metal: then no repair is made); the repair picks
 // the least bad of a few placements (along and across the preferred
-// direction, centred or shifted).
+// direction, centred or shifted; then thicker or off-centre ones).
 using RepairScore = std::function<int64_t(int z, const Rect& rect)>;
 
 int fixMinArea(const Tech& tech, const Design& design, const TrackSet& tracks, const Rect& box,
