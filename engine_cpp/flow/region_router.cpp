@@ -748,6 +748,7 @@ std::unique_ptr<RegionRouter> RegionRouter::clone() const {
   d.choices = s.choices;
   d.rounds = s.rounds;
   d.order = s.order;
+  d.routedMetal = s.routedMetal;
   return out;
 }
 
