@@ -184,9 +184,10 @@ def test_a_blocked_track_forces_a_detour_with_two_vias(tmp_path: Path) -> None:
 
 
 def test_a_blocked_horizontal_track_sends_the_net_up_to_the_next_horizontal_layer(tmp_path: Path) -> None:
-    # M1 blocked across the track between the pins; M2 is vertical: the straight path is on M3,
-    # reached by a via stack (V12, V23) on each pin, with no extra wirelength.
-    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (1400, 1000, 1600, 1200)))
+    # M1 blocked between the pins (x 640..2360, the whole height: no way round on M1, and M1
+    # costs as much as M3 per length); M2 is vertical: the straight path is on M3, reached by a
+    # via stack (V12, V23) on each pin, with no extra wirelength.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (640, 0, 2360, 4000)))
     _, results, metrics = route_die(d)
     assert results[0]["wirelength_dbu"] == 2000 and results[0]["vias"] == 4 and metrics["violations"] == 0
     assert d.net_routing(0) == {
@@ -216,7 +217,7 @@ def test_via_stacks_get_min_area_patches_on_the_middle_layer(tmp_path: Path) -> 
     # M2 AREA 0.02 um^2; the M2 metal of each via stack (V12 top and V23 bottom, both 60 x 100 at
     # the pin) is 6000 nm^2 alone: each grows along M2 (vertical) by 234, 117 on each side:
     # y 1050 - 117 = 933 .. 1150 + 117 = 1267, 60 wide around x = 500 and x = 2500.
-    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (1400, 1000, 1600, 1200)), m2_area=True)
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, blockage("M1", (640, 0, 2360, 4000)), m2_area=True)
     _, _, metrics = route_die(d)
     assert metrics["violations"] == 0
     r = d.net_routing(0)
@@ -234,7 +235,7 @@ def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Pa
     eol = "\n  SPACING 0.18 ENDOFLINE 0.07 WITHIN 0.025 ;"
     comps = {**ROW, "u3": (600, 200), "u4": (600, 1800)}
     d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]},
-              blockage("M1", (1400, 1000, 1600, 1200)), m2_area=True, m2_rules=eol)
+              blockage("M1", (640, 400, 2360, 1800)), m2_area=True, m2_rules=eol)
     region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
     region.route_net(1)  # n2 first: its wire is there when n1's patches are placed
     region.route_net(0)
@@ -256,7 +257,7 @@ def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path
     # used to try wire-wide patches only.
     rects = [(460, 800, 540, 900), (460, 1300, 540, 1400), (260, 1000, 340, 1200), (660, 1000, 740, 1200)]
     blocks = "".join(f"- LAYER M2 RECT ( {a} {b} ) ( {c} {e} ) ;\n" for a, b, c, e in rects)
-    extra = f"BLOCKAGES 5 ;\n- LAYER M1 RECT ( 1400 1000 ) ( 1600 1200 ) ;\n{blocks}END BLOCKAGES\n"
+    extra = f"BLOCKAGES 5 ;\n- LAYER M1 RECT ( 640 0 ) ( 2360 4000 ) ;\n{blocks}END BLOCKAGES\n"
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, extra, m2_area=True)
     _, _, metrics = route_die(d)
     assert metrics["violations"] == 0

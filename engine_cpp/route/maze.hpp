@@ -18,8 +18,10 @@ struct MazeCosts {
   int64_t fixedPenalty = 400000;   // entering a node a fixed shape of another net forbids
   int64_t usePenalty = 8000;       // per routed shape of another net a wire/via here would violate
   int64_t markerUnit = 1;          // multiplier of RegionGrid::markerCost
-  int64_t bottomLayerFactor = 2;   // wire length multiplier on routing layer 0 (the pin layer; 2 measured
-                                   // better than 4 and 1 on ispd18_test1)
+  int64_t bottomLayerFactor = 1;   // wire length multiplier on routing layer 0 (the pin layer). With the
+                                   // pin-access and access-exit rules, 1 measured better than 2 and 4 on
+                                   // ispd18_test1 (2 threads: 36,690 vias / contest score 325,731 vs
+                                   // 38,194 / 329,643 and 39,101 / 336,126; 0 violations each)
   int64_t reservePenalty = 20000;  // entering another net's access point or boundary terminal
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
 };
