@@ -306,7 +306,8 @@ void checkViasInContext(const Tech& tech, const Design& design, const IoSurround
     // The component's own pins and OBS lie inside its placed box: its class saw them.
     const Component& c = design.components[*design.pinRefs[r].comp];
     const Macro& mac = tech.macros[*c.macro];
-    const bool turned = c.orient == Orient::E || c.orient == Orient::W || c.orient == Orient::FE || c.orient == Orient::FW;
+    const bool turned =
+        c.orient == Orient::E || c.orient == Orient::W || c.orient == Orient::FE || c.orient == Orient::FW;
     const Rect cell{c.location.x, c.location.y, c.location.x + (turned ? mac.height : mac.width),
                     c.location.y + (turned ? mac.width : mac.height)};
     AccessPoint* first = table.points.data() + table.start[r];
@@ -318,10 +319,12 @@ void checkViasInContext(const Tech& tech, const Design& design, const IoSurround
       Rect reach{p->at.x, p->at.y, p->at.x, p->at.y};
       for (const ViaShape& vs : via.shapes) reach.expandToInclude(vs.rect.translated(p->at));
       bool clear = true;
-      around.index.query(Rect{reach.xlo - range, reach.ylo - range, reach.xhi + range, reach.yhi + range}, [&](int32_t i) {
+      const Rect near{reach.xlo - range, reach.ylo - range, reach.xhi + range, reach.yhi + range};
+      around.index.query(near, [&](int32_t i) {
         const DrcShape& s = around.shapes[i];
-        const bool own = (s.origin == ShapeOrigin::Pin || s.origin == ShapeOrigin::Obstruction) && s.rect.xlo >= cell.xlo &&
-                         s.rect.xhi <= cell.xhi && s.rect.ylo >= cell.ylo && s.rect.yhi <= cell.yhi;
+        const bool own = (s.origin == ShapeOrigin::Pin || s.origin == ShapeOrigin::Obstruction) &&
+                         s.rect.xlo >= cell.xlo && s.rect.xhi <= cell.xhi && s.rect.ylo >= cell.ylo &&
+                         s.rect.yhi <= cell.yhi;
         clear = clear && (own || viaClearOf(tech, via, p->at, netOf[r], s));
       });
       if (clear) continue;
@@ -330,7 +333,9 @@ void checkViasInContext(const Tech& tech, const Design& design, const IoSurround
       p->cost += pa::kCostPlanarOnly;
       changed = true;
     }
-    if (changed) std::stable_sort(first, last, [](const AccessPoint& a, const AccessPoint& b) { return a.cost < b.cost; });
+    if (changed) {
+      std::stable_sort(first, last, [](const AccessPoint& a, const AccessPoint& b) { return a.cost < b.cost; });
+    }
   });
 }
 
