@@ -269,26 +269,16 @@ def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
+def cell(name: str, pin: str, obs: str | None = None) -> str:
+    """A 0.2 x 0.2 um LEF MACRO like PIN1: pin A one M1 RECT `pin` (um, "xlo ylo xhi yhi"), and an M1
+    obstruction RECT `obs` if given."""
+    obs_text = f"  OBS\n    LAYER M1 ;\n      RECT {obs} ;\n  END\n" if obs else ""
+    return (f"MACRO {name}\n  CLASS CORE ;\n  ORIGIN 0 0 ;\n  SIZE 0.2 BY 0.2 ;\n  PIN A\n    DIRECTION INOUT ;\n"
+            f"    USE SIGNAL ;\n    PORT\n      LAYER M1 ;\n        RECT {pin} ;\n    END\n  END A\n{obs_text}END {name}\n")
+
+
 # PIN1 with an M1 obstruction ending 70 left of the pin's metal (x -0.1..0.0; placed at x = 400: 300..400).
-PINOBS = """\
-MACRO PINOBS
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 0.2 BY 0.2 ;
-  PIN A
-    DIRECTION INOUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.07 0.07 0.13 0.13 ;
-    END
-  END A
-  OBS
-    LAYER M1 ;
-      RECT -0.1 0.07 0.0 0.13 ;
-  END
-END PINOBS
-"""
+PINOBS = cell("PINOBS", "0.07 0.07 0.13 0.13", "-0.1 0.07 0.0 0.13")
 
 
 def test_no_via_at_an_access_point_that_pin_access_left_planar(tmp_path: Path) -> None:
@@ -306,16 +296,12 @@ def test_no_via_at_an_access_point_that_pin_access_left_planar(tmp_path: Path) -
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
-# A cell whose pin A sits at its left edge (x 0.0..0.06).
-EDGEPIN = PINOBS.replace("PINOBS", "EDGEPIN").replace("RECT 0.07 0.07 0.13 0.13", "RECT 0.0 0.07 0.06 0.13")
-
-
 def test_an_access_via_too_close_to_the_next_cells_pin_loses_its_via_exit(tmp_path: Path) -> None:
     # u1's pin point (500, 1100): its V12 (M1 metal 450..550) would be 50 from the pin of the
     # cell placed right of it at x = 600 (metal 600..660), a wire there (470..530) 70. Pin access
     # computes u1's class alone, where the via is legal; checked among the neighbours it loses
     # the via exit, and the router joins the pin with a planar step first.
-    edge = EDGEPIN.replace("  OBS\n    LAYER M1 ;\n      RECT -0.1 0.07 0.0 0.13 ;\n  END\n", "")
+    edge = cell("EDGEPIN", "0.0 0.07 0.06 0.13")  # pin A at the cell's left edge
     d = drawn(tmp_path, {"u1": (400, 1000), "u2": (600, 1000, "EDGEPIN"), "u3": (400, 2400)},
               {"n1": ["u1", "u3"]}, macros=edge)
     pa = d.engine.pin_access()
@@ -336,8 +322,7 @@ def test_the_route_leaves_an_access_point_only_where_pin_access_allows(tmp_path:
     # no via: its cut would stick out of the pin). The maze used to take the straight M1 wire
     # east to u2 anyway (it trusted every step at the net's own access points).
     eol = "\n  SPACING 0.12 ENDOFLINE 0.07 WITHIN 0.025 ;"
-    west = (PINOBS.replace("PINOBS", "PINWEST").replace("RECT -0.1 0.07 0.0 0.13", "RECT -0.1 0.07 -0.02 0.13")
-            .replace("RECT 0.07 0.07 0.13 0.13", "RECT 0.085 0.06 0.115 0.14"))
+    west = cell("PINWEST", "0.085 0.06 0.115 0.14", "-0.1 0.07 -0.02 0.13")
     d = drawn(tmp_path, {"u1": (400, 1000, "PINWEST"), "u2": (2400, 1000)}, {"n1": ["u1", "u2"]},
               macros=west, m1_rules=eol)
     pa = d.engine.pin_access()

@@ -9,21 +9,18 @@
 
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
+#include "drc/layer_shapes.hpp"
 
 namespace xroute::drc {
 
-// Distance between two rects (0 when they touch or overlap; the larger of the x and y gaps).
-inline Dbu rectGap(const Rect& a, const Rect& b) {
-  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
-  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
-  return std::max(dx, dy);
-}
+// Distance between two rects (0 when they touch or overlap): the larger of the
+// axis gaps, which is never more than the checker's Euclidean corner distance.
+inline Dbu rectGap(const Rect& a, const Rect& b) { return std::max(gapX(a, b), gapY(a, b)); }
 
 // Parallel run length of two rects: their overlap along the axis where they
 // face each other (0 when they only face diagonally).
 inline Dbu runLength(const Rect& a, const Rect& b) {
-  const Dbu dx = std::max<Dbu>(0, std::max(a.xlo - b.xhi, b.xlo - a.xhi));
-  const Dbu dy = std::max<Dbu>(0, std::max(a.ylo - b.yhi, b.ylo - a.yhi));
+  const Dbu dx = gapX(a, b), dy = gapY(a, b);
   if (dx > 0 && dy > 0) return 0;
   return dx > 0 ? std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo) : std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
 }

@@ -222,7 +222,6 @@ struct RegionRouter::Impl {
       const Layer& l = ctx.tech.layer(s.layer);
       if (l.routingIndex >= 0) {
         markMetal(g, ctx.rules, l.routingIndex, s.rect, net, false);
-        if (routedMetal.size() <= size_t(l.routingIndex)) routedMetal.resize(l.routingIndex + 1);
         routedMetal[l.routingIndex].emplace_back(s.rect, net);
       }
       else if (l.cutIndex >= 0) {
@@ -328,6 +327,7 @@ struct RegionRouter::Impl {
     }
     grid = std::make_unique<RegionGrid>(ctx.tracks, box(), std::move(xs), std::move(ys));
     RegionGrid& g = *grid;
+    routedMetal.assign(g.nz(), {});
     markFixed();
     markRouted();
     markMarkers();
@@ -610,11 +610,9 @@ struct RegionRouter::Impl {
       const DrcShape& sh = ctx.fixedShapes[id];
       if (sh.net != net && routingIndex(sh.layer) == z) judge(sh.rect, true);
     });
-    if (size_t(z) < routedMetal.size()) {
-      const auto& metal = routedMetal[z];
-      for (size_t i = 0; i < metal.size(); ++i) {
-        if (metal[i].second != net && metal[i].first.overlaps(far)) judge(metal[i].first, !edgeContinues(metal, i, r));
-      }
+    const auto& metal = routedMetal[z];
+    for (size_t i = 0; i < metal.size(); ++i) {
+      if (metal[i].second != net && metal[i].first.overlaps(far)) judge(metal[i].first, !edgeContinues(metal, i, r));
     }
     const RegionGrid& g = *grid;
     int x0, x1, y0, y1;

@@ -293,12 +293,9 @@ bool viaClearOf(const Tech& tech, const Via& via, Point at, int32_t net, const D
 // that the class did not see (neighbouring cells' pins and OBS, special nets,
 // blockages); one too close loses its via exit (the point stays, planar
 // only, dearer, and the pin's points are sorted again by cost).
-void checkViasInContext(const Tech& tech, const Design& design, const IoSurroundings& around, PinAccessTable& table,
-                        int threads) {
+void checkViasInContext(const Tech& tech, const Design& design, const IoSurroundings& around,
+                        const std::vector<int32_t>& netOf, PinAccessTable& table, int threads) {
   const int32_t refs = int32_t(design.pinRefs.size());
-  std::vector<int32_t> netOf(refs, -1);
-  for (size_t n = 0; n + 1 < design.netPinStart.size(); ++n)
-    for (int32_t r = design.netPinStart[n]; r < design.netPinStart[n + 1]; ++r) netOf[r] = int32_t(n);
   Dbu range = 0;
   for (const Layer& l : tech.layers) range = std::max(range, drc::interactionRange(l));
   parallelFor(size_t(refs), threads, [&](size_t r) {
@@ -306,10 +303,7 @@ void checkViasInContext(const Tech& tech, const Design& design, const IoSurround
     // The component's own pins and OBS lie inside its placed box: its class saw them.
     const Component& c = design.components[*design.pinRefs[r].comp];
     const Macro& mac = tech.macros[*c.macro];
-    const bool turned =
-        c.orient == Orient::E || c.orient == Orient::W || c.orient == Orient::FE || c.orient == Orient::FW;
-    const Rect cell{c.location.x, c.location.y, c.location.x + (turned ? mac.height : mac.width),
-                    c.location.y + (turned ? mac.width : mac.height)};
+    const Rect cell = componentTransform(tech, c).apply(Rect{0, 0, mac.width, mac.height});
     AccessPoint* first = table.points.data() + table.start[r];
     AccessPoint* last = table.points.data() + table.start[r + 1];
     bool changed = false;
@@ -352,14 +346,15 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
   std::vector<int32_t> compClass(design.components.size(), -1);
   std::vector<int32_t> ioJob(design.ioPins.size(), -1);
   std::vector<PinJob> jobs;
-  int32_t net = 0;
+  std::vector<int32_t> netOf(refs, -1);  // per pinRef: its net
+  for (size_t n = 0; n + 1 < design.netPinStart.size(); ++n)
+    for (int32_t r = design.netPinStart[n]; r < design.netPinStart[n + 1]; ++r) netOf[r] = int32_t(n);
   for (int32_t r = 0; r < refs; ++r) {
     const PinRef& ref = design.pinRefs[r];
-    while (net + 1 < int32_t(design.netPinStart.size()) && design.netPinStart[net + 1] <= r) ++net;
     if (ref.isIo()) {
       if (ioJob[ref.pin] < 0) {
         ioJob[ref.pin] = int32_t(jobs.size());
-        jobs.push_back({CompId(), ref.pin, net, {}});
+        jobs.push_back({CompId(), ref.pin, netOf[r], {}});
       }
       continue;
     }
@@ -409,7 +404,7 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
     table.fallbackPins += results[j].fallback[slot];
     table.start.push_back(int32_t(table.points.size()));
   }
-  if (settings.checkInContext) checkViasInContext(tech, design, around, table, settings.threads);
+  if (settings.checkInContext) checkViasInContext(tech, design, around, netOf, table, settings.threads);
   return table;
 }
 
