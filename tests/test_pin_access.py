@@ -120,25 +120,27 @@ DIVIDERCHAR "/" ;
 BUSBITCHARS "[]" ;
 DESIGN tiny ;
 UNITS DISTANCE MICRONS 1000 ;
-DIEAREA ( 0 0 ) ( 2000 2000 ) ;
-TRACKS Y 100 DO 10 STEP 200 LAYER M1 ;
-TRACKS X 100 DO 10 STEP 200 LAYER M1 ;
-TRACKS X 100 DO 10 STEP 200 LAYER M2 ;
-TRACKS Y 100 DO 10 STEP 200 LAYER M2 ;
+DIEAREA ( 0 0 ) ( {die} {die} ) ;
+TRACKS Y 100 DO {tracks} STEP 200 LAYER M1 ;
+TRACKS X 100 DO {tracks} STEP 200 LAYER M1 ;
+TRACKS X 100 DO {tracks} STEP 200 LAYER M2 ;
+TRACKS Y 100 DO {tracks} STEP 200 LAYER M2 ;
 COMPONENTS {count} ;
 {components}END COMPONENTS
-NETS 2 ;
-- a ( u1 A ) ;
-- b ( u1 B ) {more} ;
-END NETS
+NETS {net_count} ;
+{nets}END NETS
 END DESIGN
 """
 
 
+def tiny_def(components: list[str], nets: list[str], die: int = 2000) -> str:
+    """TINY_DEF with these component and net lines, tracks every 200 over a die of `die` DBU."""
+    return TINY_DEF.format(die=die, tracks=die // 200, count=len(components), net_count=len(nets),
+                           components="".join(c + "\n" for c in components), nets="".join(n + "\n" for n in nets))
+
+
 def write_tiny(tmp_path: Path, components: list[str], more: str = "") -> Any:
-    lef, def_ = write_design(
-        tmp_path, TINY_LEF, TINY_DEF.format(count=len(components), components="".join(c + "\n" for c in components), more=more)
-    )
+    lef, def_ = write_design(tmp_path, TINY_LEF, tiny_def(components, ["- a ( u1 A ) ;", f"- b ( u1 B ) {more} ;"]))
     return load_design(lef=lef, def_=def_).engine
 
 
@@ -200,7 +202,7 @@ def test_drawn_case_blocked_pin_falls_back(tmp_path: Path) -> None:
     # it; y 500), cost 100, exit up through V12.
     lef = TINY_LEF.replace("RECT 0.10 0.30 0.26 0.70 ;", "RECT 0.00 0.30 0.04 0.70 ;")
     lef_path, def_path = write_design(
-        tmp_path, lef, TINY_DEF.format(count=1, components="- u1 CELL + PLACED ( 0 0 ) N ;\n", more="")
+        tmp_path, lef, tiny_def(["- u1 CELL + PLACED ( 0 0 ) N ;"], ["- a ( u1 A ) ;", "- b ( u1 B ) ;"])
     )
     db = load_design(lef=lef_path, def_=def_path).engine
     r = db.pin_access()
@@ -223,26 +225,8 @@ def test_drawn_pin_with_an_on_track_point_offers_only_on_track_points(tmp_path: 
     assert [p[4] for p in points_of(r, 0)] == [1, 2, 3]
 
 
-ROUTE_DEF = """\
-VERSION 5.8 ;
-DIVIDERCHAR "/" ;
-BUSBITCHARS "[]" ;
-DESIGN tiny ;
-UNITS DISTANCE MICRONS 1000 ;
-DIEAREA ( 0 0 ) ( 4000 4000 ) ;
-TRACKS Y 100 DO 20 STEP 200 LAYER M1 ;
-TRACKS X 100 DO 20 STEP 200 LAYER M1 ;
-TRACKS X 100 DO 20 STEP 200 LAYER M2 ;
-TRACKS Y 100 DO 20 STEP 200 LAYER M2 ;
-COMPONENTS 2 ;
-- u1 CELL + PLACED ( 1100 1000 ) N ;
-- u2 CELL + PLACED ( 1100 2200 ) N ;
-END COMPONENTS
-NETS 1 ;
-- n ( u1 B ) ( u2 B ) ;
-END NETS
-END DESIGN
-"""
+ROUTE_DEF = tiny_def(["- u1 CELL + PLACED ( 1100 1000 ) N ;", "- u2 CELL + PLACED ( 1100 2200 ) N ;"],
+                     ["- n ( u1 B ) ( u2 B ) ;"], die=4000)
 
 
 def test_drawn_route_uses_on_track_access_vias(tmp_path: Path) -> None:

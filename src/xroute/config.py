@@ -32,7 +32,8 @@ from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
 from xroute.errors import XrouteError
-from xroute.defaults import MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REPAIR_ROUNDS, SEARCH_BUDGET
+from xroute.defaults import (MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REGION_COST_WEIGHTS, REPAIR_ROUNDS,
+                             SEARCH_BUDGET)
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
 
 __all__ = [
@@ -164,11 +165,13 @@ class PolicySection:
 class CostSection:
     """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs.
 
-    The one definition of the weights: commands, reports and the environments' rewards use it."""
+    Commands, reports and the environments' rewards use it. The defaults are the engine's
+    (RegionCostWeights, engine_cpp/flow/search_policy.hpp); the rollout / best-of-K searches score
+    trial routings with those defaults, not with values changed here."""
 
-    wirelength_weight: float = setting(0.5, min=0.0, unit="per µm")
-    via_weight: float = setting(4.0, min=0.0, unit="per via")
-    drv_weight: float = setting(500.0, min=0.0, unit="per violation")
+    wirelength_weight: float = setting(REGION_COST_WEIGHTS[0], min=0.0, unit="per µm")
+    via_weight: float = setting(REGION_COST_WEIGHTS[1], min=0.0, unit="per via")
+    drv_weight: float = setting(REGION_COST_WEIGHTS[2], min=0.0, unit="per violation")
 
     def cost(self, wirelength_um: float, vias: int, violations: int) -> float:
         return self.wirelength_weight * wirelength_um + self.via_weight * vias + self.drv_weight * violations
