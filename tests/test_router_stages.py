@@ -357,6 +357,17 @@ def test_a_reopened_region_clips_the_net_at_its_boundary(tmp_path: Path) -> None
     assert d.engine.metrics()["wirelength_dbu"] == 2000
 
 
+def test_a_boundary_terminal_on_the_pins_access_point_is_reached_without_a_path(tmp_path: Path) -> None:
+    # The box's right edge x = 500 runs through u1's access point (500, 1100), where the wire kept
+    # outside the box ends: the boundary terminal and the pin share their only grid node. The tree
+    # starts on the pin, so the boundary terminal is already in it (once counted as unreached).
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
+    session, _, _ = route_die(d)
+    region = session.open_region((0, 0, 500, 2000))
+    assert region.candidates.tolist() == [[0, 1, 2, 2, 500, 1100, 500, 1100, 2, 1, 0, 0, 500, 2000, 0]]
+    assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 0, "vias": 0, "unreached": 0}
+
+
 def claimed(grid: dict[str, Any], key: str, z: int) -> dict[tuple[int, int], int]:
     """{(x, y): owner} of the nodes on routing layer z whose `key` field has an owner."""
     xs, ys, field = grid["xs"], grid["ys"], grid[key][z]

@@ -45,6 +45,10 @@ class Search {
   int64_t heuristic(int32_t v) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
   int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
+  // Terminals that share a node with the tree are reached (terminalOf names
+  // one owner per node, so a terminal whose nodes all belong to an earlier one
+  // would otherwise never be hit); a joined one brings its other nodes along.
+  void reachShared(std::vector<int32_t>& tree);
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
              std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
 
@@ -187,6 +191,27 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
   return -1;
 }
 
+void Search::reachShared(std::vector<int32_t>& tree) {
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (size_t t = 0; t < net_.terminals.size(); ++t) {
+      if (reached_[t]) continue;
+      const MazeTerminal& term = net_.terminals[t];
+      bool touches = false;
+      for (int32_t v : term.nodes) touches = touches || ws_.inTree[v] == ws_.treeStamp;
+      if (!touches) continue;
+      reached_[t] = 1;
+      if (!term.joined) continue;
+      for (int32_t w : term.nodes) {
+        if (ws_.inTree[w] == ws_.treeStamp) continue;
+        ws_.inTree[w] = ws_.treeStamp;
+        tree.push_back(w);
+        grew = true;
+      }
+    }
+  }
+}
+
 int Search::run(std::vector<std::vector<int32_t>>& paths) {
   const size_t n = g_.size();
   if (ws_.cost.size() != n) {
@@ -233,6 +258,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
     const bool alternatives = !net_.terminals[start].joined;
     if (!alternatives) {
       for (int32_t v : tree) ws_.inTree[v] = ws_.treeStamp;
+      reachShared(tree);
     }
     bool firstRound = true;
     while (std::find(reached_.begin(), reached_.end(), 0) != reached_.end()) {
@@ -261,6 +287,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
           }
         }
       }
+      reachShared(tree);
       paths.push_back(std::move(path));
     }
   }
