@@ -45,9 +45,11 @@ class Search {
   int64_t heuristic(int32_t v) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
   int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
-  // Terminals that share a node with the tree are reached (terminalOf names
-  // one owner per node, so a terminal whose nodes all belong to an earlier one
-  // would otherwise never be hit); a joined one brings its other nodes along.
+  // Joined terminals (one conductor: a pin, the end of kept routing) that share
+  // a node with the tree are reached, and bring their other nodes along:
+  // terminalOf names one owner per node, so one whose nodes all belong to an
+  // earlier terminal would otherwise never be hit. A free crossing's
+  // alternatives are not: where it is crossed is recorded from a path.
   void reachShared(std::vector<int32_t>& tree);
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
              std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
@@ -195,13 +197,12 @@ void Search::reachShared(std::vector<int32_t>& tree) {
   for (bool grew = true; grew;) {
     grew = false;
     for (size_t t = 0; t < net_.terminals.size(); ++t) {
-      if (reached_[t]) continue;
       const MazeTerminal& term = net_.terminals[t];
+      if (reached_[t] || !term.joined) continue;
       bool touches = false;
       for (int32_t v : term.nodes) touches = touches || ws_.inTree[v] == ws_.treeStamp;
       if (!touches) continue;
       reached_[t] = 1;
-      if (!term.joined) continue;
       for (int32_t w : term.nodes) {
         if (ws_.inTree[w] == ws_.treeStamp) continue;
         ws_.inTree[w] = ws_.treeStamp;
