@@ -100,10 +100,11 @@ AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
 
 def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, list[str]], extra: str = "",
           m1_area: bool = False, m2_area: bool = False, m2_rules: str = "", macros: str = "",
-          m1_rules: str = "") -> Any:
+          m1_rules: str = "", guide: str = "") -> Any:
     """A loaded Design: cells at the given locations (N; PIN1 unless a third item names a macro
     from `macros`, more LEF MACROs), nets of their pins A, `extra` DEF statements (BLOCKAGES)
-    after the components, `m1_rules` / `m2_rules` more LEF statements of M1 / M2."""
+    after the components, `m1_rules` / `m2_rules` more LEF statements of M1 / M2, and the
+    route guide text `guide` (none when empty)."""
     comp_lines = "".join(f"- {c} {m[0] if m else 'PIN1'} + PLACED ( {x} {y} ) N ;\n"
                          for c, (x, y, *m) in comps.items())
     net_lines = "".join(f"- {n} " + " ".join(f"( {c} A )" for c in cs) + " ;\n" for n, cs in nets.items())
@@ -119,7 +120,10 @@ def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, lis
     lef_text = LEF.format(m1_area=(AREA if m1_area else "") + m1_rules, m2_area=(AREA if m2_area else "") + m2_rules)
     lef_text = lef_text.replace("END LIBRARY", macros + "END LIBRARY")
     lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
-    return load_design(lef=lef, def_=def_)
+    if not guide:
+        return load_design(lef=lef, def_=def_)
+    (tmp_path / "stages.guide").write_text(guide)
+    return load_design(lef=lef, def_=def_, guide=tmp_path / "stages.guide")
 
 
 def blockage(layer: str, rect: tuple[int, int, int, int]) -> str:
@@ -366,6 +370,33 @@ def test_a_boundary_terminal_on_the_pins_access_point_is_reached_without_a_path(
     region = session.open_region((0, 0, 500, 2000))
     assert region.candidates.tolist() == [[0, 1, 2, 2, 500, 1100, 500, 1100, 2, 1, 0, 0, 500, 2000, 0]]
     assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 0, "vias": 0, "unreached": 0}
+
+
+def test_out_of_guide_cost_is_the_same_both_ways_across_the_guide_edge(tmp_path: Path) -> None:
+    # n1's only guide: M1 left of x = 2000. The contest scorer counts the part of a wire's centre
+    # line outside its layer's guide, and a via whose centre lies outside the guide of either of its
+    # layers; the maze charges a step that crosses the guide edge half the out-of-guide factor
+    # (2 by default) either way, and a via the factor when either end is outside.
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, guide="n1\n(\n0 0 2000 4000 M1\n)\n")
+    session = _engine.RoutingSession(d.engine)
+    region = session.open_region((0, 0, 4000, 4000))
+    grid = region.grid()
+    xs, ys = [int(v) for v in grid["xs"]], [int(v) for v in grid["ys"]]
+
+    def node(x: int, y: int, z: int) -> int:
+        return (z * len(ys) + ys.index(y)) * len(xs) + xs.index(x)
+
+    inside, outside, above = node(1900, 1100, 0), node(2100, 1100, 0), node(1900, 1100, 1)
+    up, east, west = 0, 4, 5
+    nodes, costs = region.moves(0, inside)
+    assert (nodes[east], costs[east]) == (outside, 300)  # 200 DBU: half in, half out (1 and 2)
+    assert costs[west] == 200  # inside both ends
+    assert (nodes[up], costs[up]) == (above, 2400)  # M2 has no guide: the via costs 2 x 1200
+    nodes, costs = region.moves(0, outside)
+    assert (nodes[west], costs[west]) == (inside, 300)
+    assert costs[east] == 400  # outside both ends
+    nodes, costs = region.moves(0, above)
+    assert (nodes[1], costs[1]) == (inside, 2400)  # down onto the guide: the via is still out of M2's
 
 
 def claimed(grid: dict[str, Any], key: str, z: int) -> dict[tuple[int, int], int]:

@@ -30,6 +30,13 @@ class Search {
   int64_t guideFactor(int32_t v) const {
     return (net_.inGuide && !(*net_.inGuide)[v]) ? c_.outOfGuideFactor : 1;
   }
+  // As the contest scorer counts them: a wire step is out of its layer's guide
+  // for the part beyond the guide's edge (half when one end is out, the same
+  // either way), a via when its centre is out on either of its layers.
+  int64_t wireGuideLength(int64_t len, int32_t u, int32_t v) const {
+    return len * (guideFactor(u) + guideFactor(v)) / 2;
+  }
+  int64_t viaGuideFactor(int32_t u, int32_t v) const { return std::max(guideFactor(u), guideFactor(v)); }
   bool own(int32_t v) const { return g_.accessNet[v] == net_.net; }
   // A planar step u -> v in direction `dir` leaves u that way and v the
   // opposite way: at the net's own access points, a way pin access did not
@@ -78,7 +85,8 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
       const Point q = g_.point(v);
       const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
       const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
-      fn(v, len * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir), dir);
+      fn(v, wireGuideLength(len, u, v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir),
+         dir);
     }
   }
   // Against it, to the next existing node.
@@ -88,7 +96,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     const Point q = g_.point(v);
     const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
     const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
-    fn(v, len * c_.wrongWayFactor * guideFactor(v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
+    fn(v, wireGuideLength(len, u, v) * c_.wrongWayFactor * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
               exitCost(u, v, dir),
        dir);
   }
@@ -103,7 +111,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
       cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
     }
-    fn(v, c_.viaCost * guideFactor(v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown);
+    fn(v, c_.viaCost * viaGuideFactor(u, v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown);
   }
 }
 

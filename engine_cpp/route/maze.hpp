@@ -14,7 +14,8 @@ namespace xroute {
 struct MazeCosts {
   int64_t viaCost = 1200;          // cost units (DBU of wire) per via
   int64_t wrongWayFactor = 4;      // wrong-way wire length multiplier
-  int64_t outOfGuideFactor = 2;    // wire length / via multiplier outside the net's guides
+  int64_t outOfGuideFactor = 2;    // wire length / via multiplier outside the net's guides (as the contest
+                                   // scorer counts: a wire's centre line, a via's centre on either layer)
   int64_t fixedPenalty = 400000;   // entering a node a fixed shape of another net forbids
   int64_t usePenalty = 8000;       // per routed shape of another net a wire/via here would violate
   int64_t markerUnit = 1;          // multiplier of RegionGrid::markerCost
