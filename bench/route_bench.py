@@ -10,7 +10,7 @@ imports, load, route, outputs) and its peak RSS as the kernel reports it (wait4)
 opens and violations found on the written DEF. Routing is deterministic, so the iteration
 figures are printed once; the times of every run are listed, then min and median.
 
-Default: ispd18_test1 with the router's defaults (region size 5, up to 10 iterations, 1 thread).
+Default: ispd18_test1 with the router's defaults (region size 10, up to 10 iterations, 1 thread).
 Issue 3's reference on this machine: TritonRoute 25 s wall with 2 threads, 600 MB, 86,456 um,
 35,443 vias, 0 violations. `--policy bench/python_heuristic_policy.py` routes with the built-in
 heuristic written in Python (same order, one Python call per region): the cost of the seam.

@@ -41,7 +41,8 @@ SAMPLE_NAMES_LEF = Path(__file__).resolve().parent / "data" / "lef" / "sample_na
 STANDINS: dict[str, tuple[int, int, bool]] = {
     "standin_sample": (18, 1, True),  # 10 nets on a die of 3 x 3 GCells (one region), like ispd18_sample
     "standin_sample2": (40, 2, True),
-    "standin_sample4": (120, 3, True),  # several regions at region size 5, IO pins and power rails
+    # standin_sample4: 4 regions at region size 5 (1 in the first pass at the default 10), IO pins, power rails
+    "standin_sample4": (120, 3, True),
     "standin_noguide": (60, 4, False),  # no guide file, like ispd19_test3
 }
 # The stand-in that takes a contest testcase's place in tests of invariants.

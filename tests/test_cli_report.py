@@ -36,8 +36,11 @@ SAMPLE4 = pick("ispd19_sample4")  # or its generated stand-in without the contes
 @pytest.fixture
 def two_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:
     testcase(SAMPLE4)
+    # Region size 5: each run has a second iteration, so each chart draws a line (at the default 10
+    # ispd19_sample4 ends its first pass with 0 violations and the flow stops there).
     for policy in ("heuristic", "random"):
-        result = runner.invoke(app, ["route", SAMPLE4, "--iterations", "3", "--policy", policy, "--quiet",
+        result = runner.invoke(app, ["route", SAMPLE4, "--iterations", "3", "--region-size", "5", "--policy", policy,
+                                     "--quiet",
                                      "--out", str(tmp_path / "runs" / policy)])
         assert result.exit_code == 0, result.stderr
     return tmp_path / "runs"

@@ -36,7 +36,7 @@ def fresh(name: str) -> Any:
 
 
 def one_region_nets(name: str) -> int:
-    """How many nets the first region of ``name`` offers (its whole die is one region at region size 5)."""
+    """How many nets the first region of ``name`` offers (its whole die is one region at the default region size)."""
     if name == "ispd18_sample":
         return 11  # ispd18_sample: its 11 nets share one region
     assert is_standin(name)
@@ -88,7 +88,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     data = json.loads(outputs.metrics_path.read_text())
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
-    assert data["settings"] == {"region_size": 5, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
+    assert data["settings"] == {"region_size": 10, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
                                 "repair_rounds": 0, "policy": "heuristic"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
@@ -314,7 +314,7 @@ def test_progress_events() -> None:
 @pytest.mark.slow
 def test_ispd18_test1_end_to_end(tmp_path: Path) -> None:
     design = fresh("ispd18_test1")
-    result = route_design(design, threads=2)  # the defaults: region size 5, up to 10 iterations
+    result = route_design(design, threads=2)  # the defaults: region size 10, up to 10 iterations
     outputs = write_route_outputs(design, result, tmp_path)
     conn = reread(design, outputs).engine.check_connectivity()
     assert conn["open_nets"] == 0 and conn["unrouted_nets"] == 0

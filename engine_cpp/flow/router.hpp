@@ -22,7 +22,7 @@ namespace xroute {
 // One iteration's region partition: regions of regionSize x regionSize GCells
 // whose grid starts `offset` GCells before the first GCell.
 struct ScheduleStep {
-  int regionSize = 5;              // GCells per region side (C)
+  int regionSize = 10;             // GCells per region side (C)
   int offset = 0;                  // GCells, 0 <= offset < regionSize
 };
 
@@ -32,7 +32,7 @@ inline constexpr int kMaxThreads = 1024;      // worker threads at most
 inline constexpr int kMaxRepairRounds = 64;   // repair rounds per region at most
 
 struct RouterSettings {
-  int regionSize = 5;              // GCells per region side (C); 5 measured best on ispd18_test1
+  int regionSize = 10;             // GCells per region side (C); see flow/README.md for the measurement
   int iterations = 10;             // iterations 0..iterations-1 at most (1..kMaxIterations)
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...

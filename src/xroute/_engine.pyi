@@ -265,7 +265,7 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int = 5, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None) -> dict:
+def route(db: Database, region_size: int = 10, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None) -> dict:
     """
     Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
     """
@@ -395,7 +395,7 @@ class FirstPass:
     The flow's first pass (iteration 0) of a session's design, kept so that each of its regions can be opened again in context (flow/first_pass.hpp).
     """
 
-    def __init__(self, session: RoutingSession, region_size: int = 5, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:
+    def __init__(self, session: RoutingSession, region_size: int = 10, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:
         """
         Routes iteration 0 of the session's design as `xroute route` does (regions of region_size GCells, colour by colour; policy 'heuristic' or 'random' (seeded)), keeping the design's routing and crossing choices before each colour. The design is left with the whole pass routed.
         """

@@ -1,4 +1,4 @@
-"""Route a loaded design: ``route_design(design, region_size=5, iterations=10, threads=1, policy=...)``.
+"""Route a loaded design: ``route_design(design, region_size=10, iterations=10, threads=1, policy=...)``.
 
 The engine routes every net of the design in place (any routing the DEF had is replaced):
 iteration 0 routes all nets region by region (regions of ``region_size`` x ``region_size``
