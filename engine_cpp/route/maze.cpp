@@ -52,11 +52,11 @@ class Search {
   int64_t heuristic(int32_t v) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
   int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
-  // Joined terminals (one conductor: a pin, the end of kept routing) that share
-  // a node with the tree are reached, and bring their other nodes along:
-  // terminalOf names one owner per node, so one whose nodes all belong to an
-  // earlier terminal would otherwise never be hit. A free crossing's
-  // alternatives are not: where it is crossed is recorded from a path.
+  // Joined terminals (one conductor: a pin, the end of kept routing) with a node
+  // on the tree are reached and bring all their nodes along, whether a path hit
+  // them or they share a node with another terminal (terminalOf names one owner
+  // per node, so a search never hits the second). A free crossing's
+  // alternatives are reached only by the path node that hits one of them.
   void reachShared(std::vector<int32_t>& tree);
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
              std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
@@ -284,17 +284,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
           tree.push_back(v);
         }
         const int32_t t = ws_.terminalOf[v];
-        if (t >= 0 && !reached_[t]) {
-          reached_[t] = 1;
-          if (net_.terminals[t].joined) {
-            for (int32_t w : net_.terminals[t].nodes) {
-              if (ws_.inTree[w] != ws_.treeStamp) {
-                ws_.inTree[w] = ws_.treeStamp;
-                tree.push_back(w);
-              }
-            }
-          }
-        }
+        if (t >= 0 && !net_.terminals[t].joined) reached_[t] = 1;  // a free crossing: this alternative
       }
       reachShared(tree);
       paths.push_back(std::move(path));
