@@ -441,17 +441,20 @@ def test_a_net_crossing_two_regions_meets_at_the_shared_edge(tmp_path: Path) -> 
     from xroute.router import route_design
 
     # Region size 2 GCells: the die is 2 x 2 regions of 2000; the net's pins lie in the two lower
-    # ones. The crossing on their shared edge x = 2000 lies on the pins' track y = 1100: each
-    # region routes its half straight to that point, on the same layer.
+    # ones. The global route's guides cross their shared edge x = 2000 on M3 only (M1 and M2 only
+    # in the pins' GCells), so the crossing is on M3, on the pins' track y = 1100: each region
+    # routes its half to that point, on the same layer.
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
     global_route(d)
+    rects, layers = d.net_guides(0)
+    crossing = [(tuple(r), z) for r, z in zip(rects.tolist(), layers.tolist()) if r[0] < 2000 < r[2]]
+    assert crossing == [((0, 1000, 3000, 2000), 4)]  # layer 4: M3 (M1 V1 M2 V2 M3)
     result = route_design(d, region_size=2, iterations=1)
     assert [(it.regions, it.net_routes) for it in result.iterations] == [(2, 2)]
     r = d.net_routing(0)
-    assert len(r["wires"]) == 2
-    ends = [{(w[1], w[2]), (w[3], w[4])} for w in r["wires"]]
-    assert ends == [{(500, 1100), (2000, 1100)}, {(2500, 1100), (2000, 1100)}]
-    assert r["wires"][0][0] == r["wires"][1][0]  # one layer on both sides of the edge
+    meet = [w for w in r["wires"] if (2000, 1100) in {(w[1], w[2]), (w[3], w[4])}]
+    assert [w[0] for w in meet] == ["M3", "M3"]  # one layer on both sides of the edge
+    assert [{(w[1], w[2]), (w[3], w[4])} for w in meet] == [{(900, 1100), (2000, 1100)}, {(2100, 1100), (2000, 1100)}]
     assert d.engine.metrics()["wirelength_dbu"] == 2000
     assert d.engine.check_connectivity()["open_nets"] == 0 and result.violations == 0
 
@@ -468,3 +471,42 @@ def test_two_nets_on_neighbouring_tracks_stay_straight_in_either_order(tmp_path:
     region.commit()
     assert d.net_routing(d.net_id("n1"))["wires"] == [("M1", 500, 1100, 2500, 1100, 0, -1, -1)]
     assert d.net_routing(d.net_id("n2"))["wires"] == [("M1", 500, 1300, 2500, 1300, 0, -1, -1)]
+
+
+def test_a_guide_touching_a_region_edge_from_one_side_links_nothing(tmp_path: Path) -> None:
+    # One region per GCell. n1's guide leaves A's GCell (0, 0) to the right and comes back to B's
+    # GCell (0, 2) through column 1; nothing of it lies in GCell (0, 1). Its rows touch GCell
+    # (0, 1)'s edges from below and above, and the crossing planner once linked the regions there:
+    # the net went straight up through (0, 1), 2,000 DBU out of its guide. Links need a guide on
+    # both sides of the edge, so the net follows the guide: 0 out-of-guide wire.
+    from xroute.check import check_design
+
+    guide = "n1\n(\n0 0 2000 1000 M1\n1000 0 2000 3000 M2\n0 2000 2000 3000 M1\n)\n"
+    d = drawn(tmp_path, {"a": (400, 400), "b": (400, 2400)}, {"n1": ["a", "b"]}, guide=guide)
+    _engine.route(d.engine, region_size=1, threads=1)
+    r = check_design(d)
+    assert (r.opens, r.violations) == (0, 0)
+    assert r.out_of_guide_wirelength_um == 0
+    assert r.wirelength_um == pytest.approx(3.2)  # around: 600 + 2,000 + 600 DBU (M2 at x = 1,100), not 2,000 straight up
+
+
+def test_a_net_whose_guide_passes_a_region_twice_has_two_parts_there(tmp_path: Path) -> None:
+    # Regions of 3 x 3 GCells: [0, 3000) and [3000, 4000) along x. n1's guide runs from A (GCell
+    # (0, 0)) right along row 0 into the second region, up column 3 past C, and back left along
+    # row 2 to B (GCell (0, 2)). In the first region the guide is two pieces, joined only through
+    # the second. The net is routed there as two parts, each tied to its own crossing, so it stays
+    # in the guide; routed as one (the planner's region tree before), A and B were joined straight
+    # up column 0, out of the guide.
+    from xroute.check import check_design
+
+    guide = ("n1\n(\n0 0 4000 1000 M1\n0 2000 4000 3000 M1\n3000 1000 4000 2000 M1\n"
+             "3000 0 4000 3000 M2\n)\n")
+    d = drawn(tmp_path, {"a": (400, 400), "b": (400, 2400), "c": (3400, 1400)}, {"n1": ["a", "b", "c"]},
+              guide=guide)
+    first = _engine.FirstPass(_engine.RoutingSession(d.engine), 3, "heuristic")
+    at_origin = [i for i, row in enumerate(first.regions) if row[0] == (0, 0)]
+    assert first.open_region(at_origin[0]).candidates[:, 0].tolist() == [0, 0]  # n1 twice
+    _engine.route(d.engine, region_size=3, threads=1)
+    r = check_design(d)
+    assert (r.opens, r.violations) == (0, 0)
+    assert r.out_of_guide_wirelength_um == 0

@@ -1,9 +1,10 @@
 // Initial routing (iteration 0) plan: for every net, the regions it must
-// pass and the region edges it crosses. Pins are assigned to the region of
-// their best access point; guides link regions; a Steiner tree of the
-// net's regions over those links (the nearest pin region joins by its
-// shortest path) gives the crossings. Where the guides do not link two pin
-// regions, an L-shaped chain of regions does.
+// pass and the region edges it crosses. The net's guides, clipped to each
+// region, fall into connected pieces; guides running across a region edge
+// link pieces of neighbouring regions. Pins join the piece of their best
+// access point. A Steiner tree over the pieces (the nearest pin piece joins
+// by its cheapest path; steps the guides do not make cost more) gives the
+// crossings and, per region, the net's parts.
 #pragma once
 
 #include <vector>
@@ -30,11 +31,19 @@ struct Crossing {
   int z = -1;                          // routing index
 };
 
+// What a net routes in one region: its pins there and the crossings of its
+// tree that touch the region. A net whose guides pass a region in two
+// pieces that its tree does not join there has two parts in that region,
+// routed as two trees (the guides join them elsewhere).
+struct NetPart {
+  int32_t net = -1;
+  std::vector<int32_t> pins;       // pinRefs
+  std::vector<int32_t> crossings;  // crossing ids
+};
+
 struct CrossingPlan {
   std::vector<Crossing> crossings;
-  std::vector<std::vector<int32_t>> regionCrossings;  // region -> crossing ids
-  std::vector<std::vector<int32_t>> regionPins;       // region -> pinRefs assigned to it
-  std::vector<std::vector<int32_t>> regionNets;       // region -> nets with pins or crossings there (ascending)
+  std::vector<std::vector<NetPart>> regionParts;  // region -> parts, by net (ascending)
 };
 
 CrossingPlan planCrossings(const RouteContext& ctx, const std::vector<Region>& regions, int size, int offset);

@@ -23,9 +23,7 @@ void FirstPass::snapshot(const Design& design, int colour, const CrossingPlan& p
                          const std::vector<RegionTask>& tasks) {
   if (colour < 0 || colour >= kColours) throw std::logic_error("first pass: colour out of range");
   if (colour == 0) {
-    layout_.regionCrossings = plan.regionCrossings;
-    layout_.regionPins = plan.regionPins;
-    layout_.regionNets = plan.regionNets;
+    layout_.regionParts = plan.regionParts;
   }
   std::vector<NetRouting>& r = routing_[colour];
   r.clear();

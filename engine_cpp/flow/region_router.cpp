@@ -802,8 +802,8 @@ std::vector<Marker> RegionRouter::check() const {
   const Rect win{box.xlo - reach, box.ylo - reach, box.xhi + reach, box.yhi + reach};
   std::vector<DrcShape> shapes;
   im.ctx.fixedIndex.query(win, [&](int32_t id) { shapes.push_back(im.ctx.fixedShapes[id]); });
-  std::unordered_map<int32_t, const NetState*> mine;
-  for (const NetState& ns : im.nets) mine[ns.task.net] = &ns;
+  std::unordered_map<int32_t, std::vector<const NetState*>> mine;  // a net may have parts
+  for (const NetState& ns : im.nets) mine[ns.task.net].push_back(&ns);
   std::vector<NetShape> ns;
   auto add = [&](int32_t net, const NetRouting& r, ShapeOrigin origin) {
     ns.clear();
@@ -822,8 +822,9 @@ std::vector<Marker> RegionRouter::check() const {
       add(n, im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
       continue;
     }
-    add(n, it->second->task.ripup ? it->second->kept : im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
-    add(n, it->second->result.added, ShapeOrigin::Wire);
+    const NetState& first = *it->second.front();
+    add(n, first.task.ripup ? first.kept : im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
+    for (const NetState* part : it->second) add(n, part->result.added, ShapeOrigin::Wire);
   }
   DrcOptions o;
   o.skipFixedPairs = true;
@@ -865,15 +866,8 @@ RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const 
   // (in their first order) around everything else, with the markers found
   // so far as rising node costs; keep the round with the fewest markers.
   RegionRepairSeed seed;
-  std::vector<int32_t> candidateOf;  // net -> candidate index
-  for (size_t i = 0; i < task.nets.size(); ++i) {
-    const int32_t n = task.nets[i].net;
-    if (n >= static_cast<int32_t>(candidateOf.size())) candidateOf.resize(n + 1, -1);
-    candidateOf[n] = static_cast<int32_t>(i);
-  }
-  auto candidate = [&](int32_t net) {
-    return net >= 0 && net < static_cast<int32_t>(candidateOf.size()) ? candidateOf[net] : -1;
-  };
+  std::unordered_map<int32_t, std::vector<int32_t>> candidatesOf;  // net -> its candidates (a net may have parts)
+  for (size_t i = 0; i < task.nets.size(); ++i) candidatesOf[task.nets[i].net].push_back(static_cast<int32_t>(i));
   std::vector<Marker> current = markers;
   RegionResult currentResult = best;
   size_t bestCount = markers.size();
@@ -882,8 +876,10 @@ RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const 
     bool any = false;
     for (const Marker& m : current) {
       for (int32_t n : {m.net1, m.net2}) {
-        const int32_t c = candidate(n);
-        if (c >= 0 && currentResult.nets[c].routed) {
+        auto it = candidatesOf.find(n);
+        if (it == candidatesOf.end()) continue;
+        for (int32_t c : it->second) {
+          if (!currentResult.nets[c].routed) continue;
           seed.keep[c] = 0;
           any = true;
         }

@@ -109,15 +109,11 @@ class Flow {
     t.costs = costsFor(it);
     t.repairRounds = it == 0 ? s_.firstRepairRounds : s_.repairRounds;
     t.repairPenalty = s_.repairPenalty;
-    for (int32_t net : plan.regionNets[r.id]) {
+    for (const NetPart& part : plan.regionParts[r.id]) {
       RegionNetTask nt;
-      nt.net = net;
-      for (int32_t pin : plan.regionPins[r.id]) {
-        if (ctx_.pinNet[pin] == net) nt.pins.push_back(pin);
-      }
-      for (int32_t c : plan.regionCrossings[r.id]) {
-        if (plan.crossings[c].net == net) nt.crossings.push_back(c);
-      }
+      nt.net = part.net;
+      nt.pins = part.pins;
+      nt.crossings = part.crossings;
       t.nets.push_back(std::move(nt));
     }
     return t;
