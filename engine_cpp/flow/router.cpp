@@ -129,10 +129,31 @@ class Flow {
     t.repairPenalty = s_.repairPenalty;
     std::vector<int32_t> dirty;
     const int32_t nNets = static_cast<int32_t>(design_.nets.size());
+    std::vector<NetShape> shapes;
     for (const Marker& m : markers_) {
       if (!m.box.overlaps(r.box)) continue;
       if (m.net1 >= 0 && m.net1 < nNets) dirty.push_back(m.net1);
       if (m.net2 >= 0 && m.net2 < nNets) dirty.push_back(m.net2);
+      // A piece below the minimum area that no patch could fit beside stays
+      // short while its neighbours stay: they go too, so that the piece's
+      // net can take the room and they come back around it (the marker's
+      // cost keeps them off it). Neighbours: other nets with metal on the
+      // layer within two pitches of the marker.
+      if (m.type != MarkerType::MinArea) continue;
+      const Layer& l = ctx_.tech.layer(m.layer);
+      const Dbu reach = 2 * std::max(l.pitchX, l.pitchY);
+      const Rect near{m.box.xlo - reach, m.box.ylo - reach, m.box.xhi + reach, m.box.yhi + reach};
+      for (int32_t n : ctx_.netsNear(near)) {
+        if (n == m.net1) continue;
+        shapes.clear();
+        netRoutingShapes(ctx_.tech, design_, design_.nets[n].routing, shapes);
+        for (const NetShape& sh : shapes) {
+          if (sh.layer == m.layer && sh.rect.overlaps(near)) {
+            dirty.push_back(n);
+            break;
+          }
+        }
+      }
     }
     std::sort(dirty.begin(), dirty.end());
     dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
