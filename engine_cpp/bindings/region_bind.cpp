@@ -130,7 +130,8 @@ void bindRegionState(RegionClass& cls) {
             return ownedInt32(featureRows(h.get().candidatesNow()), kFeatureCount);
           },
           nb::rv_policy::move, "int32[candidates, len(POLICY_FEATURES)]: one row per candidate net, columns as _engine.POLICY_FEATURES "
-          "(routed_nearby as the region is now).")
+          "(routed_nearby as the region is now). In a first-pass region a net whose guides pass the region in two "
+          "pieces joined elsewhere is two candidates (two parts, each its own tree).")
       .def_prop_ro(
           "route_order", [](const RegionHandle& h) { return h.get().routedOrder(); },
           "Candidate indices in the order they were routed so far (a search policy's: the order it kept).")

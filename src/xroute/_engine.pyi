@@ -320,7 +320,7 @@ class Region:
     @property
     def candidates(self) -> NDArray[numpy.int32]:
         """
-        int32[candidates, len(POLICY_FEATURES)]: one row per candidate net, columns as _engine.POLICY_FEATURES (routed_nearby as the region is now).
+        int32[candidates, len(POLICY_FEATURES)]: one row per candidate net, columns as _engine.POLICY_FEATURES (routed_nearby as the region is now). In a first-pass region a net whose guides pass the region in two pieces joined elsewhere is two candidates (two parts, each its own tree).
         """
 
     @property
