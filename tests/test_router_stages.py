@@ -22,6 +22,7 @@ import pytest
 
 from drawn import write_design
 from xroute import _engine
+from xroute.check import check_design
 from xroute.design import load_design
 
 LEF = """\
@@ -479,8 +480,6 @@ def test_a_guide_touching_a_region_edge_from_one_side_links_nothing(tmp_path: Pa
     # (0, 1)'s edges from below and above, and the crossing planner once linked the regions there:
     # the net went straight up through (0, 1), 2,000 DBU out of its guide. Links need a guide on
     # both sides of the edge, so the net follows the guide: 0 out-of-guide wire.
-    from xroute.check import check_design
-
     guide = "n1\n(\n0 0 2000 1000 M1\n1000 0 2000 3000 M2\n0 2000 2000 3000 M1\n)\n"
     d = drawn(tmp_path, {"a": (400, 400), "b": (400, 2400)}, {"n1": ["a", "b"]}, guide=guide)
     _engine.route(d.engine, region_size=1, threads=1)
@@ -497,8 +496,6 @@ def test_a_net_whose_guide_passes_a_region_twice_has_two_parts_there(tmp_path: P
     # the second. The net is routed there as two parts, each tied to its own crossing, so it stays
     # in the guide; routed as one (the planner's region tree before), A and B were joined straight
     # up column 0, out of the guide.
-    from xroute.check import check_design
-
     guide = ("n1\n(\n0 0 4000 1000 M1\n0 2000 4000 3000 M1\n3000 1000 4000 2000 M1\n"
              "3000 0 4000 3000 M2\n)\n")
     d = drawn(tmp_path, {"a": (400, 400), "b": (400, 2400), "c": (3400, 1400)}, {"n1": ["a", "b", "c"]},

@@ -1,7 +1,8 @@
 #include "flow/crossings.hpp"
 
+#include "geom/union_find.hpp"
+
 #include <algorithm>
-#include <functional>
 #include <map>
 #include <queue>
 #include <set>
@@ -57,11 +58,11 @@ struct Planner {
   }
 
   // One connected piece of a net's guides inside one region (a node of the
-  // net's routing tree), or a region the guides do not reach (comp -1).
+  // net's routing tree), or a region the guides do not reach (blank).
   struct Node {
     int32_t region;
-    int comp;
-    Rect box;  // DBU: the piece's bounding box (the region's box when comp is -1)
+    bool blank;
+    Rect box;  // DBU: the piece's bounding box (the region's box when blank)
   };
 
   void planNet(int32_t net) {
@@ -90,6 +91,7 @@ struct Planner {
       Rect r;
       int z;
       int32_t guide;
+      int32_t node = -1;  // the piece it belongs to
     };
     std::map<int32_t, std::vector<Clip>> clips;
     if (d.hasGuides()) {
@@ -111,14 +113,9 @@ struct Planner {
     }
     std::vector<Node> nodes;
     std::map<int32_t, std::vector<int32_t>> regionNodes;     // region -> its nodes
-    std::map<std::pair<int32_t, int32_t>, int32_t> nodeOf;  // (guide, region) -> node
-    for (const auto& [reg, cs] : clips) {
-      std::vector<int> up(cs.size());
-      for (size_t i = 0; i < cs.size(); ++i) up[i] = static_cast<int>(i);
-      auto find = [&up](int i) {
-        while (up[i] != i) i = up[i] = up[up[i]];
-        return i;
-      };
+    std::map<std::pair<int32_t, int32_t>, int32_t> nodeOf;  // (guide, region) -> node (a guide across an edge)
+    for (auto& [reg, cs] : clips) {
+      UnionFind pieces(cs.size());
       for (size_t i = 0; i < cs.size(); ++i) {
         for (size_t j = i + 1; j < cs.size(); ++j) {
           const Rect& p = cs[i].r;
@@ -127,18 +124,19 @@ struct Planner {
           const Dbu oy = std::min(p.yhi, q.yhi) - std::max(p.ylo, q.ylo);
           const int dz = std::abs(cs[i].z - cs[j].z);
           const bool linked = dz == 0 ? (ox >= 0 && oy >= 0 && (ox > 0 || oy > 0)) : (dz == 1 && ox > 0 && oy > 0);
-          if (linked) up[find(static_cast<int>(i))] = find(static_cast<int>(j));
+          if (linked) pieces.unite(static_cast<int32_t>(i), static_cast<int32_t>(j));
         }
       }
-      std::map<int, int32_t> compNode;
+      std::map<int32_t, int32_t> rootNode;  // piece root -> node
       for (size_t i = 0; i < cs.size(); ++i) {
-        const int root = find(static_cast<int>(i));
-        auto it = compNode.find(root);
-        if (it == compNode.end()) {
-          it = compNode.emplace(root, static_cast<int32_t>(nodes.size())).first;
+        const int32_t root = pieces.find(static_cast<int32_t>(i));
+        auto it = rootNode.find(root);
+        if (it == rootNode.end()) {
+          it = rootNode.emplace(root, static_cast<int32_t>(nodes.size())).first;
           regionNodes[reg].push_back(it->second);
-          nodes.push_back({reg, static_cast<int>(compNode.size()) - 1, cs[i].r});
+          nodes.push_back({reg, false, cs[i].r});
         }
+        cs[i].node = it->second;
         nodeOf[{cs[i].guide, reg}] = it->second;
         Rect& b = nodes[it->second].box;
         b = {std::min(b.xlo, cs[i].r.xlo), std::min(b.ylo, cs[i].r.ylo), std::max(b.xhi, cs[i].r.xhi),
@@ -149,7 +147,7 @@ struct Planner {
       std::vector<int32_t>& ns = regionNodes[reg];
       if (ns.empty()) {
         ns.push_back(static_cast<int32_t>(nodes.size()));
-        nodes.push_back({reg, -1, regions[reg].box});
+        nodes.push_back({reg, true, regions[reg].box});
       }
       return ns.front();
     };
@@ -165,7 +163,7 @@ struct Planner {
         const Dbu dx = std::max<Dbu>({c.r.xlo - p.x, p.x - c.r.xhi, 0});
         const Dbu dy = std::max<Dbu>({c.r.ylo - p.y, p.y - c.r.yhi, 0});
         if (best < 0 || dx + dy < bestDist) {
-          best = nodeOf[{c.guide, reg}];
+          best = c.node;
           bestDist = dx + dy;
         }
       }
@@ -195,7 +193,7 @@ struct Planner {
       const Region& ra = regions[reg];
       for (const Clip& c : cs) {
         const Rect g = d.guideRects[c.guide];
-        const int32_t u = nodeOf[{c.guide, reg}];
+        const int32_t u = c.node;
         if (ra.rx + 1 < cols && c.r.xhi == ra.box.xhi) {  // reaches the edge to the right
           const int32_t b = regionAtCell(ra.rx + 1, ra.ry);
           auto it = nodeOf.find({c.guide, b});
@@ -243,7 +241,7 @@ struct Planner {
     auto unguided = [&](int32_t u, int32_t v) -> int64_t {
       const Node& a = nodes[u];
       const Node& b = nodes[v];
-      if (a.comp < 0 || b.comp < 0) return 30;
+      if (a.blank || b.blank) return 30;
       const Rect& rb = regions[a.region].box;
       const Dbu span = std::max<Dbu>(1, ((rb.xhi - rb.xlo) + (rb.yhi - rb.ylo)) / 2);
       const Dbu gap = std::max<Dbu>({0, a.box.xlo - b.box.xhi, b.box.xlo - a.box.xhi}) +
@@ -274,8 +272,7 @@ struct Planner {
       auto step = [&](int nx, int ny) {
         const int32_t r = regionAtCell(nx, ny);
         if (regionNodes.count(r) == 0) blankNode(r);
-        const std::vector<int32_t> there = regionNodes[r];
-        for (int32_t v : there) visit(v, unguided(u, v));
+        for (int32_t v : regionNodes[r]) visit(v, unguided(u, v));
       };
       if (rx > bx0) step(rx - 1, ry);
       if (ry > by0) step(rx, ry - 1);
@@ -323,22 +320,13 @@ struct Planner {
     }
 
     // Pieces of one region joined in the tree are one part of the net there.
-    std::map<int32_t, int32_t> partRoot;  // node -> the part's first node
-    std::function<int32_t(int32_t)> partOf = [&](int32_t n) -> int32_t {
-      auto it = partRoot.find(n);
-      if (it == partRoot.end() || it->second == n) return n;
-      return it->second = partOf(it->second);
-    };
-    for (const auto& [n, par] : parent) partRoot[n] = n;
+    UnionFind joined(nodes.size());  // a part's root is its first node
     for (const auto& [n, par] : parent) {
-      if (par >= 0 && nodes[par].region == nodes[n].region) {
-        const int32_t a = partOf(n), b = partOf(par);
-        partRoot[std::max(a, b)] = std::min(a, b);
-      }
+      if (par >= 0 && nodes[par].region == nodes[n].region) joined.unite(n, par);
     }
     std::map<int32_t, size_t> partIndex;  // part root -> index in plan.regionParts[region]
     auto partFor = [&](int32_t n) -> NetPart& {
-      const int32_t p = partOf(n);
+      const int32_t p = joined.find(n);
       std::vector<NetPart>& parts = plan.regionParts[nodes[p].region];
       auto it = partIndex.find(p);
       if (it == partIndex.end()) {
