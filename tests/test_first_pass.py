@@ -91,3 +91,25 @@ def test_first_pass_bad_arguments() -> None:
         first_pass(session, 0)
     with pytest.raises(ValueError, match="unknown policy"):
         first_pass(session, 2, policy="nope")
+
+
+def test_region_markers_are_the_violations_metrics_counts(pass_and_design) -> None:
+    """``Region.markers()`` lists the markers ``metrics()['violations']`` counts: inside the box, naming
+    the region's candidate nets (or -1, an obstruction or pin on no net)."""
+    fp, _, design = pass_and_design
+    seen = 0
+    for i in range(len(fp.regions)):
+        r = fp.open_region(i)
+        r.route_rest("random", 3)
+        markers = r.markers()
+        assert len(markers) == r.metrics()["violations"]
+        nets = set(np.asarray(r.candidates)[:, 0].tolist())
+        xlo, ylo, xhi, yhi = r.box
+        for m in markers:
+            bx = m["box"]
+            assert bx[0] <= xhi and bx[2] >= xlo and bx[1] <= yhi and bx[3] >= ylo, (m, r.box)
+            assert m["layer"] in {layer.name for layer in design.layers}, m
+            assert any(n in nets for n in m["nets"]), (m, sorted(nets))
+            assert all(n in nets or n < 0 or n >= design.num_nets for n in m["nets"]), m
+        seen += len(markers)
+    assert seen > 0  # a random order on this crowded generated design leaves some

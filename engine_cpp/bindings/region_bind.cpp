@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "bindings/arrays.hpp"
+#include "bindings/marker_list.hpp"
 #include "bindings/region_handle.hpp"
 #include "flow/search_policy.hpp"
 #include "db/database.hpp"
@@ -277,7 +278,20 @@ void bindRegionResults(RegionClass& cls) {
             return d;
           },
           "The new routing so far: wirelength_dbu, vias, nets_routed, unreached terminals, and the design-rule "
-          "violations inside the box (fixed-only ones skipped).");
+          "violations inside the box (fixed-only ones skipped).")
+      .def(
+          "markers",
+          [](const RegionHandle& h) {
+            std::vector<Marker> markers;
+            {
+              nb::gil_scoped_release release;
+              markers = h.get().check();
+            }
+            return markerList(h.get().context().tech, markers);
+          },
+          "The design-rule markers metrics() counts (inside the box, fixed-only ones skipped), as dicts {type, "
+          "layer, box: (xlo, ylo, xhi, yhi), nets: (n1, n2)}; net ids as in candidates' net column, -1 = an "
+          "obstruction.");
 }
 
 // Region: grid views and commit.
