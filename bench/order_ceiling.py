@@ -31,21 +31,18 @@ from typing import Any
 import numpy as np
 
 from xroute import load_design
-from xroute.config import CostSection
 from xroute.defaults import REGION_SIZE
 from xroute.policy import heuristic_order
-from xroute.policies.rl.holdout import held_out_regions
+from xroute.policies.rl.holdout import best_of_random, best_score, held_out_regions, region_score
+from xroute.policies.rl.teacher import route_order
 from xroute.session import first_pass, open_session
 
 
-def route(fp: Any, index: int, order: list[int], dbu: int, rest: str = "heuristic",
-          seed: int = 1) -> tuple[float, set[int]]:
-    """Cost of region ``index`` routed in ``order`` (then what is left in the built-in order ``rest``)
-    and the nets its markers leave in violation."""
+def route_victims(fp: Any, index: int, order: list[int], dbu: int) -> tuple[float, set[int]]:
+    """Cost of region ``index`` routed in ``order`` and the nets its markers leave in violation."""
     r = fp.open_region(index)
     for k in order:
         r.route_net(int(k))
-    r.route_rest(rest, seed)
     net = np.asarray(r.candidates)[:, 0]
     position: dict[int, int] = {}
     for p, k in enumerate(r.route_order):
@@ -57,7 +54,7 @@ def route(fp: Any, index: int, order: list[int], dbu: int, rest: str = "heuristi
             victims.add(a if position.get(a, -1) > position.get(b, -1) else b)
         else:
             victims.update(n for n in (a, b) if n >= 0)
-    return CostSection().region_cost(r.metrics(), dbu), victims
+    return region_score(r, dbu).cost, victims
 
 
 def victims_first(order: list[int], nets: np.ndarray, victims: set[int]) -> list[int]:
@@ -77,15 +74,13 @@ def bench_testcase(name: str, a: argparse.Namespace) -> dict[str, Any]:
         rows = np.asarray(fp.open_region(reg.index).candidates)
         nets = rows[:, 0]
         order = [int(k) for k in heuristic_order(rows)]
-        c0, v0 = route(fp, reg.index, order, dbu)
-        c1, v1 = route(fp, reg.index, victims_first(order, nets, v0), dbu)
-        c2, _ = route(fp, reg.index, victims_first(order, nets, v0 | v1), dbu)
-        costs = {"heuristic": c0, "victims-first": c1, "victims-first-2": c2}
-        rng_costs = []
-        for seed in range(1, max(a.best_of) + 1):
-            rng_costs.append(route(fp, reg.index, [], dbu, "random", seed)[0])
+        c0, v0 = route_victims(fp, reg.index, order, dbu)
+        c1, v1 = route_victims(fp, reg.index, victims_first(order, nets, v0), dbu)
+        costs = {"heuristic": c0, "victims-first": c1,
+                 "victims-first-2": route_order(fp, reg.index, victims_first(order, nets, v0 | v1), dbu)}
+        samples = best_of_random(fp, reg, max(a.best_of), dbu)
         for k in a.best_of:
-            costs[f"best-of-{k}"] = min(rng_costs[:k])
+            costs[f"best-of-{k}"] = best_score(samples[:k]).cost
         for n, c in costs.items():
             totals[n] += c
             better[n] += c < c0 - 1e-9

@@ -39,9 +39,8 @@ def two_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:
     # Region size 5: each run has a second iteration, so each chart draws a line (at the default 10
     # ispd19_sample4 ends its first pass with 0 violations and the flow stops there).
     for policy in ("heuristic", "random"):
-        result = runner.invoke(app, ["route", SAMPLE4, "--iterations", "3", "--region-size", "5", "--policy", policy,
-                                     "--quiet",
-                                     "--out", str(tmp_path / "runs" / policy)])
+        result = runner.invoke(app, ["route", SAMPLE4, "--iterations", "3", "--region-size", "5",
+                                     "--policy", policy, "--quiet", "--out", str(tmp_path / "runs" / policy)])
         assert result.exit_code == 0, result.stderr
     return tmp_path / "runs"
 

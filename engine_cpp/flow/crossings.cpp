@@ -188,7 +188,8 @@ struct Planner {
       Dbu lo, hi;
       int z;
     };
-    std::map<std::pair<int32_t, int32_t>, std::pair<std::vector<End>, std::vector<End>>> ends;  // region pair -> (A's, B's)
+    // (region A, region B) -> (guide ends on A's side of their edge, on B's side)
+    std::map<std::pair<int32_t, int32_t>, std::pair<std::vector<End>, std::vector<End>>> ends;
     for (const auto& [reg, cs] : clips) {
       const Region& ra = regions[reg];
       for (const Clip& c : cs) {
@@ -233,11 +234,12 @@ struct Planner {
     // 30 per region length of gap between the two pieces: wire outside the
     // guides costs about three times wire inside them in the contest's score
     // (ispd18_test1, 2 threads: a base of 10 scored 302,513, 20 301,511, 30
-    // 301,278, 40 301,293). So the tree follows the guides and leaves them only where they do
-    // not join a pin (an access point across a region edge from its guide, a
-    // guide broken at a corner) or wander far. (A shortest-path tree from one
-    // root would star out and waste wire on nets with many pins.) The search
-    // stays in the box of the pin regions and the regions the guides reach.
+    // 301,278, 40 301,293). So the tree follows the guides and leaves them
+    // only where they do not join a pin (an access point across a region
+    // edge from its guide, a guide broken at a corner) or wander far. (A
+    // shortest-path tree from one root would star out and waste wire on nets
+    // with many pins.) The search stays in the box of the pin regions and the
+    // regions the guides reach.
     auto unguided = [&](int32_t u, int32_t v) -> int64_t {
       const Node& a = nodes[u];
       const Node& b = nodes[v];
