@@ -1,10 +1,14 @@
-"""``xroute train ppo|dqn|imitate``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
+"""``xroute train ppo|dqn|imitate|finetune``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
 
 ``imitate`` trains the set scorer (:mod:`xroute.policies.rl.imitation`) instead: teacher orders
 routed on the first pass's training regions in context (``--testcase`` may list several, comma
 separated; ``--orders`` random orders besides the heuristic's, ``--workers`` processes; or
 ``--teacher`` an .npz made before), then ``--episodes`` gradient steps of imitation; it writes
 ``teacher.npz``, ``set-final.pt``, ``set.onnx`` (ready for ``--policy``) and ``log.json``.
+``finetune`` goes on from there (:mod:`xroute.policies.rl.finetune`): ``--episodes`` iterations of
+PPO on the set scorer's own orders routed on the training regions (``--init`` a checkpoint, default
+an untrained scorer, whose order is the heuristic's); it writes ``set-final.pt`` (the iteration
+best on the validation regions), ``set.onnx`` and ``log.json``.
 
 Writes into ``--out`` (default ``runs/train-<algorithm>-<testcase>``): ``metrics.jsonl`` (one line
 per episode = region) and checkpoints ``<algorithm>-epNNNNN.pt`` / ``<algorithm>-final.pt``, which
@@ -23,7 +27,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from xroute.cli.console import print_json, stdout_console
 from xroute.errors import XrouteError
 
-ALGORITHMS = ("ppo", "dqn", "imitate")
+ALGORITHMS = ("ppo", "dqn", "imitate", "finetune")
 
 
 class TrainError(XrouteError):
@@ -76,14 +80,20 @@ def _require_torch() -> None:
         raise TrainError(f"training needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
 
 
-AlgorithmArg = Annotated[str, typer.Argument(help="ppo, dqn or imitate (the set scorer).", show_default=False)]
+AlgorithmArg = Annotated[str, typer.Argument(help="ppo, dqn, imitate or finetune (the set scorer).", show_default=False)]
 TestcaseOpt = Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")]
 EpisodesOpt = Annotated[int, typer.Option(
-    "--episodes", min=1, help="Episodes (regions) to train on; for imitate, gradient steps.")]
+    "--episodes", min=1, help="Episodes (regions) to train on; imitate: gradient steps; finetune: iterations.")]
 OrdersOpt = Annotated[int, typer.Option("--orders", min=1, help="imitate: random teacher orders per region.")]
-WorkersOpt = Annotated[int, typer.Option("--workers", min=1, help="imitate: processes routing teacher orders.")]
+WorkersOpt = Annotated[int, typer.Option("--workers", min=1, help="imitate, finetune: processes routing orders.")]
 TeacherOpt = Annotated[Path | None, typer.Option(
     "--teacher", help="imitate: teacher .npz to train on instead of routing one.", show_default=False)]
+InitOpt = Annotated[Path | None, typer.Option(
+    "--init", help="finetune: set-scorer checkpoint to start from (set-final.pt).", show_default=False)]
+BackendOpt = Annotated[str, typer.Option(
+    "--backend", help="finetune: route in local processes or on Ray actors (local or ray).")]
+RayAddressOpt = Annotated[str | None, typer.Option(
+    "--ray-address", help="finetune --backend ray: the cluster (default: a local Ray instance).", show_default=False)]
 ConfigOpt = Annotated[Path | None, typer.Option(
     "--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)]
 OutOpt = Annotated[Path | None, typer.Option(
@@ -122,14 +132,25 @@ def train(
     orders: OrdersOpt = 8,
     workers: WorkersOpt = 2,
     teacher: TeacherOpt = None,
+    init: InitOpt = None,
+    backend: BackendOpt = "local",
+    ray_address: RayAddressOpt = None,
 ) -> None:
-    """Train a PPO or DQN net-order policy (or imitate: the set scorer) on a testcase's regions; write checkpoints."""
+    """Train a PPO or DQN net-order policy (or imitate / finetune: the set scorer) on a testcase's regions."""
     if algorithm not in ALGORITHMS:
-        raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo, dqn or imitate", param_hint="ALGORITHM")
+        raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo, dqn, imitate or finetune",
+                                 param_hint="ALGORITHM")
     if algorithm == "imitate":
         _require_torch()
         _imitate(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, orders, workers, teacher,
                  json_out)
+        return
+    if algorithm == "finetune":
+        _require_torch()
+        if backend not in ("local", "ray"):
+            raise typer.BadParameter(f"use local or ray, got {backend!r}", param_hint="--backend")
+        _finetune(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, workers, init, backend,
+                  ray_address, json_out)
         return
     if region_order not in ("sequential", "random"):
         raise typer.BadParameter(f"use sequential or random, got {region_order!r}", param_hint="--region-order")
@@ -222,3 +243,61 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
         return
     console.print(f"imitated {len(regions)} teacher regions of {', '.join(names)}: {steps} steps, "
                   f"{summary['seconds']:.1f} s; model {onnx_path}", highlight=False)
+
+
+def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, region_size: int | None,
+              hold_out_every: int, min_candidates: int, workers: int, init: Path | None, backend: str,
+              ray_address: str | None, json_out: bool) -> None:
+    """``xroute train finetune``: PPO on the set scorer's orders routed in context; checkpoint and ONNX model."""
+    import json
+    import pickle
+    import time
+    from dataclasses import asdict
+
+    import torch
+
+    from xroute.policies.rl.finetune import FinetuneConfig, finetune
+    from xroute.policies.rl.set_scorer import export_onnx, load_checkpoint, save_checkpoint
+    from xroute.testcases import find_testcase
+
+    names = [t.strip() for t in testcase.split(",") if t.strip()]
+    for name in names:
+        find_testcase(name)  # unknown testcase: one-line error before any work
+    model = None
+    if init is not None:
+        if not init.is_file():
+            raise TrainError(f"checkpoint not found: {init}")
+        try:
+            model = load_checkpoint(init)
+        except (OSError, ValueError, KeyError, RuntimeError, pickle.UnpicklingError) as exc:
+            raise TrainError(f"{init}: not a set-scorer checkpoint ({str(exc).splitlines()[0]})") from exc
+    out_dir = out or Path("runs") / f"finetune-{'-'.join(names)}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    torch.set_num_threads(1)
+    console = stdout_console()
+    t0 = time.perf_counter()
+    cfg = FinetuneConfig(iterations=iterations, seed=seed, region_size=region_size or 0,
+                         hold_out_every=hold_out_every, min_candidates=max(2, min_candidates))
+
+    def show(row: dict[str, Any]) -> None:
+        console.print(f"iteration {row['iteration']}  validation cost {row['val_cost']:,.1f} "
+                      f"({100 * row['val_vs_heuristic']:+.1f}% vs heuristic)  {row['seconds']:.1f} s", highlight=False)
+
+    try:
+        model, log = finetune(names, cfg, model=model, workers=workers, backend=backend, ray_address=ray_address,
+                              on_log=None if json_out else show)
+    except ValueError as exc:
+        raise TrainError(str(exc)) from exc
+    save_checkpoint(model, out_dir / "set-final.pt", {"finetune": asdict(cfg), "log": log})
+    onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_finetune_iterations": str(iterations)})
+    (out_dir / "log.json").write_text(json.dumps(log, indent=1))
+    best = min(log, key=lambda row: row["val_cost"]) if log else None
+    summary = {"algorithm": "finetune", "testcases": names, "iterations": iterations,
+               "seconds": round(time.perf_counter() - t0, 2), "checkpoint": str(out_dir / "set-final.pt"),
+               "model": str(onnx_path), "best_iteration": best["iteration"] if best else None,
+               "val_vs_heuristic": best["val_vs_heuristic"] if best else None}
+    if json_out:
+        print_json({"summary": summary, "log": log})
+        return
+    console.print(f"fine-tuned on {', '.join(names)}: {iterations} iterations, {summary['seconds']:.1f} s; "
+                  f"kept iteration {summary['best_iteration']}; model {onnx_path}", highlight=False)

@@ -1,0 +1,83 @@
+"""Routing orders on a Ray cluster (or a local Ray instance) for :mod:`~xroute.policies.rl.finetune`.
+
+:class:`RayPool` is an :class:`concurrent.futures.Executor` whose ``map`` runs module-level job
+functions of :mod:`~xroute.policies.rl.finetune` (``_regions_job``, ``_route_job``) on ``workers``
+Ray actors. Each actor routes the first pass of every testcase once when it starts, as a worker
+process of the local pool does, and keeps it; jobs go to the actors in turn and the results come
+back in the jobs' order, so a run gives the same numbers on Ray as in local processes. The actors
+must see the same testcases (a shared file system, or the ``XROUTE_TESTCASES`` folder on each node).
+
+``address`` None starts a local Ray instance for the pool and stops it at ``shutdown``; otherwise
+the pool connects to it (``ray://host:10001`` or ``host:6379``) and leaves the cluster running.
+Needs the ``ray`` extra (``pip install 'xroute[ray]'``).
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import Executor
+from pathlib import Path
+from typing import Any, Callable, Iterable
+
+from xroute.errors import XrouteError
+
+
+def _actor_class(package_root: str | None) -> type:
+    """The actor, defined in a function so that Ray ships it by value. With ``package_root`` (a local
+    instance) the actor first puts the folder the driver imported xroute from at the front of
+    ``sys.path``: local workers start in the driver's working directory, which may be a source
+    checkout without the compiled engine."""
+
+    class RouteActor:
+        def __init__(self, testcases: list[str], region_size: int) -> None:
+            import sys
+
+            if package_root is not None and (not sys.path or sys.path[0] != package_root):
+                sys.path.insert(0, package_root)
+            from xroute.policies.rl import finetune
+
+            finetune._init_worker(testcases, region_size)
+            self._module = finetune
+
+        def run(self, name: str, job: Any) -> Any:
+            return getattr(self._module, name)(job)
+
+    return RouteActor
+
+
+class RayPool(Executor):
+    """``workers`` Ray actors that each hold the first passes of ``testcases`` (see the module docstring)."""
+
+    def __init__(self, testcases: list[str], region_size: int, workers: int, address: str | None = None) -> None:
+        try:
+            import ray
+        except ImportError as exc:
+            raise XrouteError("routing on Ray needs Ray: pip install 'xroute[ray]'") from exc
+        self._ray = ray
+        self._started_here = not ray.is_initialized()
+        if self._started_here:
+            try:
+                if address:
+                    ray.init(address=address, log_to_driver=False)
+                else:
+                    ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
+            except Exception as exc:  # noqa: BLE001 - connection problems are user errors
+                raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
+        import xroute
+
+        package_root = None if address else str(Path(xroute.__file__).resolve().parent.parent)
+        actor = ray.remote(num_cpus=1)(_actor_class(package_root))
+        self._actors = [actor.remote(list(testcases), int(region_size)) for _ in range(max(1, workers))]
+
+    def map(self, fn: Callable, *iterables: Iterable, timeout: Any = None, chunksize: int = 1) -> list:  # noqa: ARG002
+        jobs = list(zip(*iterables))
+        if any(len(args) != 1 for args in jobs):
+            raise TypeError("RayPool.map takes one iterable of jobs")
+        refs = [self._actors[i % len(self._actors)].run.remote(fn.__name__, args[0]) for i, args in enumerate(jobs)]
+        return self._ray.get(refs)
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:  # noqa: ARG002
+        for a in self._actors:
+            self._ray.kill(a)
+        self._actors = []
+        if self._started_here and self._ray.is_initialized():
+            self._ray.shutdown()
