@@ -146,3 +146,19 @@ def test_xroute_train_finetune_writes_a_model_the_router_takes(design_name: str,
                               str(tmp_path / "junk.pt"), "--out", str(tmp_path / "bad")])
     assert res.exit_code == 2 and "junk.pt: not a set-scorer checkpoint" in res.output
     assert not (tmp_path / "bad").exists()
+
+
+def test_teacher_shards_on_ray_give_the_regions_of_one_process(design_name: str) -> None:
+    """The teacher's shards as Ray tasks on a local instance: the same regions, orders and costs as one process."""
+    pytest.importorskip("ray")
+    from xroute.policies.rl.teacher import collect
+
+    kwargs = {"region_size": SIZE, "hold_out_every": 3, "orders": 2, "seed": 4, "max_regions": 10}
+    local = collect([design_name], workers=1, **kwargs)
+    on_ray = collect([design_name], workers=2, backend="ray", **kwargs)
+    assert len(local) >= 5 and [(r.testcase, r.index) for r in local] == [(r.testcase, r.index) for r in on_ray]
+    for a, b in zip(local, on_ray):
+        assert np.array_equal(a.features, b.features) and np.array_equal(a.orders, b.orders)
+        assert np.array_equal(a.costs, b.costs)
+    with pytest.raises(ValueError, match="unknown backend 'slurm'"):
+        collect([design_name], workers=1, backend="slurm", **kwargs)

@@ -1,4 +1,7 @@
-"""Routing orders on a Ray cluster (or a local Ray instance) for :mod:`~xroute.policies.rl.finetune`.
+"""Routing orders on a Ray cluster (or a local Ray instance): the teacher's shards and fine-tuning's routings.
+
+:func:`ray_map` runs the teacher's shards (:func:`xroute.policies.rl.teacher.collect` with
+``backend="ray"``) as Ray tasks: each loads its design and routes its own first pass.
 
 :class:`RayPool` is an :class:`concurrent.futures.Executor` whose ``map`` runs module-level job
 functions of :mod:`~xroute.policies.rl.finetune` (``_regions_job``, ``_route_job``) on ``workers``
@@ -19,6 +22,60 @@ from pathlib import Path
 from typing import Any, Callable, Iterable
 
 from xroute.errors import XrouteError
+
+
+def _start(workers: int, address: str | None) -> bool:
+    """Connects to ``address`` or starts a local instance of ``workers`` CPUs (unless Ray is up already);
+    True if this call started it."""
+    try:
+        import ray
+    except ImportError as exc:
+        raise XrouteError("routing on Ray needs Ray: pip install 'xroute[ray]'") from exc
+    if ray.is_initialized():
+        return False
+    try:
+        if address:
+            ray.init(address=address, log_to_driver=False)
+        else:
+            ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
+    except Exception as exc:  # noqa: BLE001 - connection problems are user errors
+        raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
+    return True
+
+
+def _package_root(address: str | None) -> str | None:
+    """On a cluster the workers use their own installed xroute; locally, the driver's."""
+    import xroute
+
+    return None if address else str(Path(xroute.__file__).resolve().parent.parent)
+
+
+def _task(package_root: str | None) -> Callable[[str, str, Any], Any]:
+    """The body of a Ray task running ``module.name(job)`` (shipped by value, see :func:`_actor_class`)."""
+
+    def run(module: str, name: str, job: Any) -> Any:
+        import importlib
+        import sys
+
+        if package_root is not None and (not sys.path or sys.path[0] != package_root):
+            sys.path.insert(0, package_root)
+        return getattr(importlib.import_module(module), name)(job)
+
+    return run
+
+
+def ray_map(fn: Callable[[Any], Any], jobs: list[Any], workers: int, address: str | None = None) -> list[Any]:
+    """``[fn(job) for job in jobs]`` as Ray tasks of one CPU each (``fn`` a module-level function), in the
+    jobs' order; a local instance of ``workers`` CPUs when ``address`` is None (stopped afterwards)."""
+    import ray
+
+    started = _start(workers, address)
+    try:
+        task = ray.remote(num_cpus=1)(_task(_package_root(address)))
+        return ray.get([task.remote(fn.__module__, fn.__name__, job) for job in jobs])
+    finally:
+        if started:
+            ray.shutdown()
 
 
 def _actor_class(package_root: str | None) -> type:
@@ -48,24 +105,11 @@ class RayPool(Executor):
     """``workers`` Ray actors that each hold the first passes of ``testcases`` (see the module docstring)."""
 
     def __init__(self, testcases: list[str], region_size: int, workers: int, address: str | None = None) -> None:
-        try:
-            import ray
-        except ImportError as exc:
-            raise XrouteError("routing on Ray needs Ray: pip install 'xroute[ray]'") from exc
-        self._ray = ray
-        self._started_here = not ray.is_initialized()
-        if self._started_here:
-            try:
-                if address:
-                    ray.init(address=address, log_to_driver=False)
-                else:
-                    ray.init(num_cpus=workers, include_dashboard=False, log_to_driver=False)
-            except Exception as exc:  # noqa: BLE001 - connection problems are user errors
-                raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
-        import xroute
+        self._started_here = _start(workers, address)
+        import ray
 
-        package_root = None if address else str(Path(xroute.__file__).resolve().parent.parent)
-        actor = ray.remote(num_cpus=1)(_actor_class(package_root))
+        self._ray = ray
+        actor = ray.remote(num_cpus=1)(_actor_class(_package_root(address)))
         self._actors = [actor.remote(list(testcases), int(region_size)) for _ in range(max(1, workers))]
 
     def map(self, fn: Callable, *iterables: Iterable, timeout: Any = None, chunksize: int = 1) -> list:  # noqa: ARG002

@@ -9,8 +9,8 @@ region's first-pass cost (:func:`~xroute.policies.rl.holdout.region_score`).
 
 Work is split into shards (region index % shards); :func:`collect_shard` is a plain function of
 its arguments (it loads the design and routes its own first pass), so a process pool runs it
-here (:func:`collect`, ``workers`` processes) and a Ray task or a cluster job could run the same
-shards elsewhere. Numpy and the engine only (no torch).
+here (:func:`collect`, ``workers`` processes) and Ray tasks on a cluster run the same shards
+(``backend="ray"``). Numpy and the engine only (no torch).
 """
 
 from __future__ import annotations
@@ -113,10 +113,19 @@ def _run_shard(args: tuple[str, int, int, dict[str, Any]]) -> list[TeacherRegion
     return collect_shard(testcase, shard, shards, **kwargs)
 
 
-def collect(testcases: list[str], *, workers: int = 2, **kwargs: Any) -> list[TeacherRegion]:
-    """Teacher regions of every testcase, ``workers`` processes (1: in this process)."""
+def collect(testcases: list[str], *, workers: int = 2, backend: str = "local", ray_address: str | None = None,
+            **kwargs: Any) -> list[TeacherRegion]:
+    """Teacher regions of every testcase, ``workers`` shards per testcase in as many processes (1: in this
+    process), or as Ray tasks with ``backend="ray"`` (:func:`xroute.policies.rl.ray_pool.ray_map`; ``ray_address``
+    None: a local instance). The regions do not depend on the worker count or the backend."""
     jobs = [(t, s, workers, kwargs) for t in testcases for s in range(workers)]
-    if workers <= 1:
+    if backend == "ray":
+        from xroute.policies.rl.ray_pool import ray_map
+
+        parts = ray_map(_run_shard, jobs, workers, ray_address)
+    elif backend != "local":
+        raise ValueError(f"unknown backend {backend!r}: use local or ray")
+    elif workers <= 1:
         parts = [_run_shard(j) for j in jobs]
     else:
         import multiprocessing
@@ -165,6 +174,8 @@ def main() -> None:  # python -m xroute.policies.rl.teacher OUT.npz TESTCASE...
     ap.add_argument("testcases", nargs="+")
     ap.add_argument("--orders", type=int, default=8)
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--backend", choices=("local", "ray"), default="local")
+    ap.add_argument("--ray-address", default=None, help="with --backend ray: a cluster (default: a local instance)")
     ap.add_argument("--hold-out-every", type=int, default=3)
     ap.add_argument("--region-size", type=int, default=None)
     ap.add_argument("--seed", type=int, default=1)
@@ -172,8 +183,9 @@ def main() -> None:  # python -m xroute.policies.rl.teacher OUT.npz TESTCASE...
     ap.add_argument("--jitter", type=float, default=0.0, help="perturbed heuristic orders (noise / N) instead of random")
     a = ap.parse_args()
     t0 = time.perf_counter()
-    regions = collect(a.testcases, workers=a.workers, orders=a.orders, hold_out_every=a.hold_out_every,
-                      region_size=a.region_size, seed=a.seed, max_regions=a.max_regions, jitter=a.jitter)
+    regions = collect(a.testcases, workers=a.workers, backend=a.backend, ray_address=a.ray_address, orders=a.orders,
+                      hold_out_every=a.hold_out_every, region_size=a.region_size, seed=a.seed,
+                      max_regions=a.max_regions, jitter=a.jitter)
     save(regions, a.out)
     heur = sum(r.costs[0] for r in regions)
     best = sum(r.costs.min() for r in regions)

@@ -3,8 +3,9 @@
 ``imitate`` trains the set scorer (:mod:`xroute.policies.rl.imitation`) instead: teacher orders
 routed on the first pass's training regions in context (``--testcase`` may list several, comma
 separated; ``--orders`` random orders besides the heuristic's, ``--workers`` processes; or
-``--teacher`` an .npz made before), then ``--episodes`` gradient steps of imitation; it writes
-``teacher.npz``, ``set-final.pt``, ``set.onnx`` (ready for ``--policy``) and ``log.json``.
+``--teacher`` an .npz made before; ``--backend ray`` runs the shards as Ray tasks), then
+``--episodes`` gradient steps of imitation; it writes ``teacher.npz``, ``set-final.pt``,
+``set.onnx`` (ready for ``--policy``) and ``log.json``.
 ``finetune`` goes on from there (:mod:`xroute.policies.rl.finetune`): ``--episodes`` iterations of
 PPO on the set scorer's own orders routed on the training regions (``--init`` a checkpoint, default
 an untrained scorer, whose order is the heuristic's); it writes ``set-final.pt`` (the iteration
@@ -91,9 +92,9 @@ TeacherOpt = Annotated[Path | None, typer.Option(
 InitOpt = Annotated[Path | None, typer.Option(
     "--init", help="finetune: set-scorer checkpoint to start from (set-final.pt).", show_default=False)]
 BackendOpt = Annotated[str, typer.Option(
-    "--backend", help="finetune: route in local processes or on Ray actors (local or ray).")]
+    "--backend", help="imitate, finetune: route in local processes or on Ray (local or ray).")]
 RayAddressOpt = Annotated[str | None, typer.Option(
-    "--ray-address", help="finetune --backend ray: the cluster (default: a local Ray instance).", show_default=False)]
+    "--ray-address", help="with --backend ray: the cluster (default: a local Ray instance).", show_default=False)]
 ConfigOpt = Annotated[Path | None, typer.Option(
     "--config", help="YAML settings (configs/train-<algorithm>.yaml lists them).", show_default=False)]
 OutOpt = Annotated[Path | None, typer.Option(
@@ -140,15 +141,15 @@ def train(
     if algorithm not in ALGORITHMS:
         raise typer.BadParameter(f"unknown algorithm {algorithm!r}: use ppo, dqn, imitate or finetune",
                                  param_hint="ALGORITHM")
+    if backend not in ("local", "ray"):
+        raise typer.BadParameter(f"use local or ray, got {backend!r}", param_hint="--backend")
     if algorithm == "imitate":
         _require_torch()
         _imitate(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, orders, workers, teacher,
-                 json_out)
+                 backend, ray_address, json_out)
         return
     if algorithm == "finetune":
         _require_torch()
-        if backend not in ("local", "ray"):
-            raise typer.BadParameter(f"use local or ray, got {backend!r}", param_hint="--backend")
         _finetune(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, workers, init, backend,
                   ray_address, json_out)
         return
@@ -192,7 +193,8 @@ def train(
 
 
 def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size: int | None, hold_out_every: int,
-             min_candidates: int, orders: int, workers: int, teacher: Path | None, json_out: bool) -> None:
+             min_candidates: int, orders: int, workers: int, teacher: Path | None, backend: str,
+             ray_address: str | None, json_out: bool) -> None:
     """``xroute train imitate``: teacher orders (or ``--teacher``), imitation, checkpoint and ONNX model."""
     import json
     import time
@@ -223,8 +225,9 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
         if not json_out:
             console.print(f"routing teacher orders on {', '.join(names)} ({orders} random + heuristic per region, "
                           f"{workers} workers)")
-        regions = teacher_data.collect(names, workers=workers, region_size=region_size, hold_out_every=hold_out_every,
-                                       orders=orders, min_candidates=min_candidates, seed=seed)
+        regions = teacher_data.collect(names, workers=workers, backend=backend, ray_address=ray_address,
+                                       region_size=region_size, hold_out_every=hold_out_every, orders=orders,
+                                       min_candidates=min_candidates, seed=seed)
         teacher_data.save(regions, out_dir / "teacher.npz")
     teacher_seconds = time.perf_counter() - t0
     cfg = ImitationConfig(steps=steps, seed=seed)
