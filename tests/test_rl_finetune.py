@@ -113,6 +113,7 @@ def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(des
     assert [row["iteration"] for row in log1] == [0, 2, 4]
     assert log1[0]["val_cost"] == log1[0]["val_heuristic"] > 0
     assert log1[0]["sample_gain"] == 0 and sum(row["sample_gain"] for row in log1) > 0  # a sample beat greedy
+    assert log1[0]["samples_vs_greedy"] == 0 and log1[1]["samples_vs_greedy"] != 0
     strip = [{k: v for k, v in row.items() if k != "seconds"} for row in log1]
     for (m2, log2), (workers, backend) in zip(runs[1:], backends[1:]):
         assert strip == [{k: v for k, v in row.items() if k != "seconds"} for row in log2], (workers, backend)
