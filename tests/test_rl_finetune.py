@@ -64,16 +64,17 @@ def test_a_ppo_step_moves_the_greedy_order_towards_a_cheaper_sample() -> None:
     feats[:, SET_FEATURES.index("heuristic_rank")] = np.arange(n) / (n - 1)
     temperature = 0.5
 
+    every = torch.ones(1, n, dtype=torch.bool)
+
     def logp(order: np.ndarray) -> float:
         with torch.no_grad():
-            s = model(torch.from_numpy(feats)[None], torch.ones(1, n, dtype=torch.bool)) / temperature
-            return float(step_log_probs(s, torch.from_numpy(order[None]).long(), torch.ones(1, n, dtype=torch.bool)).sum())
+            s = model(torch.from_numpy(feats)[None], every) / temperature
+            return float(step_log_probs(s, torch.from_numpy(order[None]).long(), every).sum())
 
     good, bad = np.array([5, 4, 3, 2, 1, 0]), np.array([1, 0, 2, 3, 4, 5])
     with torch.no_grad():
-        s = model(torch.from_numpy(feats)[None], torch.ones(1, n, dtype=torch.bool)) / temperature
-    old = [step_log_probs(s, torch.from_numpy(o[None]).long(), torch.ones(1, n, dtype=torch.bool))[0].numpy()
-           for o in (good, bad)]
+        s = model(torch.from_numpy(feats)[None], every) / temperature
+    old = [step_log_probs(s, torch.from_numpy(o[None]).long(), every)[0].numpy() for o in (good, bad)]
     before = logp(good), logp(bad)
     batch = _batch([_Sample(0, good, 1.0, old[0]), _Sample(0, bad, -1.0, old[1])], [feats])
     opt = torch.optim.Adam(model.parameters(), lr=1e-2)

@@ -106,6 +106,9 @@ class _Local(Executor):
     def map(self, fn: Callable, *iterables: Any, timeout: Any = None, chunksize: int = 1) -> Any:  # noqa: ARG002
         return [fn(*args) for args in zip(*iterables)]
 
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:  # noqa: ARG002
+        _PASSES.clear()  # the first passes this process routed for the run
+
 
 def _pool(testcases: list[str], region_size: int, workers: int, backend: str = "local",
           ray_address: str | None = None) -> Executor:

@@ -1,4 +1,4 @@
-"""``xroute train ppo|dqn|imitate|finetune``: train a net-order policy on a testcase's regions (needs the ``train`` extra).
+"""``xroute train ppo|dqn|imitate|finetune``: train a net-order policy on a testcase's regions (``train`` extra).
 
 ``imitate`` trains the set scorer (:mod:`xroute.policies.rl.imitation`) instead: teacher orders
 routed on the first pass's training regions in context (``--testcase`` may list several, comma
@@ -81,7 +81,8 @@ def _require_torch() -> None:
         raise TrainError(f"training needs the train extra: pip install 'xroute[train]' ({exc.name} is missing)") from exc
 
 
-AlgorithmArg = Annotated[str, typer.Argument(help="ppo, dqn, imitate or finetune (the set scorer).", show_default=False)]
+AlgorithmArg = Annotated[str, typer.Argument(
+    help="ppo, dqn, imitate or finetune (the set scorer).", show_default=False)]
 TestcaseOpt = Annotated[str, typer.Option("--testcase", help="Testcase whose regions are the episodes.")]
 EpisodesOpt = Annotated[int, typer.Option(
     "--episodes", min=1, help="Episodes (regions) to train on; imitate: gradient steps; finetune: iterations.")]
@@ -275,7 +276,6 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
         except (OSError, ValueError, KeyError, RuntimeError, pickle.UnpicklingError) as exc:
             raise TrainError(f"{init}: not a set-scorer checkpoint ({str(exc).splitlines()[0]})") from exc
     out_dir = out or Path("runs") / f"finetune-{'-'.join(names)}"
-    out_dir.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(1)
     console = stdout_console()
     t0 = time.perf_counter()
@@ -291,6 +291,7 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
                               on_log=None if json_out else show)
     except ValueError as exc:
         raise TrainError(str(exc)) from exc
+    out_dir.mkdir(parents=True, exist_ok=True)  # after training: a run that fails leaves no folder
     save_checkpoint(model, out_dir / "set-final.pt", {"finetune": asdict(cfg), "log": log})
     onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_finetune_iterations": str(iterations)})
     (out_dir / "log.json").write_text(json.dumps(log, indent=1))
