@@ -9,7 +9,8 @@ Fixtures (nothing here is autouse; nothing changes the working directory):
 * ``testcase(name)`` -> :class:`xroute.testcases.FoundTestcase`, or skips the test naming the
   search path when the testcase is not there;
 * ``loaded_design(name, use_guide=True)`` -> a :class:`xroute.Design` loaded once per
-  session and shared: tests must not modify it.
+  session and shared: tests must not modify it;
+* ``imitation_sample`` -> the name of a generated design of 800 cells for the set scorer's tests.
 
 Stand-ins: tests whose assertions are invariants (0 opens, determinism, round trips, error
 messages, CLI behaviour) run on a contest testcase when it is on the search path and otherwise on
@@ -182,6 +183,21 @@ def loaded_design() -> Callable[..., Any]:
         return cache[key]
 
     return load
+
+
+IMITATION_SAMPLE = "imitation_sample"  # generated: 800 cells, 64 regions of 2x2 GCells
+
+
+@pytest.fixture(scope="session")
+def imitation_sample() -> str:
+    """The name of the set scorer's tests' design (:data:`IMITATION_SAMPLE`), generated among the stand-ins
+    on first use."""
+    from xroute.testcases.generator import make_testcase
+
+    folder = standin_root() / IMITATION_SAMPLE
+    if not (folder / f"{IMITATION_SAMPLE}.def").is_file():
+        make_testcase(800, 5, folder)
+    return IMITATION_SAMPLE
 
 
 def make_runner() -> CliRunner:

@@ -7,20 +7,7 @@ import pytest
 
 torch = pytest.importorskip("torch")
 
-from conftest import standin_root  # noqa: E402
-
-DESIGN = "imitation_sample"  # the design of test_rl_imitation.py: 800 cells, 64 regions of 2x2 GCells
-SIZE = 2
-
-
-@pytest.fixture(scope="module")
-def design_name() -> str:
-    from xroute.testcases.generator import make_testcase
-
-    folder = standin_root() / DESIGN
-    if not (folder / f"{DESIGN}.def").is_file():
-        make_testcase(800, 5, folder)
-    return DESIGN
+SIZE = 2  # regions of the imitation_sample fixture (conftest): 64 of 2x2 GCells
 
 
 def test_step_log_probs_add_up_to_the_plackett_luce_log_probability() -> None:
@@ -87,7 +74,7 @@ def test_a_ppo_step_moves_the_greedy_order_towards_a_cheaper_sample() -> None:
     assert after[0] > before[0] and after[1] < before[1], (before, after)
 
 
-def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(design_name: str) -> None:
+def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(imitation_sample: str) -> None:
     """An untrained scorer's greedy order is the heuristic's, so the first evaluation costs exactly the
     heuristic's on the validation regions; two worker processes, and two Ray actors on a local instance,
     give the same log and the same model as one process."""
@@ -107,7 +94,7 @@ def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(des
         pass
     for workers, backend in backends:
         torch.manual_seed(0)
-        model, log = finetune([design_name], cfg, model=SetScorer(width=16, heads=2, layers=1), workers=workers,
+        model, log = finetune([imitation_sample], cfg, model=SetScorer(width=16, heads=2, layers=1), workers=workers,
                               backend=backend)
         runs.append((model, log))
     (m1, log1) = runs[0]
@@ -121,7 +108,7 @@ def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(des
         assert all(torch.equal(a, b) for a, b in zip(m1.state_dict().values(), m2.state_dict().values()))
 
 
-def test_xroute_train_finetune_writes_a_model_the_router_takes(design_name: str, tmp_path) -> None:
+def test_xroute_train_finetune_writes_a_model_the_router_takes(imitation_sample: str, tmp_path) -> None:
     import json
 
     from typer.testing import CliRunner
@@ -132,35 +119,35 @@ def test_xroute_train_finetune_writes_a_model_the_router_takes(design_name: str,
     pytest.importorskip("onnxruntime")
     runner = CliRunner()
     out = tmp_path / "run"
-    res = runner.invoke(app, ["train", "finetune", "--testcase", design_name, "--episodes", "2", "--region-size",
+    res = runner.invoke(app, ["train", "finetune", "--testcase", imitation_sample, "--episodes", "2", "--region-size",
                               str(SIZE), "--workers", "1", "--out", str(out), "--json"])
     assert res.exit_code == 0, res.output
     got = json.loads(res.stdout)
     assert got["summary"]["iterations"] == 2 and [row["iteration"] for row in got["log"]] == [0, 2]
     assert OnnxPolicy(out / "set.onnx").kind == "set"
     # Going on from the checkpoint it wrote; a file that is not a checkpoint is one line, exit 2.
-    res = runner.invoke(app, ["train", "finetune", "--testcase", design_name, "--episodes", "1", "--region-size",
+    res = runner.invoke(app, ["train", "finetune", "--testcase", imitation_sample, "--episodes", "1", "--region-size",
                               str(SIZE), "--workers", "1", "--init", str(out / "set-final.pt"), "--out",
                               str(tmp_path / "again"), "--json"])
     assert res.exit_code == 0, res.output
     (tmp_path / "junk.pt").write_bytes(b"junk")
-    res = runner.invoke(app, ["train", "finetune", "--testcase", design_name, "--episodes", "1", "--init",
+    res = runner.invoke(app, ["train", "finetune", "--testcase", imitation_sample, "--episodes", "1", "--init",
                               str(tmp_path / "junk.pt"), "--out", str(tmp_path / "bad")])
     assert res.exit_code == 2 and "junk.pt: not a set-scorer checkpoint" in res.output
     assert not (tmp_path / "bad").exists()
 
 
-def test_teacher_shards_on_ray_give_the_regions_of_one_process(design_name: str) -> None:
+def test_teacher_shards_on_ray_give_the_regions_of_one_process(imitation_sample: str) -> None:
     """The teacher's shards as Ray tasks on a local instance: the same regions, orders and costs as one process."""
     pytest.importorskip("ray")
     from xroute.policies.rl.teacher import collect
 
     kwargs = {"region_size": SIZE, "hold_out_every": 3, "orders": 2, "seed": 4, "max_regions": 10}
-    local = collect([design_name], workers=1, **kwargs)
-    on_ray = collect([design_name], workers=2, backend="ray", **kwargs)
+    local = collect([imitation_sample], workers=1, **kwargs)
+    on_ray = collect([imitation_sample], workers=2, backend="ray", **kwargs)
     assert len(local) >= 5 and [(r.testcase, r.index) for r in local] == [(r.testcase, r.index) for r in on_ray]
     for a, b in zip(local, on_ray):
         assert np.array_equal(a.features, b.features) and np.array_equal(a.orders, b.orders)
         assert np.array_equal(a.costs, b.costs)
     with pytest.raises(ValueError, match="unknown backend 'slurm'"):
-        collect([design_name], workers=1, backend="slurm", **kwargs)
+        collect([imitation_sample], workers=1, backend="slurm", **kwargs)

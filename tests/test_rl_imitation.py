@@ -9,29 +9,16 @@ import pytest
 torch = pytest.importorskip("torch")
 pytest.importorskip("onnxruntime")
 
-from conftest import standin_root  # noqa: E402
-
-DESIGN = "imitation_sample"  # generated: 800 cells, 64 regions of 2x2 GCells
-SIZE = 2
+SIZE = 2  # regions of the imitation_sample fixture (conftest): 64 of 2x2 GCells
 HOLD_OUT = 3
 
 
-@pytest.fixture(scope="module")
-def design_name() -> str:
-    from xroute.testcases.generator import make_testcase
-
-    folder = standin_root() / DESIGN
-    if not (folder / f"{DESIGN}.def").is_file():
-        make_testcase(800, 5, folder)
-    return DESIGN
-
-
-def test_set_features_shape_and_ranges(design_name: str) -> None:
+def test_set_features_shape_and_ranges(imitation_sample: str) -> None:
     from xroute import load_design
     from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
     from xroute.session import first_pass, open_session
 
-    fp = first_pass(open_session(load_design(design_name)), SIZE)
+    fp = first_pass(open_session(load_design(imitation_sample)), SIZE)
     region = fp.open_region(0)
     f = region_set_features(region)
     assert f.shape == (len(region.candidates), len(SET_FEATURES)) and f.dtype == np.float32
@@ -56,7 +43,7 @@ def test_plackett_luce_prefers_the_teacher_order() -> None:
     assert torch.isclose(good, padded)
 
 
-def test_imitation_beats_a_random_order_on_held_out_regions(design_name: str, tmp_path) -> None:
+def test_imitation_beats_a_random_order_on_held_out_regions(imitation_sample: str, tmp_path) -> None:
     """Teacher orders on the training regions, a few hundred steps of imitation (no heuristic prior, fixed
     seeds), then the held-out regions routed in the scorer's order (ties by row, not by the heuristic)
     against random orders; the exported ONNX model gives the same scores through OnnxPolicy."""
@@ -70,7 +57,7 @@ def test_imitation_beats_a_random_order_on_held_out_regions(design_name: str, tm
     from xroute.session import first_pass, open_session
 
     torch.set_num_threads(1)
-    regions = collect([design_name], workers=1, region_size=SIZE, hold_out_every=HOLD_OUT, orders=6, seed=1)
+    regions = collect([imitation_sample], workers=1, region_size=SIZE, hold_out_every=HOLD_OUT, orders=6, seed=1)
     assert len(regions) >= 30 and all(len(r.costs) == 7 for r in regions)
     model, log = train(regions, ImitationConfig(width=32, heads=2, steps=300, batch=8, prior=0.0, log_every=100))
     assert log[-1]["loss"] < log[0]["loss"] + 0.05
@@ -80,7 +67,7 @@ def test_imitation_beats_a_random_order_on_held_out_regions(design_name: str, tm
             t = torch.from_numpy(f)[None]
             return model(t, torch.ones(t.shape[:2], dtype=torch.bool))[0].numpy()
 
-    design = load_design(design_name)
+    design = load_design(imitation_sample)
     fp = first_pass(open_session(design), SIZE)
     held = [r.index for r in held_out_regions(fp, HOLD_OUT, SIZE, 2)]
     assert len(held) >= 5 and not {r.index for r in regions} & set(held)
@@ -103,7 +90,7 @@ def test_imitation_beats_a_random_order_on_held_out_regions(design_name: str, tm
     assert np.allclose(policy.set_scores(f, np.ones(len(f), bool)), scores(f), atol=1e-4)
 
 
-def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(design_name: str, tmp_path) -> None:
+def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(imitation_sample: str, tmp_path) -> None:
     """Zero head + heuristic prior = the heuristic order: route_design with the exported model (one call per
     region) routes exactly what the heuristic routes; a set model with wrong metadata is refused."""
     import onnx
@@ -122,8 +109,8 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(de
     calls = []
     set_scores = policy.set_scores
     policy.set_scores = lambda f, m: calls.append(len(f)) or set_scores(f, m)
-    got = route_design(load_design(design_name), region_size=SIZE, iterations=1, policy=policy)
-    heuristic = route_design(load_design(design_name), region_size=SIZE, iterations=1)
+    got = route_design(load_design(imitation_sample), region_size=SIZE, iterations=1, policy=policy)
+    heuristic = route_design(load_design(imitation_sample), region_size=SIZE, iterations=1)
     assert calls and len(calls) == got.iterations[0].regions
     assert (got.final.wirelength_dbu, got.final.vias) == (heuristic.final.wirelength_dbu, heuristic.final.vias)
 
@@ -136,7 +123,7 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(de
         OnnxPolicy(tmp_path / "bad.onnx")
 
 
-def test_xroute_train_imitate_writes_a_model_the_router_takes(design_name: str, tmp_path) -> None:
+def test_xroute_train_imitate_writes_a_model_the_router_takes(imitation_sample: str, tmp_path) -> None:
     import json
 
     from typer.testing import CliRunner
@@ -146,7 +133,7 @@ def test_xroute_train_imitate_writes_a_model_the_router_takes(design_name: str, 
 
     out = tmp_path / "run"
     runner = CliRunner()
-    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "20", "--region-size",
+    res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "20", "--region-size",
                               str(SIZE), "--hold-out-every", "3", "--orders", "2", "--workers", "1", "--out", str(out),
                               "--json"])
     assert res.exit_code == 0, res.output
@@ -154,10 +141,10 @@ def test_xroute_train_imitate_writes_a_model_the_router_takes(design_name: str, 
     assert summary["teacher_regions"] >= 30 and summary["steps"] == 20
     assert OnnxPolicy(out / "set.onnx").kind == "set" and (out / "teacher.npz").is_file()
     # Training again from the saved teacher data routes nothing; bad teacher data is one line.
-    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "5", "--teacher",
+    res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "5", "--teacher",
                               str(out / "teacher.npz"), "--out", str(tmp_path / "again"), "--json"])
     assert res.exit_code == 0, res.output
     (tmp_path / "junk.npz").write_bytes(b"junk")
-    res = runner.invoke(app, ["train", "imitate", "--testcase", design_name, "--episodes", "5", "--teacher",
+    res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "5", "--teacher",
                               str(tmp_path / "junk.npz"), "--out", str(tmp_path / "bad")])
     assert res.exit_code == 2 and "junk.npz: not teacher data" in res.output

@@ -36,7 +36,7 @@ from typing import Any, Callable
 import numpy as np
 import torch
 
-from xroute.policies.rl.imitation import model_order
+from xroute.policies.rl.imitation import model_order, model_scores, scores_order
 from xroute.policies.rl.set_features import SET_FEATURES
 from xroute.policies.rl.set_scorer import SetScorer
 
@@ -169,12 +169,6 @@ def _batch(samples: list[_Sample], features: list[np.ndarray]) -> tuple[torch.Te
             torch.from_numpy(adv))
 
 
-def _scores(model: SetScorer, features: np.ndarray) -> np.ndarray:
-    with torch.no_grad():
-        f = torch.from_numpy(np.asarray(features, dtype=np.float32))[None]
-        return model(f, torch.ones(f.shape[:2], dtype=torch.bool))[0].numpy().astype(np.float64)
-
-
 def ppo_loss(model: SetScorer, batch: tuple[torch.Tensor, ...], temperature: float, clip: float) -> torch.Tensor:
     """PPO's clipped surrogate per placement step, averaged over the valid steps of the batch."""
     feats, mask, orders, old, adv = batch
@@ -211,12 +205,13 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
         if not train:
             raise ValueError(f"no training region with >= {cfg.min_candidates} nets in {', '.join(testcases)}")
         features = [r[2] for r in train]
-        heuristic = [np.argsort(r[2][:, RANK], kind="stable").astype(np.int32) for r in val]
-        val_base = [cs[0] for cs in pool.map(_route_job, [(r[0], r[1], [o]) for r, o in zip(val, heuristic)])]
 
-        def evaluate() -> list[float]:
-            orders = [model_order(model, r[2]).astype(np.int32) for r in val]
-            return [cs[0] for cs in pool.map(_route_job, [(r[0], r[1], [o]) for r, o in zip(val, orders)])]
+        def route_val(order_of: Callable[[np.ndarray], np.ndarray]) -> list[float]:
+            """The cost of each validation region routed in ``order_of(its features)``."""
+            jobs = [(r[0], r[1], [order_of(r[2]).astype(np.int32)]) for r in val]
+            return [costs[0] for costs in pool.map(_route_job, jobs)]
+
+        val_base = route_val(lambda f: np.argsort(f[:, RANK], kind="stable"))  # the heuristic's order
 
         def by_testcase(costs: list[float]) -> dict[str, float]:
             out: dict[str, float] = {}
@@ -233,7 +228,7 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
         base_total = float(sum(val_base))
         for it in range(cfg.iterations + 1):
             if val and (it % cfg.eval_every == 0 or it == cfg.iterations):
-                costs = evaluate()
+                costs = route_val(lambda f: model_order(model, f))
                 cost = float(sum(costs))
                 row = {"iteration": it, "val_cost": round(cost, 1), "val_heuristic": round(base_total, 1),
                        "val_vs_heuristic": round((cost - base_total) / max(base_total, 1e-9), 4),
@@ -253,8 +248,8 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
             picks = rng.choice(len(train), size=min(cfg.regions, len(train)), replace=False)
             jobs, tried = [], []
             for p in picks:
-                s = _scores(model, features[p])
-                greedy = np.lexsort((features[p][:, RANK], -s)).astype(np.int32)
+                s = model_scores(model, features[p])
+                greedy = scores_order(features[p], s).astype(np.int32)
                 orders = [greedy, *sample_orders(s, cfg.temperature, cfg.samples, rng)]
                 jobs.append((train[p][0], train[p][1], orders))
                 tried.append((p, orders, s))

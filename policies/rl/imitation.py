@@ -178,13 +178,21 @@ def merge(regions: list[TeacherRegion]) -> list[TeacherRegion]:
     return [by_key[k] for k in sorted(by_key)]
 
 
-def model_order(model: SetScorer, features: np.ndarray) -> np.ndarray:
-    """Candidate rows by descending score (ties: lower row first, as the router's lexsort on heuristic rank)."""
+def model_scores(model: SetScorer, features: np.ndarray) -> np.ndarray:
+    """float64[N]: the model's scores of one region's candidates (features float32[N, F])."""
     with torch.no_grad():
         f = torch.from_numpy(np.asarray(features, dtype=np.float32))[None]
-        s = model(f, torch.ones(f.shape[:2], dtype=torch.bool))[0].numpy().astype(np.float64)
-    rank = features[:, SET_FEATURES.index("heuristic_rank")]
-    return np.lexsort((rank, -s))
+        return model(f, torch.ones(f.shape[:2], dtype=torch.bool))[0].numpy().astype(np.float64)
+
+
+def scores_order(features: np.ndarray, scores: np.ndarray) -> np.ndarray:
+    """Candidate rows by descending score, ties in heuristic order (as the router's lexsort)."""
+    return np.lexsort((features[:, SET_FEATURES.index("heuristic_rank")], -np.asarray(scores)))
+
+
+def model_order(model: SetScorer, features: np.ndarray) -> np.ndarray:
+    """The model's order of one region's candidates (:func:`scores_order` of :func:`model_scores`)."""
+    return scores_order(features, model_scores(model, features))
 
 
 def main() -> None:  # python -m xroute.policies.rl.imitation TEACHER.npz --out DIR
