@@ -18,7 +18,8 @@ regions of :mod:`~xroute.policies.rl.holdout` are never routed here).
 Routing runs in ``workers`` processes, or Ray actors on a cluster (:mod:`~xroute.policies.rl.ray_pool`),
 each with its own first pass of every testcase (the state the regions open in); a region's routing
 depends only on the order, so results do not depend on the worker count or the backend. The
-model has 72,578 parameters; it trains on the CPU (there is no GPU path).
+model (72,578 parameters) scores and trains on ``device``: CUDA when torch sees one (``auto``), else
+the CPU; the routing stays on the CPU.
 
 ``python -m xroute.policies.rl.finetune TESTCASE... --out DIR [--init CKPT.pt]``: starts from an
 imitation checkpoint, or from an untrained scorer (whose greedy order is the heuristic's).
@@ -36,6 +37,7 @@ from typing import Any, Callable
 import numpy as np
 import torch
 
+from xroute.policies.rl.device import pick_device
 from xroute.policies.rl.imitation import model_order, model_scores, scores_order
 from xroute.policies.rl.set_features import SET_FEATURES
 from xroute.policies.rl.set_scorer import SetScorer
@@ -59,6 +61,7 @@ class FinetuneConfig:
     min_candidates: int = 2
     region_size: int = 0  # 0: the router's
     seed: int = 1
+    device: str = "auto"  # torch device of the PPO updates: auto (cuda if present, else cpu), cpu or cuda
 
 
 # --- routing (worker processes) -----------------------------------------------------------------
@@ -186,14 +189,15 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
              on_log: Callable[[dict[str, Any]], None] | None = None) -> tuple[SetScorer, list[dict[str, Any]]]:
     """Fine-tunes ``model`` (default: an untrained scorer) on ``testcases``, routing in ``workers`` local
     processes or, with ``backend="ray"``, Ray actors (:mod:`~xroute.policies.rl.ray_pool`; ``ray_address``
-    None: a local instance); returns the checkpoint with the lowest validation cost (eval mode) and the log
-    (one row per evaluation)."""
+    None: a local instance); the scorer runs on ``cfg.device``. Returns the checkpoint with the lowest validation
+    cost (eval mode, on the CPU) and the log (one row per evaluation)."""
     from xroute.defaults import REGION_SIZE
 
     size = cfg.region_size or REGION_SIZE
+    device = pick_device(cfg.device)
     torch.manual_seed(cfg.seed)
     rng = np.random.default_rng(cfg.seed)
-    model = model if model is not None else SetScorer()
+    model = (model if model is not None else SetScorer()).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=cfg.lr)
     t0 = time.perf_counter()
     pool = _pool(testcases, size, workers, backend, ray_address)
@@ -263,7 +267,7 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
                     lp = step_log_probs(st, torch.from_numpy(o[None]).long(), torch.ones(1, len(o), dtype=torch.bool))
                     samples.append(_Sample(p, o, (costs[0] - c) / cfg.cost_scale, lp[0].numpy()))
             model.train()
-            batch = _batch(samples, features)
+            batch = tuple(t.to(device) for t in _batch(samples, features))
             for _ in range(cfg.epochs):
                 loss = ppo_loss(model, batch, cfg.temperature, cfg.clip)
                 opt.zero_grad()
@@ -275,7 +279,7 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
         pool.shutdown()
     if best_state is not None:
         model.load_state_dict(best_state)
-    return model.eval(), log
+    return model.cpu().eval(), log
 
 
 def main() -> None:  # python -m xroute.policies.rl.finetune TESTCASE... --out DIR

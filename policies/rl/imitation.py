@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 import torch
 
+from xroute.policies.rl.device import DEVICES, pick_device
 from xroute.policies.rl.set_features import SET_FEATURES
 from xroute.policies.rl.set_scorer import SetScorer
 from xroute.policies.rl.teacher import TeacherRegion
@@ -45,6 +46,7 @@ class ImitationConfig:
     mirror: bool = True
     loss: str = "pl"  # "pl": imitate the cheap orders; "contrast": rank the region's orders by cost; "both"
     seed: int = 1
+    device: str = "auto"  # torch device: auto (cuda if present, else cpu), cpu or cuda
     log_every: int = 50
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -123,13 +125,15 @@ def contrast_loss(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor
 
 def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig(),
           on_log: Any = None) -> tuple[SetScorer, list[dict[str, Any]]]:
-    """Trains a :class:`SetScorer` on ``regions`` (their informative part); returns it (eval mode) and the log."""
+    """Trains a :class:`SetScorer` on ``regions`` (their informative part) on ``cfg.device``; returns it (eval
+    mode, on the CPU) and the log."""
+    device = pick_device(cfg.device)
     torch.manual_seed(cfg.seed)
     rng = np.random.default_rng(cfg.seed)
     data = informative(regions)
     if not data:
         raise ValueError("no teacher region where the order changed the cost: nothing to imitate")
-    model = SetScorer(len(SET_FEATURES), cfg.width, cfg.heads, cfg.layers, cfg.prior)
+    model = SetScorer(len(SET_FEATURES), cfg.width, cfg.heads, cfg.layers, cfg.prior).to(device)
     opt = torch.optim.AdamW(model.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay)
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, max(1, cfg.steps))
     log: list[dict[str, Any]] = []
@@ -139,9 +143,10 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
     for step in range(1, cfg.steps + 1):
         pick = rng.choice(len(data), size=min(cfg.batch, len(data)), replace=False)
         flips = [(bool(rng.integers(2)), bool(rng.integers(2))) if cfg.mirror else (False, False) for _ in pick]
-        feats, mask, orders, weights = batch_tensors([data[i] for i in pick], cfg.temperature, flips)
+        feats, mask, orders, weights = (t.to(device) for t in batch_tensors([data[i] for i in pick],
+                                                                              cfg.temperature, flips))
         scores = model(feats, mask)
-        loss = torch.zeros(())
+        loss = torch.zeros((), device=device)
         if cfg.loss in ("pl", "both"):
             loss = loss + plackett_luce_loss(scores, mask, orders, weights)
         if cfg.loss in ("contrast", "both"):
@@ -159,7 +164,7 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
             log.append(row)
             if on_log:
                 on_log(row)
-    return model.eval(), log
+    return model.cpu().eval(), log
 
 
 def merge(regions: list[TeacherRegion]) -> list[TeacherRegion]:
@@ -179,10 +184,12 @@ def merge(regions: list[TeacherRegion]) -> list[TeacherRegion]:
 
 
 def model_scores(model: SetScorer, features: np.ndarray) -> np.ndarray:
-    """float64[N]: the model's scores of one region's candidates (features float32[N, F])."""
+    """float64[N]: the model's scores of one region's candidates (features float32[N, F]), on the model's device."""
+    device = next(model.parameters()).device
     with torch.no_grad():
-        f = torch.from_numpy(np.asarray(features, dtype=np.float32))[None]
-        return model(f, torch.ones(f.shape[:2], dtype=torch.bool))[0].numpy().astype(np.float64)
+        f = torch.from_numpy(np.asarray(features, dtype=np.float32))[None].to(device)
+        scores = model(f, torch.ones(f.shape[:2], dtype=torch.bool, device=device))[0]
+        return scores.cpu().numpy().astype(np.float64)
 
 
 def scores_order(features: np.ndarray, scores: np.ndarray) -> np.ndarray:
@@ -209,6 +216,7 @@ def main() -> None:  # python -m xroute.policies.rl.imitation TEACHER.npz --out 
             ap.add_argument("--" + name.replace("_", "-"), type=type(value), default=value)
     ap.add_argument("--no-mirror", action="store_true")
     ap.add_argument("--loss", choices=("pl", "contrast", "both"), default="pl")
+    ap.add_argument("--device", choices=DEVICES, default="auto", help="torch device (auto: cuda if present)")
     ap.add_argument("--val-every", type=int, default=0,
                     help="leave out teacher regions with index %% K == 0 (validate_imitation routes them)")
     a = ap.parse_args()

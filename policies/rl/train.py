@@ -27,6 +27,7 @@ import torch
 
 from xroute.policies.rl.batch import compact
 from xroute.policies.rl.checkpoint import Checkpoint, save_checkpoint
+from xroute.policies.rl.device import pick_device
 from xroute.policies.rl.dqn import DQNTrainer
 from xroute.policies.rl.observation import NET_FEATURES
 from xroute.policies.rl.ppo import PPOTrainer
@@ -42,15 +43,6 @@ class TrainResult:
     checkpoints: list[Path] = field(default_factory=list)
     episodes: list[dict[str, Any]] = field(default_factory=list)
     seconds: float = 0.0
-
-
-def pick_device(name: str) -> torch.device:
-    """``auto`` -> cuda when available, else cpu."""
-    if name == "auto":
-        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
-    if name == "cuda" and not torch.cuda.is_available():
-        raise ValueError("device cuda asked for but torch sees no CUDA device")
-    return torch.device(name)
 
 
 def make_trainer(algorithm: str, cfg: CommonConfig, num_net_features: int, seed: int) -> PPOTrainer | DQNTrainer:

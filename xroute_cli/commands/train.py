@@ -9,7 +9,8 @@ separated; ``--orders`` random orders besides the heuristic's, ``--workers`` pro
 ``finetune`` goes on from there (:mod:`xroute.policies.rl.finetune`): ``--episodes`` iterations of
 PPO on the set scorer's own orders routed on the training regions (``--init`` a checkpoint, default
 an untrained scorer, whose order is the heuristic's); it writes ``set-final.pt`` (the iteration
-best on the validation regions), ``set.onnx`` and ``log.json``.
+best on the validation regions), ``set.onnx`` and ``log.json``. ``--device`` picks the torch device
+(``auto``: CUDA when torch sees one; for ppo and dqn it overrides the config's ``device``).
 
 Writes into ``--out`` (default ``runs/train-<algorithm>-<testcase>``): ``metrics.jsonl`` (one line
 per episode = region) and checkpoints ``<algorithm>-epNNNNN.pt`` / ``<algorithm>-final.pt``, which
@@ -113,6 +114,9 @@ HoldOutOpt = Annotated[int, typer.Option(
 InContextOpt = Annotated[bool, typer.Option(
     "--in-context", help="Episodes are regions of the router's first pass, opened with the earlier colours routed.")]
 MinCandOpt = Annotated[int, typer.Option("--min-candidates", min=1, help="Skip regions with fewer candidate nets.")]
+DeviceOpt = Annotated[str | None, typer.Option(
+    "--device", help="Torch device: auto (cuda if present), cpu or cuda (ppo, dqn: overrides the config's).",
+    show_default=False)]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print the per-episode log and summary as JSON only.")]
 
 
@@ -137,6 +141,7 @@ def train(
     init: InitOpt = None,
     backend: BackendOpt = "local",
     ray_address: RayAddressOpt = None,
+    device: DeviceOpt = None,
 ) -> None:
     """Train a PPO or DQN net-order policy (or imitate / finetune: the set scorer) on a testcase's regions."""
     if algorithm not in ALGORITHMS:
@@ -144,15 +149,17 @@ def train(
                                  param_hint="ALGORITHM")
     if backend not in ("local", "ray"):
         raise typer.BadParameter(f"use local or ray, got {backend!r}", param_hint="--backend")
+    if device is not None and device not in ("auto", "cpu", "cuda"):
+        raise typer.BadParameter(f"use auto, cpu or cuda, got {device!r}", param_hint="--device")
     if algorithm == "imitate":
         _require_torch()
         _imitate(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, orders, workers, teacher,
-                 backend, ray_address, json_out)
+                 backend, ray_address, device or "auto", json_out)
         return
     if algorithm == "finetune":
         _require_torch()
         _finetune(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, workers, init, backend,
-                  ray_address, json_out)
+                  ray_address, device or "auto", json_out)
         return
     if region_order not in ("sequential", "random"):
         raise typer.BadParameter(f"use sequential or random, got {region_order!r}", param_hint="--region-order")
@@ -163,6 +170,9 @@ def train(
     from xroute.testcases import find_testcase
 
     cfg = load_config(algorithm, config)
+    if device is not None:
+        cfg.device = device
+    _check_device(cfg.device)
     find_testcase(testcase)  # unknown testcase: one-line error before any work
     out_dir = out or Path("runs") / f"train-{algorithm}-{testcase}"
     make_env = training_env_factory(testcase, region_size, location, region_order, cfg.max_candidates, region_loop,
@@ -193,9 +203,19 @@ def train(
     console.print(f"checkpoint {summary['checkpoint']}  log {summary['metrics_log']}", highlight=False)
 
 
+def _check_device(name: str) -> None:
+    """A one-line error, before any work, for a device torch cannot give (cuda without CUDA)."""
+    from xroute.policies.rl.device import pick_device
+
+    try:
+        pick_device(name)
+    except ValueError as exc:
+        raise TrainError(str(exc)) from exc
+
+
 def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size: int | None, hold_out_every: int,
              min_candidates: int, orders: int, workers: int, teacher: Path | None, backend: str,
-             ray_address: str | None, json_out: bool) -> None:
+             ray_address: str | None, device: str, json_out: bool) -> None:
     """``xroute train imitate``: teacher orders (or ``--teacher``), imitation, checkpoint and ONNX model."""
     import json
     import time
@@ -210,6 +230,7 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
     names = [t.strip() for t in testcase.split(",") if t.strip()]
     for name in names:
         find_testcase(name)  # unknown testcase: one-line error before any work
+    _check_device(device)
     out_dir = out or Path("runs") / f"imitate-{'-'.join(names)}"
     out_dir.mkdir(parents=True, exist_ok=True)
     torch.set_num_threads(1)
@@ -231,7 +252,7 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
                                        min_candidates=min_candidates, seed=seed)
         teacher_data.save(regions, out_dir / "teacher.npz")
     teacher_seconds = time.perf_counter() - t0
-    cfg = ImitationConfig(steps=steps, seed=seed)
+    cfg = ImitationConfig(steps=steps, seed=seed, device=device)
     model, log = imitate(regions, cfg, on_log=None if json_out else lambda row: console.print(
         f"step {row['step']}  loss {row['loss']:.4f}  {row['seconds']:.1f} s", highlight=False))
     save_checkpoint(model, out_dir / "set-final.pt", {"imitation": cfg.__dict__, "log": log})
@@ -251,7 +272,7 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
 
 def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, region_size: int | None,
               hold_out_every: int, min_candidates: int, workers: int, init: Path | None, backend: str,
-              ray_address: str | None, json_out: bool) -> None:
+              ray_address: str | None, device: str, json_out: bool) -> None:
     """``xroute train finetune``: PPO on the set scorer's orders routed in context; checkpoint and ONNX model."""
     import json
     import pickle
@@ -267,6 +288,7 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
     names = [t.strip() for t in testcase.split(",") if t.strip()]
     for name in names:
         find_testcase(name)  # unknown testcase: one-line error before any work
+    _check_device(device)
     model = None
     if init is not None:
         if not init.is_file():
@@ -280,7 +302,7 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
     console = stdout_console()
     t0 = time.perf_counter()
     cfg = FinetuneConfig(iterations=iterations, seed=seed, region_size=region_size or 0,
-                         hold_out_every=hold_out_every, min_candidates=max(2, min_candidates))
+                         hold_out_every=hold_out_every, min_candidates=max(2, min_candidates), device=device)
 
     def show(row: dict[str, Any]) -> None:
         console.print(f"iteration {row['iteration']}  validation cost {row['val_cost']:,.1f} "

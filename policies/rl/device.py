@@ -1,0 +1,18 @@
+"""The torch device a trainer runs on: ``auto`` (CUDA when torch sees one, else the CPU), ``cpu`` or ``cuda``."""
+
+from __future__ import annotations
+
+import torch
+
+DEVICES = ("auto", "cpu", "cuda")
+
+
+def pick_device(name: str) -> torch.device:
+    """``auto`` -> cuda when available, else cpu; ``cuda`` without a CUDA device is an error."""
+    if name not in DEVICES:
+        raise ValueError(f"unknown device {name!r}: use {', '.join(DEVICES)}")
+    if name == "auto":
+        return torch.device("cuda" if torch.cuda.is_available() else "cpu")
+    if name == "cuda" and not torch.cuda.is_available():
+        raise ValueError("device cuda asked for but torch sees no CUDA device")
+    return torch.device(name)
