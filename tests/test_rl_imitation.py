@@ -148,3 +148,28 @@ def test_xroute_train_imitate_writes_a_model_the_router_takes(imitation_sample: 
     res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "5", "--teacher",
                               str(tmp_path / "junk.npz"), "--out", str(tmp_path / "bad")])
     assert res.exit_code == 2 and "junk.npz: not teacher data" in res.output
+
+
+def test_promoted_teacher_orders_move_a_drawn_subset_to_the_front(imitation_sample: str) -> None:
+    """``promote``: every teacher order is the heuristic's with the nets its draw picks first, both parts
+    in heuristic order; the draw is the region's (seed, index) generator, so the subsets can be recovered."""
+    from xroute.policies.rl.set_features import SET_FEATURES
+    from xroute.policies.rl.teacher import collect, promoted, promoted_order
+
+    h = np.array([3, 0, 4, 1, 2], dtype=np.int32)
+    mask = np.array([False, True, False, True, True])  # nets 1, 3 and 4
+    assert promoted_order(h, mask).tolist() == [3, 4, 1, 0, 2]
+    assert promoted_order(h, np.zeros(5, bool)).tolist() == h.tolist()
+    regions = collect([imitation_sample], workers=1, region_size=SIZE, hold_out_every=HOLD_OUT, orders=3, seed=2,
+                      max_regions=12, promote=0.5)
+    assert len(regions) >= 5
+    moved = 0
+    for r in regions:
+        n = len(r.features)
+        heuristic = r.orders[0]
+        assert np.array_equal(heuristic, np.argsort(r.features[:, SET_FEATURES.index("heuristic_rank")], kind="stable"))
+        masks = promoted(np.random.default_rng([2, r.index]), n, 3, 0.5)
+        for k in range(3):
+            assert np.array_equal(r.orders[k + 1], promoted_order(heuristic, masks[k]))
+            moved += int(not np.array_equal(r.orders[k + 1], heuristic))
+    assert moved > 0

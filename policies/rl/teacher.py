@@ -58,10 +58,12 @@ def training_indices(first_pass: Any, region_size: int, hold_out_every: int) -> 
 
 def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | None = None,
                   hold_out_every: int = 3, orders: int = 8, min_candidates: int = 2, seed: int = 1,
-                  max_regions: int = 0, jitter: float = 0.0) -> list[TeacherRegion]:
+                  max_regions: int = 0, jitter: float = 0.0, promote: float = 0.0) -> list[TeacherRegion]:
     """The teacher regions of shard ``shard`` of ``shards`` (see the module docstring). ``jitter`` > 0: the
     random orders are the heuristic's perturbed (sorted by heuristic position / N + normal noise of that
-    deviation) instead of uniform permutations."""
+    deviation) instead of uniform permutations. ``promote`` > 0: each order is the heuristic's with a random
+    subset of the nets (each with that probability: :func:`promoted`) moved to the front, both parts in
+    heuristic order; a randomised experiment per net on what routing it early does."""
     from xroute import load_design
     from xroute.defaults import REGION_SIZE
     from xroute.session import first_pass, open_session
@@ -84,7 +86,9 @@ def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | 
         features = region_set_features(region)
         rng = np.random.default_rng([seed, index])
         tried = [np.asarray(heuristic_order(rows), dtype=np.int32)]
-        if jitter > 0:
+        if promote > 0:
+            tried += [promoted_order(tried[0], mask) for mask in promoted(rng, n, orders, promote)]
+        elif jitter > 0:
             position = np.empty(n)
             position[tried[0]] = np.arange(n) / n
             tried += [np.argsort(position + rng.normal(0, jitter, n), kind="stable").astype(np.int32)
@@ -94,6 +98,17 @@ def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | 
         costs = np.array([route_order(fp, index, o, dbu) for o in tried], dtype=np.float64)
         out.append(TeacherRegion(testcase, index, features, np.stack(tried), costs))
     return out
+
+
+def promoted(rng: np.random.Generator, n: int, orders: int, share: float) -> np.ndarray:
+    """bool[orders, n]: which nets each promoted order moves to the front (drawn from ``rng``)."""
+    return rng.random((orders, n)) < share
+
+
+def promoted_order(heuristic: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """The heuristic order with the nets of ``mask`` first, both parts keeping their heuristic order."""
+    first = mask[heuristic]
+    return np.concatenate([heuristic[first], heuristic[~first]]).astype(np.int32)
 
 
 def score_orders(first_pass: Any, indices: list[int], order_fns: dict[str, Any], dbu_per_micron: int,
@@ -181,11 +196,13 @@ def main() -> None:  # python -m xroute.policies.rl.teacher OUT.npz TESTCASE...
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--max-regions", type=int, default=0)
     ap.add_argument("--jitter", type=float, default=0.0, help="perturbed heuristic orders (noise / N) instead of random")
+    ap.add_argument("--promote", type=float, default=0.0,
+                    help="heuristic orders with each net moved to the front with this probability, instead of random")
     a = ap.parse_args()
     t0 = time.perf_counter()
     regions = collect(a.testcases, workers=a.workers, backend=a.backend, ray_address=a.ray_address, orders=a.orders,
                       hold_out_every=a.hold_out_every, region_size=a.region_size, seed=a.seed,
-                      max_regions=a.max_regions, jitter=a.jitter)
+                      max_regions=a.max_regions, jitter=a.jitter, promote=a.promote)
     save(regions, a.out)
     heur = sum(r.costs[0] for r in regions)
     best = sum(r.costs.min() for r in regions)
