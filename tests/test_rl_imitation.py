@@ -173,3 +173,36 @@ def test_promoted_teacher_orders_move_a_drawn_subset_to_the_front(imitation_samp
             assert np.array_equal(r.orders[k + 1], promoted_order(heuristic, masks[k]))
             moved += int(not np.array_equal(r.orders[k + 1], heuristic))
     assert moved > 0
+
+
+def test_net_effects_bench_moves_one_net_first_and_scores_the_learned_pick(imitation_sample: str) -> None:
+    """bench/net_effects.py: effects exist for exactly the drawn nets, moving the heuristic's first net
+    changes nothing, and the rows keep their order: oracle <= 0, oracle <= learned and oracle <= random."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import net_effects
+    from xroute.policies.rl.set_features import SET_FEATURES
+
+    torch.set_num_threads(1)
+    regions = net_effects.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, per_region=3,
+                                  max_regions=20)
+    assert len(regions) >= 10
+    rank = SET_FEATURES.index("heuristic_rank")
+    firsts = 0
+    for r in regions:
+        tried = ~np.isnan(r.effects)
+        assert tried.sum() == min(3, len(r.features))
+        first = int(np.argmin(r.features[:, rank]))
+        if tried[first]:
+            assert r.effects[first] == 0.0
+            firsts += 1
+    assert firsts > 0
+    assert any(np.nanmax(np.abs(r.effects)) > 0 for r in regions)
+    res = net_effects.evaluate(regions, steps=20, loss_kind="mse")
+    row = res["testcases"][imitation_sample]
+    assert row["regions"] == len(regions)
+    assert row["heuristic"] == pytest.approx(sum(r.heuristic for r in regions))
+    assert row["oracle"] <= 0 and row["oracle"] <= row["learned"] + 1e-9 and row["oracle"] <= row["random"] + 1e-9
+    assert -1.0 <= res["corr_test"] <= 1.0
