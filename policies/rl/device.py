@@ -1,14 +1,22 @@
-"""The torch device a trainer runs on: ``auto`` (CUDA when torch sees one, else the CPU), ``cpu`` or ``cuda``."""
+"""The torch device a trainer runs on: ``auto`` (CUDA when torch sees one, else the CPU), ``cpu`` or ``cuda``.
+
+:data:`DEVICES` imports without torch (the CLI checks a name before it knows torch is installed).
+"""
 
 from __future__ import annotations
 
-import torch
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import torch
 
 DEVICES = ("auto", "cpu", "cuda")
 
 
 def pick_device(name: str) -> torch.device:
     """``auto`` -> cuda when available, else cpu; ``cuda`` without a CUDA device is an error."""
+    import torch
+
     if name not in DEVICES:
         raise ValueError(f"unknown device {name!r}: use {', '.join(DEVICES)}")
     if name == "auto":

@@ -61,7 +61,7 @@ class FinetuneConfig:
     min_candidates: int = 2
     region_size: int = 0  # 0: the router's
     seed: int = 1
-    device: str = "auto"  # torch device of the PPO updates: auto (cuda if present, else cpu), cpu or cuda
+    device: str = "auto"  # torch device of the scorer: auto (cuda if present, else cpu), cpu or cuda
 
 
 # --- routing (worker processes) -----------------------------------------------------------------

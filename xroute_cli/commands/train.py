@@ -28,6 +28,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 
 from xroute.cli.console import print_json, stdout_console
 from xroute.errors import XrouteError
+from xroute.policies.rl.device import DEVICES
 
 ALGORITHMS = ("ppo", "dqn", "imitate", "finetune")
 
@@ -149,8 +150,8 @@ def train(
                                  param_hint="ALGORITHM")
     if backend not in ("local", "ray"):
         raise typer.BadParameter(f"use local or ray, got {backend!r}", param_hint="--backend")
-    if device is not None and device not in ("auto", "cpu", "cuda"):
-        raise typer.BadParameter(f"use auto, cpu or cuda, got {device!r}", param_hint="--device")
+    if device is not None and device not in DEVICES:
+        raise typer.BadParameter(f"use {', '.join(DEVICES[:-1])} or {DEVICES[-1]}, got {device!r}", param_hint="--device")
     if algorithm == "imitate":
         _require_torch()
         _imitate(testcase, episodes, out, seed, region_size, hold_out_every, min_candidates, orders, workers, teacher,
