@@ -50,25 +50,16 @@ class RegionEffects:
 def collect_shard(testcase: str, shard: int, shards: int, region_size: int, hold_out_every: int,
                   per_region: int, max_regions: int = 0) -> list[RegionEffects]:
     """The single-net moves of shard ``shard`` of ``shards`` of the testcase's training regions."""
-    from xroute import load_design
     from xroute.policies.rl.set_features import region_set_features
-    from xroute.policies.rl.teacher import route_order, training_indices
+    from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
     from xroute.policy import heuristic_order
-    from xroute.session import first_pass, open_session
 
-    design = load_design(testcase)
-    dbu = design.dbu_per_micron
-    fp = first_pass(open_session(design), region_size)
-    indices = training_indices(fp, region_size, hold_out_every)
-    if max_regions:
-        indices = indices[:max_regions]
+    fp, dbu = load_first_pass(testcase, region_size)
     out = []
-    for index in indices[shard::shards]:
-        region = fp.open_region(index)
+    for index, region in training_regions(fp, region_size, hold_out_every, 2, shard=shard, shards=shards,
+                                          max_regions=max_regions):
         rows = np.asarray(region.candidates)
         n = len(rows)
-        if n < 2:
-            continue
         features = region_set_features(region)
         order = np.asarray(heuristic_order(rows), dtype=np.int32)
         base = route_order(fp, index, order, dbu)

@@ -148,6 +148,17 @@ def test_xroute_train_imitate_writes_a_model_the_router_takes(imitation_sample: 
     res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "5", "--teacher",
                               str(tmp_path / "junk.npz"), "--out", str(tmp_path / "bad")])
     assert res.exit_code == 2 and "junk.npz: not teacher data" in res.output
+    assert not (tmp_path / "bad").exists()
+    # Teacher data where no order changed the cost teaches nothing: one line, exit 2, no output folder.
+    from xroute.policies.rl.teacher import TeacherRegion, load, save
+
+    flat = [TeacherRegion(r.testcase, r.index, r.features, r.orders, np.full_like(r.costs, 100.0))
+            for r in load(out / "teacher.npz")]
+    save(flat, tmp_path / "flat.npz")
+    res = runner.invoke(app, ["train", "imitate", "--testcase", imitation_sample, "--episodes", "5", "--teacher",
+                              str(tmp_path / "flat.npz"), "--out", str(tmp_path / "flat")])
+    assert res.exit_code == 2 and "nothing to imitate" in res.output and "Traceback" not in res.output
+    assert not (tmp_path / "flat").exists()
 
 
 def test_promoted_teacher_orders_move_a_drawn_subset_to_the_front(imitation_sample: str) -> None:

@@ -70,29 +70,23 @@ _PASSES: dict[str, tuple[Any, int]] = {}
 
 
 def _init_worker(testcases: list[str], region_size: int) -> None:
-    from xroute import load_design
-    from xroute.session import first_pass, open_session
+    from xroute.policies.rl.teacher import load_first_pass
 
     torch.set_num_threads(1)
     for name in testcases:
-        design = load_design(name)
-        _PASSES[name] = (first_pass(open_session(design), region_size), design.dbu_per_micron)
+        _PASSES[name] = load_first_pass(name, region_size)
 
 
 def _regions_job(job: tuple[str, int, int, int]) -> list[tuple[str, int, np.ndarray]]:
     """(testcase, hold_out_every, min_candidates, region_size) -> (testcase, index, features) of every
     region that is not held out (training and validation)."""
     from xroute.policies.rl.set_features import region_set_features
-    from xroute.policies.rl.teacher import training_indices
+    from xroute.policies.rl.teacher import training_regions
 
     name, hold_out_every, min_candidates, size = job
     fp, _dbu = _PASSES[name]
-    out = []
-    for index in training_indices(fp, size, hold_out_every):
-        region = fp.open_region(index)
-        if len(region.candidates) >= min_candidates:
-            out.append((name, index, region_set_features(region)))
-    return out
+    return [(name, index, region_set_features(region))
+            for index, region in training_regions(fp, size, hold_out_every, min_candidates)]
 
 
 def _route_job(job: tuple[str, int, list[np.ndarray]]) -> list[float]:

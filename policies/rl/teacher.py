@@ -19,7 +19,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 
@@ -56,6 +56,28 @@ def training_indices(first_pass: Any, region_size: int, hold_out_every: int) -> 
             if not held_out(tuple(loc), hold_out_every, region_size)]
 
 
+def load_first_pass(testcase: str, region_size: int) -> tuple[Any, int]:
+    """The router's first pass of ``testcase`` at ``region_size`` (the state regions open in) and its DBU per micron."""
+    from xroute import load_design
+    from xroute.session import first_pass, open_session
+
+    design = load_design(testcase)
+    return first_pass(open_session(design), region_size), design.dbu_per_micron
+
+
+def training_regions(first_pass: Any, region_size: int, hold_out_every: int, min_candidates: int = 2, *,
+                     shard: int = 0, shards: int = 1, max_regions: int = 0) -> Iterator[tuple[int, Any]]:
+    """(index, region opened in context) of the training regions (:func:`training_indices`; the first
+    ``max_regions`` of them, 0: all) of shard ``shard`` of ``shards`` with >= ``min_candidates`` nets."""
+    indices = training_indices(first_pass, region_size, hold_out_every)
+    if max_regions:
+        indices = indices[:max_regions]
+    for index in indices[shard::shards]:
+        region = first_pass.open_region(index)
+        if len(region.candidates) >= min_candidates:
+            yield index, region
+
+
 def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | None = None,
                   hold_out_every: int = 3, orders: int = 8, min_candidates: int = 2, seed: int = 1,
                   max_regions: int = 0, jitter: float = 0.0, promote: float = 0.0) -> list[TeacherRegion]:
@@ -64,25 +86,15 @@ def collect_shard(testcase: str, shard: int, shards: int, *, region_size: int | 
     deviation) instead of uniform permutations. ``promote`` > 0: each order is the heuristic's with a random
     subset of the nets (each with that probability: :func:`promoted`) moved to the front, both parts in
     heuristic order; a randomised experiment per net on what routing it early does."""
-    from xroute import load_design
     from xroute.defaults import REGION_SIZE
-    from xroute.session import first_pass, open_session
 
     size = REGION_SIZE if region_size is None else int(region_size)
-    design = load_design(testcase)
-    dbu = design.dbu_per_micron
-    session = open_session(design)
-    fp = first_pass(session, size)
-    indices = training_indices(fp, size, hold_out_every)
-    if max_regions:
-        indices = indices[:max_regions]
+    fp, dbu = load_first_pass(testcase, size)
     out = []
-    for index in indices[shard::shards]:
-        region = fp.open_region(index)
+    for index, region in training_regions(fp, size, hold_out_every, min_candidates, shard=shard, shards=shards,
+                                          max_regions=max_regions):
         rows = np.asarray(region.candidates)
         n = len(rows)
-        if n < min_candidates:
-            continue
         features = region_set_features(region)
         rng = np.random.default_rng([seed, index])
         tried = [np.asarray(heuristic_order(rows), dtype=np.int32)]

@@ -214,6 +214,21 @@ def _check_device(name: str) -> None:
         raise TrainError(str(exc)) from exc
 
 
+def _set_scorer_run(testcase: str, device: str) -> list[str]:
+    """The testcases of an imitate or finetune run (``testcase``: names, comma separated), each looked up and the
+    device checked, so that a bad one is a one-line error before any work; torch on one thread."""
+    import torch
+
+    from xroute.testcases import find_testcase
+
+    names = [t.strip() for t in testcase.split(",") if t.strip()]
+    for name in names:
+        find_testcase(name)
+    _check_device(device)
+    torch.set_num_threads(1)
+    return names
+
+
 def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size: int | None, hold_out_every: int,
              min_candidates: int, orders: int, workers: int, teacher: Path | None, backend: str,
              ray_address: str | None, device: str, json_out: bool) -> None:
@@ -221,20 +236,12 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
     import json
     import time
 
-    import torch
-
     from xroute.policies.rl import teacher as teacher_data
     from xroute.policies.rl.imitation import ImitationConfig, train as imitate
     from xroute.policies.rl.set_scorer import export_onnx, save_checkpoint
-    from xroute.testcases import find_testcase
 
-    names = [t.strip() for t in testcase.split(",") if t.strip()]
-    for name in names:
-        find_testcase(name)  # unknown testcase: one-line error before any work
-    _check_device(device)
+    names = _set_scorer_run(testcase, device)
     out_dir = out or Path("runs") / f"imitate-{'-'.join(names)}"
-    out_dir.mkdir(parents=True, exist_ok=True)
-    torch.set_num_threads(1)
     console = stdout_console()
     t0 = time.perf_counter()
     if teacher is not None:
@@ -251,11 +258,16 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
         regions = teacher_data.collect(names, workers=workers, backend=backend, ray_address=ray_address,
                                        region_size=region_size, hold_out_every=hold_out_every, orders=orders,
                                        min_candidates=min_candidates, seed=seed)
-        teacher_data.save(regions, out_dir / "teacher.npz")
     teacher_seconds = time.perf_counter() - t0
     cfg = ImitationConfig(steps=steps, seed=seed, device=device)
-    model, log = imitate(regions, cfg, on_log=None if json_out else lambda row: console.print(
-        f"step {row['step']}  loss {row['loss']:.4f}  {row['seconds']:.1f} s", highlight=False))
+    try:
+        model, log = imitate(regions, cfg, on_log=None if json_out else lambda row: console.print(
+            f"step {row['step']}  loss {row['loss']:.4f}  {row['seconds']:.1f} s", highlight=False))
+    except ValueError as exc:
+        raise TrainError(str(exc)) from exc
+    out_dir.mkdir(parents=True, exist_ok=True)  # after training: a run that fails leaves no folder
+    if teacher is None:
+        teacher_data.save(regions, out_dir / "teacher.npz")
     save_checkpoint(model, out_dir / "set-final.pt", {"imitation": cfg.__dict__, "log": log})
     onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_steps": str(steps),
                                                           "xroute_teacher_regions": str(len(regions))})
@@ -280,16 +292,10 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
     import time
     from dataclasses import asdict
 
-    import torch
-
     from xroute.policies.rl.finetune import FinetuneConfig, finetune
     from xroute.policies.rl.set_scorer import export_onnx, load_checkpoint, save_checkpoint
-    from xroute.testcases import find_testcase
 
-    names = [t.strip() for t in testcase.split(",") if t.strip()]
-    for name in names:
-        find_testcase(name)  # unknown testcase: one-line error before any work
-    _check_device(device)
+    names = _set_scorer_run(testcase, device)
     model = None
     if init is not None:
         if not init.is_file():
@@ -299,7 +305,6 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
         except (OSError, ValueError, KeyError, RuntimeError, pickle.UnpicklingError) as exc:
             raise TrainError(f"{init}: not a set-scorer checkpoint ({str(exc).splitlines()[0]})") from exc
     out_dir = out or Path("runs") / f"finetune-{'-'.join(names)}"
-    torch.set_num_threads(1)
     console = stdout_console()
     t0 = time.perf_counter()
     cfg = FinetuneConfig(iterations=iterations, seed=seed, region_size=region_size or 0,
