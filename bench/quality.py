@@ -1,11 +1,11 @@
 """The quality table: every testcase present routed by xroute and judged by `xroute check`, beside
 the reference routes that are present (another router's routed DEFs, judged by the same check).
 
-    python bench/quality.py [TESTCASE ...] [--threads 2] [--iterations N] [--markdown]
+    python bench/quality.py [TESTCASE ...] [--threads 2] [--iterations N] [--policy P ...] [--markdown]
 
 For each testcase found on the search path (default: the demo and the seven contest testcases),
-one fresh process runs `xroute route TESTCASE --threads T --json` (the pipeline: built-in global
-routing when there is no guide); its wall time and peak RSS come from the kernel (wait4). Then
+one fresh process per `--policy` (default: heuristic) runs `xroute route TESTCASE --threads T
+--policy P --json` (the pipeline: built-in global routing when there is no guide); its wall time and peak RSS come from the kernel (wait4). Then
 `xroute check` reads the routed DEF back with the testcase's LEF and guide: opens, violations by
 type, wirelength, vias, off-track vias, out-of-guide wire and the contest score before
 violations. Reference routes: `../shared/reference_routes/<name>.<router>.def.gz`, unpacked to a
@@ -80,6 +80,9 @@ def main() -> None:
     ap.add_argument("testcases", nargs="*", default=DEFAULT)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--iterations", type=int, default=None)
+    ap.add_argument("--policy", action="append",
+                    help="net-order policy of a row (repeatable; default heuristic); rows other than the heuristic's "
+                         "are named 'xroute --policy P'")
     ap.add_argument("--markdown", action="store_true")
     args = ap.parse_args()
     xroute = shutil.which("xroute") or sys.exit("xroute is not installed (pip install .)")
@@ -94,16 +97,20 @@ def main() -> None:
             except TestcaseNotFound:
                 print(f"# {name}: not on the search path, skipped", file=sys.stderr)
                 continue
-            out = Path(tmp) / name
-            cmd = [xroute, "route", name, "--threads", str(args.threads), "--out", str(out), "--json"]
-            if args.iterations:
-                cmd += ["--iterations", str(args.iterations)]
-            proc, wall, rss = run_with_rss(cmd)
-            if proc.returncode not in (0, 1):
-                raise SystemExit(f"xroute route {name} failed: {proc.stderr.strip()}")
-            design = json.loads(proc.stdout)["design"]
-            rows.append(row(name, "xroute", check(xroute, name, out / f"{design}.routed.def", out / "check"), wall, rss))
-            print(" | ".join(fmt(rows[-1])), file=sys.stderr)
+            for k, policy in enumerate(args.policy or ["heuristic"]):
+                out = Path(tmp) / f"{name}-{k}"
+                cmd = [xroute, "route", name, "--threads", str(args.threads), "--policy", policy, "--out", str(out),
+                       "--json"]
+                if args.iterations:
+                    cmd += ["--iterations", str(args.iterations)]
+                proc, wall, rss = run_with_rss(cmd)
+                if proc.returncode not in (0, 1):
+                    raise SystemExit(f"xroute route {name} --policy {policy} failed: {proc.stderr.strip()}")
+                design = json.loads(proc.stdout)["design"]
+                router = "xroute" if policy == "heuristic" else f"xroute --policy {policy}"
+                doc = check(xroute, name, out / f"{design}.routed.def", out / "check")
+                rows.append(row(name, router, doc, wall, rss))
+                print(" | ".join(fmt(rows[-1])), file=sys.stderr)
             for ref in sorted(REFERENCES.glob(f"{name}.*.def.gz")):
                 router = ref.name[len(name) + 1: -len(".def.gz")]
                 plain = Path(tmp) / f"{name}.{router}.def"

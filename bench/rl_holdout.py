@@ -18,7 +18,7 @@ regions (:mod:`xroute.policies.rl.holdout`).
 Rows: heuristic (the router's order, so exactly what the first pass routed there); random (mean
 over ``--random-seeds`` seeds); random-best-of-K (per region the cheapest of K random orders, seeds
 1..K, its time the K routings); then each POLICY: a built-in name (``heuristic``, ``random``,
-the engine's searches ``rollout`` / ``bestof`` / ``best-of-K`` with ``--search-budget``, routed
+the engine's searches ``rollout`` / ``victims`` / ``bestof`` / ``best-of-K`` with ``--search-budget``, routed
 by the engine via ``Region.route_rest``), a ``.py`` policy file or an ``.onnx`` model.
 """
 
@@ -116,7 +116,7 @@ def main() -> None:
     ap.add_argument("--best-of", type=int, default=20)
     ap.add_argument("--seed", type=int, default=1, help="seed passed to the named policies")
     ap.add_argument("--search-budget", type=int, default=SEARCH_BUDGET,
-                    help="trial routings per region of rollout (bestof's K)")
+                    help="trial routings per region of rollout and victims (bestof's K)")
     ap.add_argument("--threads", type=int, default=1, help="threads of the first pass")
     ap.add_argument("--limit", type=int, default=0, help="score only the first N held-out regions (0: all)")
     ap.add_argument("--json", type=Path)

@@ -1,4 +1,4 @@
-"""Search as a net-order policy (rollout, best-of-K), the sequential seam (next_net after every
+"""Search as a net-order policy (rollout, victims, best-of-K), the sequential seam (next_net after every
 routed net) and the features that came with it (crossings, guide span, routed_nearby).
 
 The design is a generated one (testcases.generator, 400 cells), large enough for regions whose
@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 
 from xroute.config_schema import ConfigError
 from xroute.errors import PolicyError, RouteArgumentError
-from xroute.policy import FEATURE_COLUMNS, BestOfPolicy, RolloutPolicy, builtin_policy, heuristic_order
+from xroute.policy import FEATURE_COLUMNS, BestOfPolicy, RolloutPolicy, VictimsPolicy, builtin_policy, heuristic_order
 from xroute.router import route_design
 
 COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
@@ -57,7 +57,7 @@ def test_search_is_never_costlier_than_the_heuristic_and_better_somewhere(genera
     design = load(generated)
     session = open_session(design)
     dbu = design.dbu_per_micron
-    totals = {"heuristic": 0.0, "rollout": 0.0, "best-of-4": 0.0}
+    totals = {"heuristic": 0.0, "rollout": 0.0, "victims": 0.0, "best-of-4": 0.0}
     for box in boxes(session):
         costs = {}
         for name in totals:
@@ -65,12 +65,64 @@ def test_search_is_never_costlier_than_the_heuristic_and_better_somewhere(genera
             region.route_rest(name, 1, search_budget=8)
             costs[name] = region_cost(region, dbu)
             totals[name] += costs[name]
-        # Both keep the heuristic's order among their trials and keep the cheapest.
-        assert costs["rollout"] <= costs["heuristic"] + 1e-9, (box, costs)
-        assert costs["best-of-4"] <= costs["heuristic"] + 1e-9, (box, costs)
+        # All keep the heuristic's order among their trials and keep the cheapest.
+        for name in ("rollout", "victims", "best-of-4"):
+            assert costs[name] <= costs["heuristic"] + 1e-9, (box, name, costs)
     # ... and on this design some regions have markers that another order avoids.
-    assert totals["rollout"] < 0.95 * totals["heuristic"], totals
-    assert totals["best-of-4"] < 0.95 * totals["heuristic"], totals
+    for name in ("rollout", "victims", "best-of-4"):
+        assert totals[name] < 0.95 * totals["heuristic"], totals
+
+
+def victims_of(region: Any) -> set[int]:
+    """The nets a routed region's markers leave in violation: of two nets the one routed later
+    (a net the region did not route counts as earliest), a one-net marker's own net."""
+    nets = np.asarray(region.candidates)[:, COL["net"]]
+    position: dict[int, int] = {}
+    for p, k in enumerate(region.route_order):
+        position.setdefault(int(nets[k]), p)
+    out: set[int] = set()
+    for m in region.markers():
+        a, b = (int(n) for n in m["nets"])
+        if a >= 0 and b >= 0 and a != b:
+            out.add(a if position.get(a, -1) > position.get(b, -1) else b)
+        else:
+            out.update(n for n in (a, b) if n >= 0)
+    return out
+
+
+def test_victims_routes_the_heuristic_routings_victims_first(generated: Path) -> None:
+    """With a budget of 2 the victims search tries two orders: the heuristic's, then the nets its
+    markers leave in violation first (both parts in heuristic order), and keeps the cheaper."""
+    from xroute.session import open_session
+
+    design = load(generated)
+    session = open_session(design)
+    dbu = design.dbu_per_micron
+    moved = 0
+    for box in boxes(session):
+        first = session.open_region(box)
+        rows = np.asarray(first.candidates)
+        if len(rows) < 2:
+            continue
+        heuristic = [int(k) for k in heuristic_order(rows)]
+        for k in heuristic:
+            first.route_net(k)
+        victims = victims_of(first)
+        nets = rows[:, COL["net"]]
+        again = [k for k in heuristic if nets[k] in victims] + [k for k in heuristic if nets[k] not in victims]
+        second = session.open_region(box)
+        for k in again:
+            second.route_net(k)
+        searched = session.open_region(box)
+        searched.route_rest("victims", 1, search_budget=2)
+        want = min(region_cost(first, dbu), region_cost(second, dbu))
+        assert region_cost(searched, dbu) == pytest.approx(want, abs=1e-9), box
+        if region_cost(second, dbu) < region_cost(first, dbu) - 1e-9:
+            assert list(searched.route_order) == again, box
+            moved += 1
+        else:
+            assert list(searched.route_order) == heuristic, box
+    assert moved > 0  # some region is cheaper with its victims first
 
 
 def test_a_search_routes_the_order_it_returns(generated: Path) -> None:
@@ -94,7 +146,8 @@ def test_a_search_routes_the_order_it_returns(generated: Path) -> None:
     assert checked == 6
 
 
-@pytest.mark.parametrize("policy", [RolloutPolicy(4), BestOfPolicy(3, seed=2)], ids=["rollout", "best-of-3"])
+@pytest.mark.parametrize("policy", [RolloutPolicy(4), VictimsPolicy(4), BestOfPolicy(3, seed=2)],
+                         ids=["rollout", "victims", "best-of-3"])
 def test_search_policies_route_the_same_def_for_any_thread_count(generated: Path, policy: Any) -> None:
     defs = []
     for threads in (1, 2):
@@ -112,9 +165,12 @@ def test_search_policy_names_and_bad_budgets() -> None:
     assert builtin_policy("best-of-8").name == "best-of-8" and builtin_policy("best-of-8").k == 8
     assert builtin_policy("bestof", search_budget=5).k == 5
     assert builtin_policy("rollout", search_budget=6).budget == 6
+    assert builtin_policy("victims", search_budget=3).budget == 3 and builtin_policy("victims").name == "victims"
     for bad in (0, -3, 2.5, True):
         with pytest.raises(PolicyError, match=r"must be an integer >= 1"):
             RolloutPolicy(bad)
+        with pytest.raises(PolicyError, match=r"victims search budget .* must be an integer >= 1"):
+            VictimsPolicy(bad)
     with pytest.raises(PolicyError, match=r"best-of-K: K .* must be an integer >= 1, got 0"):
         builtin_policy("best-of-0")
     with pytest.raises(PolicyError, match="unknown policy 'best-of-x'"):
@@ -154,6 +210,25 @@ def test_cli_and_config_reject_bad_budgets(generated: Path, tmp_path: Path) -> N
         load_config(cfg)
     cfg.write_text("policy:\n  policy: best-of-6\n  search_budget: 9\n")
     assert load_config(cfg).policy.policy == "best-of-6" and load_config(cfg).policy.search_budget == 9
+
+
+def test_cli_routes_with_the_victims_search(generated: Path, tmp_path: Path) -> None:
+    import json
+
+    from xroute.cli.app import app
+    from xroute.config import load_config
+
+    stem = generated / generated.name
+    out = tmp_path / "out"
+    result = CliRunner().invoke(app, ["route", "--lef", f"{stem}.lef", "--def", f"{stem}.def", "--guide", f"{stem}.guide",
+                                      "--out", str(out), "--policy", "victims", "--search-budget", "3",
+                                      "--iterations", "1", "--quiet"])
+    assert result.exit_code == 0, result.output
+    metrics = json.loads(next(out.glob("*.metrics.json")).read_text())
+    assert metrics["policy"] == "victims" and metrics["final"]["open_nets"] == 0
+    cfg = tmp_path / "c.yaml"
+    cfg.write_text("policy:\n  policy: victims\n  search_budget: 2\n")
+    assert load_config(cfg).policy.policy == "victims"
 
 
 class Stepper:
@@ -232,7 +307,7 @@ def test_a_budget_of_one_is_the_heuristic(generated: Path) -> None:
     """One trial routing per region is the heuristic's order alone: the same DEF."""
     heuristic = load(generated)
     route_design(heuristic, iterations=1, region_size=3)
-    for policy in (RolloutPolicy(1), BestOfPolicy(1)):
+    for policy in (RolloutPolicy(1), VictimsPolicy(1), BestOfPolicy(1)):
         design = load(generated)
         route_design(design, policy=policy, iterations=1, region_size=3)
         assert design.def_text() == heuristic.def_text(), policy

@@ -46,7 +46,7 @@ RepairRoundsOption = Annotated[
 PolicyOption = Annotated[
     str | None,
     typer.Option("--policy",
-                 help="Net-order policy: heuristic, random, rollout, bestof, best-of-K (search: fewer violations "
+                 help="Net-order policy: heuristic, random, rollout, victims, bestof, best-of-K (search: fewer violations "
                       "for more time, see --search-budget), or a policy file (.py defining order(region, features) "
                       "or next_net(region, features)). "
                       "Default: heuristic.", show_default=False),
@@ -60,7 +60,7 @@ NetRouterOption = Annotated[
 SearchBudgetOption = Annotated[
     int | None,
     typer.Option("--search-budget", min=1, max=MAX_SEARCH_BUDGET,
-                 help=f"Trial routings per region of the rollout policy (and bestof's K). Default: {SEARCH_BUDGET}.",
+                 help=f"Trial routings per region of the rollout and victims policies (and bestof's K). Default: {SEARCH_BUDGET}.",
                  show_default=False),
 ]
 SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]

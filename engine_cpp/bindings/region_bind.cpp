@@ -236,7 +236,7 @@ void bindRegionRouting(RegionClass& cls) {
           },
           "policy"_a = "heuristic", "seed"_a = 1, "search_budget"_a = SearchSettings{}.budget,
           "search_width"_a = SearchSettings{}.width,
-          "Routes every candidate not routed yet in a built-in policy's order (heuristic, random, rollout, bestof, "
+          "Routes every candidate not routed yet in a built-in policy's order (heuristic, random, rollout, victims, bestof, "
           "best-of-K; the searches route trial orders on copies of the region and keep the cheapest).");
 }
 

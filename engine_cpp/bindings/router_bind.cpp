@@ -200,6 +200,7 @@ void bindRouter(nb::module_& m) {
       "policy_next"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' "
       "(seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), "
+      "'victims' (at most search_budget trial routings per region: the victims of the markers so far first), "
       "'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or "
       "policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, "
       "policy_next(region, features) -> index of the next net, called after every routed net with the unrouted "

@@ -1,7 +1,9 @@
 #include "flow/search_policy.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cstdlib>
+#include <iterator>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -48,10 +50,12 @@ class RegionSearch {
 
   // Routes `order` (local indices, after the nets `from` already has) on a copy of `from`;
   // true when it is the cheapest so far (ties: the earlier trial stays).
-  bool trial(const RegionRouter& from, const std::vector<int32_t>& order) {
+  // `markers_out` (optional) receives the trial's markers.
+  bool trial(const RegionRouter& from, const std::vector<int32_t>& order, std::vector<Marker>* markers_out = nullptr) {
     std::unique_ptr<RegionRouter> t = from.clone();
     for (int32_t k : order) t->routeNet(pending_[k], ws_);
     const std::vector<Marker> markers = t->check();
+    if (markers_out) *markers_out = markers;
     const double cost = regionCost(*t, weights_, markers);
     ++trials_;
     if (best_ && cost >= bestCost_) return false;
@@ -74,6 +78,7 @@ class RegionSearch {
     return order;
   }
 
+  int32_t net(int32_t local) const { return nets_[local]; }
   MazeWorkspace& workspace() { return ws_; }
   int32_t candidate(int32_t local) const { return pending_[local]; }
 
@@ -175,6 +180,68 @@ class BestOfPolicy final : public NetOrderPolicy {
   SearchSettings s_;
 };
 
+// The nets that `markers` leave in violation after routing `order` (local indices): of a two-net
+// marker the net routed later (a net routed before the region, or not a candidate, counts as
+// earliest); a one-net marker (minimum area, an obstruction) names its own net.
+std::vector<int32_t> victimNets(const RegionSearch& search, const std::vector<int32_t>& order,
+                                const std::vector<Marker>& markers) {
+  std::vector<std::pair<int32_t, int32_t>> first;  // (net, position of its first part)
+  for (size_t p = 0; p < order.size(); ++p) first.emplace_back(search.net(order[p]), static_cast<int32_t>(p));
+  std::stable_sort(first.begin(), first.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  auto position = [&](int32_t net) {
+    auto it = std::lower_bound(first.begin(), first.end(), std::make_pair(net, INT32_MIN));
+    return it != first.end() && it->first == net ? it->second : -1;
+  };
+  std::vector<int32_t> out;
+  for (const Marker& m : markers) {
+    if (m.net1 >= 0 && m.net2 >= 0 && m.net1 != m.net2) {
+      out.push_back(position(m.net1) > position(m.net2) ? m.net1 : m.net2);
+    } else {
+      for (int32_t n : {m.net1, m.net2})
+        if (n >= 0) out.push_back(n);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+class VictimsPolicy final : public NetOrderPolicy {
+ public:
+  explicit VictimsPolicy(const SearchSettings& s) : s_(s) {}
+  std::vector<int32_t> order(const RegionInfo& r, const std::vector<NetCandidate>& c) override {
+    return RolloutPolicy(s_).order(r, c);
+  }
+  // Trial 1 routes the heuristic order. Each later trial routes the victims of every trial so far
+  // first and the other nets after them, both parts in heuristic rank. It stops when a trial
+  // names no new victim (the next order would repeat one tried) or the budget is spent; the
+  // cheapest trial is kept.
+  std::vector<int32_t> orderRegion(RegionRouter& router, const RegionInfo& r, const std::vector<NetCandidate>& c) override {
+    if (c.size() < 2 || s_.budget < 2) return order(r, c);
+    RegionSearch search(router, c, s_.weights);
+    std::vector<int32_t> best = search.rank(), current = best, victims;
+    std::vector<Marker> markers;
+    search.trial(router, current, &markers);
+    while (search.trials() < s_.budget) {
+      std::vector<int32_t> found = victimNets(search, current, markers), merged;
+      std::set_union(victims.begin(), victims.end(), found.begin(), found.end(), std::back_inserter(merged));
+      if (merged.size() == victims.size()) break;
+      victims = std::move(merged);
+      std::vector<int32_t> early, late;
+      for (int32_t k : search.rank())
+        (std::binary_search(victims.begin(), victims.end(), search.net(k)) ? early : late).push_back(k);
+      early.insert(early.end(), late.begin(), late.end());
+      current = std::move(early);
+      if (search.trial(router, current, &markers)) best = current;
+    }
+    return search.finish(best);
+  }
+  std::string name() const override { return "victims"; }
+
+ private:
+  SearchSettings s_;
+};
+
 void checkBudget(const char* what, int64_t v) {
   if (v < 1 || v > kMaxSearchBudget)
     throw std::invalid_argument(std::string(what) + " must be in 1.." + std::to_string(kMaxSearchBudget) + ", got " +
@@ -198,6 +265,10 @@ std::unique_ptr<NetOrderPolicy> makeBuiltinPolicy(const std::string& name, const
   if (name == "heuristic") return makeHeuristicPolicy();
   if (name == "random") return makeRandomPolicy(s.seed);
   if (name == "rollout") return makeRolloutPolicy(s);
+  if (name == "victims") {
+    checkBudget("search budget", s.budget);
+    return std::make_unique<VictimsPolicy>(s);
+  }
   if (name == "bestof") {
     checkBudget("search budget", s.budget);
     return makeBestOfPolicy(s.budget, s);
@@ -207,7 +278,7 @@ std::unique_ptr<NetOrderPolicy> makeBuiltinPolicy(const std::string& name, const
       std::all_of(name.begin() + prefix.size(), name.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
     return makeBestOfPolicy(std::stoi(name.substr(prefix.size())), s);
   }
-  throw std::invalid_argument("unknown policy '" + name + "' (heuristic, random, rollout, bestof, best-of-K)");
+  throw std::invalid_argument("unknown policy '" + name + "' (heuristic, random, rollout, victims, bestof, best-of-K)");
 }
 
 }  // namespace xroute

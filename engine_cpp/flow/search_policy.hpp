@@ -7,8 +7,13 @@
 //                net, the rest finished in heuristic order; the cheapest first
 //                choice is committed (no marker left to mend, or the budget
 //                spent: the rest in heuristic order).
+//   victims    - the nets the markers of the trials so far leave in violation
+//                (the victims: of a two-net marker the net routed later, of a
+//                one-net marker its net) routed first, the rest after them,
+//                both in heuristic rank, until a trial names no new victim or
+//                the budget is spent.
 //   best-of-K  - the heuristic order plus K-1 seeded random orders.
-// Both count the heuristic's own order among their trials and keep the
+// All count the heuristic's own order among their trials and keep the
 // cheapest, so a region never ends costlier than the heuristic's routing.
 #pragma once
 
@@ -56,7 +61,7 @@ double regionCost(const RegionRouter& router, const RegionCostWeights& weights, 
 std::unique_ptr<NetOrderPolicy> makeRolloutPolicy(const SearchSettings& settings);
 std::unique_ptr<NetOrderPolicy> makeBestOfPolicy(int k, const SearchSettings& settings);
 
-// A built-in policy by name: heuristic, random (settings.seed), rollout, bestof (K =
+// A built-in policy by name: heuristic, random (settings.seed), rollout, victims, bestof (K =
 // settings.budget) or best-of-K. Throws std::invalid_argument (one line) for another name or a
 // budget/K outside 1..kMaxSearchBudget.
 std::unique_ptr<NetOrderPolicy> makeBuiltinPolicy(const std::string& name, const SearchSettings& settings);

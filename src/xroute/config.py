@@ -158,7 +158,7 @@ class PolicySection:
     call_timeout: float = setting(300.0, min=0.0, max=86400.0, unit="seconds",
                                   help="time limit of one order() call of a policy file (0: none)")
     search_budget: int = setting(SEARCH_BUDGET, min=1, max=MAX_SEARCH_BUDGET,
-                                 help="trial routings per region of the rollout policy (and bestof's K)")
+                                 help="trial routings per region of the rollout and victims policies (and bestof's K)")
 
 
 @dataclass(frozen=True)
@@ -166,7 +166,7 @@ class CostSection:
     """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs.
 
     Commands, reports and the environments' rewards use it. The defaults are the engine's
-    (RegionCostWeights, engine_cpp/flow/search_policy.hpp); the rollout / best-of-K searches score
+    (RegionCostWeights, engine_cpp/flow/search_policy.hpp); the rollout / victims / best-of-K searches score
     trial routings with those defaults, not with values changed here."""
 
     wirelength_weight: float = setting(REGION_COST_WEIGHTS[0], min=0.0, unit="per µm")
@@ -223,7 +223,7 @@ class RunSettings:
     net_loop: int = 1
     policy_timeout: float | None = None  # seconds per policy call (None: the default)
     repair_rounds: int = REPAIR_ROUNDS  # check-and-reroute rounds inside each region
-    search_budget: int = SEARCH_BUDGET  # trial routings per region (rollout; bestof's K)
+    search_budget: int = SEARCH_BUDGET  # trial routings per region (rollout, victims; bestof's K)
 
     def route_settings(self) -> RouteSettings:
         """The detailed router's settings (validated: RouteArgumentError when invalid)."""

@@ -18,7 +18,7 @@ MAX_THREADS: int = int(_D["max_threads"])
 REPAIR_ROUNDS: int = int(_D["repair_rounds"])  # check-and-reroute rounds inside a region (later iterations)
 MAX_REPAIR_ROUNDS: int = int(_D["max_repair_rounds"])
 ACCESS_POINTS_PER_PIN: int = int(_D["access_points_per_pin"])
-SEARCH_BUDGET: int = int(_D["search_budget"])  # trial routings per region of the rollout / bestof policies
+SEARCH_BUDGET: int = int(_D["search_budget"])  # trial routings per region of the rollout / victims / bestof policies
 # (per µm of wire, per via, per violation): the XRoute paper's cost, as the search policies score a region
 REGION_COST_WEIGHTS: tuple[float, float, float] = tuple(float(w) for w in _D["region_cost_weights"])
 MAX_SEARCH_BUDGET: int = int(_D["max_search_budget"])

@@ -31,8 +31,8 @@ net at a time: the router calls it after every routed net with the candidates st
 returns. A policy with ``next_net`` is used that way even if it also has ``order``; one with
 ``order`` only gives the whole order in one call (the fast path).
 
-**Search policies** ``rollout`` and ``best-of-K`` (:class:`RolloutPolicy`, :class:`BestOfPolicy`)
-run in the engine: they route trial orders on copies of the region, score each by the region's
+**Search policies** ``rollout``, ``victims`` and ``best-of-K`` (:class:`RolloutPolicy`,
+:class:`VictimsPolicy`, :class:`BestOfPolicy`) run in the engine: they route trial orders on copies of the region, score each by the region's
 cost (0.5 WL(um) + 4 vias + 500 markers inside the region) and keep the cheapest, the
 heuristic's order among the trials, so a region never ends costlier than the heuristic's
 routing. ``budget`` = trial routings per region (see engine_cpp/flow/README.md).
@@ -81,7 +81,7 @@ FEATURE_COLUMNS: tuple[str, ...] = (
 _COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
 
 
-BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random", "rollout", "bestof")
+BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random", "rollout", "victims", "bestof")
 """Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`);
 ``best-of-K`` (K an integer, e.g. ``best-of-8``) names :class:`BestOfPolicy` with that K too
 (:func:`is_builtin_name`)."""
@@ -197,6 +197,27 @@ class RolloutPolicy:
         return f"RolloutPolicy(budget={self.budget}, width={self.width})"
 
 
+class VictimsPolicy:
+    """The engine's victims search (see the module doc): in each region the heuristic order is
+    routed, then again with the *victims* of every trial so far first (the nets its markers leave
+    in violation: of a two-net marker the net routed later, a one-net marker's own net), the
+    others after them, both in heuristic order, until a trial names no new victim or ``budget``
+    trial routings are spent (None: the engine's default); the cheapest trial is kept. Outside
+    the router :meth:`order` is the heuristic's."""
+
+    name = "victims"
+    builtin = "victims"
+
+    def __init__(self, budget: int | None = None) -> None:
+        self.budget = _check_count("victims search budget (trial routings per region)", budget)
+
+    def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
+        return heuristic_order(features)
+
+    def __repr__(self) -> str:
+        return f"VictimsPolicy(budget={self.budget})"
+
+
 class BestOfPolicy:
     """The engine's best-of-K search: each region routed in K orders (the heuristic's and K-1
     random orders seeded from ``seed``, the iteration, the region and the trial), the cheapest
@@ -285,7 +306,7 @@ def check_order(order: Any, n: int, policy_name: str) -> list[int]:
 
 def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:
     """The built-in policy called ``name`` (:func:`is_builtin_name`); ``random`` and best-of-K are
-    seeded with ``seed``; ``search_budget`` is rollout's budget and ``bestof``'s K (None: the
+    seeded with ``seed``; ``search_budget`` is rollout's and victims' budget and ``bestof``'s K (None: the
     engine's default); ``best-of-K`` takes its K from the name."""
     if name == "heuristic":
         return HeuristicPolicy()
@@ -293,6 +314,8 @@ def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -
         return RandomPolicy(seed)
     if name == "rollout":
         return RolloutPolicy(search_budget)
+    if name == "victims":
+        return VictimsPolicy(search_budget)
     if name == "bestof":
         return BestOfPolicy(search_budget, seed)
     m = _BEST_OF.fullmatch(name)

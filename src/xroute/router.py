@@ -24,6 +24,7 @@ from xroute.policy import (
     NetOrderPolicy,
     RandomPolicy,
     RolloutPolicy,
+    VictimsPolicy,
     SequentialPolicy,
     builtin_policy,
     check_order,
@@ -238,7 +239,7 @@ def _builtin(policy: NetOrderPolicy) -> str | None:
     (including a subclass of a built-in that overrides ``order``)."""
     if isinstance(policy, SequentialPolicy):
         return None
-    for cls in (HeuristicPolicy, RandomPolicy, RolloutPolicy, BestOfPolicy):
+    for cls in (HeuristicPolicy, RandomPolicy, RolloutPolicy, VictimsPolicy, BestOfPolicy):
         if isinstance(policy, cls) and type(policy).order is cls.order:
             return cls.builtin
     return None
@@ -302,6 +303,8 @@ def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[s
     if builtin == "rollout":
         budget = check_search_budget("rollout search budget", pol.budget)
         return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
+    if builtin == "victims":
+        return {"policy": "victims", "search_budget": check_search_budget("victims search budget", pol.budget)}, None
     if builtin == "bestof":
         k = check_search_budget("best-of-K: K", pol.k)
         return {"policy": f"best-of-{k}", "seed": pol.seed}, None
@@ -331,10 +334,10 @@ def route_design(
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
-    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"bestof"``,
+    ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"victims"``, ``"bestof"``,
     ``"best-of-K"`` (the engine's search policies with their default budget), or a policy object
     (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
-    ``RolloutPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
+    ``RolloutPolicy(budget)``, ``VictimsPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
     ``name`` and ``order``, or with ``name`` and ``next_net`` (asked after every routed net);
     policy files and ONNX models through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
     fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
