@@ -1,4 +1,5 @@
-"""Policies by name: ``get_policy("heuristic" | "random" | "rollout" | "best-of-8" | "path/to/file.py", seed)``.
+"""Policies by name: ``get_policy(spec, seed)``, spec ``"heuristic"``, ``"random"``, ``"rollout"``,
+``"victims"``, ``"best-of-8"`` or ``"path/to/file.py"``.
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
 define ``order(region, features)`` (see :mod:`xroute.policy`); it may also set ``NAME`` (default:
@@ -59,8 +60,8 @@ def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPol
 
 
 def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:
-    """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), ``rollout``
-    (``search_budget`` trial routings per region; None: the engine's default), ``bestof`` (K =
+    """The policy named by ``spec``: ``heuristic``, ``random`` (seeded with ``seed``), ``rollout`` and
+    ``victims`` (``search_budget`` trial routings per region; None: the engine's default), ``bestof`` (K =
     ``search_budget``), ``best-of-K``, a ``.py`` file defining ``order(region, features)`` (or
     ``next_net(region, features)``), or a ``.onnx`` net-order model. Raises :class:`PolicyError`
     (an ``XrouteError``) for anything else or a file that cannot be used."""
