@@ -75,16 +75,22 @@ def _shard(job: tuple) -> list[RegionEffects]:
     return collect_shard(*job)
 
 
+def run_shards(fn: Any, jobs: list[tuple], workers: int) -> list[Any]:
+    """``fn(job)`` (a list per job) for every job, in ``workers`` processes (spawned; 1: here), the
+    results put together and sorted by (testcase, index)."""
+    if workers <= 1:
+        parts = [fn(j) for j in jobs]
+    else:
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+            parts = list(pool.map(fn, jobs))
+    return sorted((r for p in parts for r in p), key=lambda r: (r.testcase, r.index))
+
+
 def collect(testcases: list[str], workers: int, **kwargs: Any) -> list[RegionEffects]:
     """Every testcase's regions, ``workers`` shards each in as many processes; sorted by (testcase, index)."""
     jobs = [(t, s, workers, kwargs["region_size"], kwargs["hold_out_every"], kwargs["per_region"],
              kwargs.get("max_regions", 0)) for t in testcases for s in range(workers)]
-    if workers <= 1:
-        parts = [_shard(j) for j in jobs]
-    else:
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-            parts = list(pool.map(_shard, jobs))
-    return sorted((r for p in parts for r in p), key=lambda r: (r.testcase, r.index))
+    return run_shards(_shard, jobs, workers)
 
 
 def fit(regions: list[RegionEffects], steps: int, loss_kind: str, seed: int = 1) -> Any:

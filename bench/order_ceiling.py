@@ -33,7 +33,7 @@ import numpy as np
 from xroute import load_design
 from xroute.defaults import REGION_SIZE
 from xroute.policy import heuristic_order
-from xroute.policies.rl.holdout import best_of_random, best_score, held_out_regions, region_score
+from xroute.policies.rl.holdout import best_of_random, best_score, held_out_regions, marker_roles, region_score
 from xroute.policies.rl.teacher import route_order
 from xroute.session import first_pass, open_session
 
@@ -43,18 +43,7 @@ def route_victims(fp: Any, index: int, order: list[int], dbu: int) -> tuple[floa
     r = fp.open_region(index)
     for k in order:
         r.route_net(int(k))
-    net = np.asarray(r.candidates)[:, 0]
-    position: dict[int, int] = {}
-    for p, k in enumerate(r.route_order):
-        position.setdefault(int(net[k]), p)  # a net in two parts: its first part
-    victims: set[int] = set()
-    for m in r.markers():
-        a, b = (int(n) for n in m["nets"])
-        if a >= 0 and b >= 0 and a != b:
-            victims.add(a if position.get(a, -1) > position.get(b, -1) else b)
-        else:
-            victims.update(n for n in (a, b) if n >= 0)
-    return region_score(r, dbu).cost, victims
+    return region_score(r, dbu).cost, set(marker_roles(r)[0])
 
 
 def victims_first(order: list[int], nets: np.ndarray, victims: set[int]) -> list[int]:

@@ -217,3 +217,39 @@ def test_net_effects_bench_moves_one_net_first_and_scores_the_learned_pick(imita
     assert row["heuristic"] == pytest.approx(sum(r.heuristic for r in regions))
     assert row["oracle"] <= 0 and row["oracle"] <= row["learned"] + 1e-9 and row["oracle"] <= row["random"] + 1e-9
     assert -1.0 <= res["corr_test"] <= 1.0
+
+
+def test_victims_learning_bench_tries_the_rule_and_scores_learned_second_orders(imitation_sample: str) -> None:
+    """bench/victims_learning.py: row 0 is the heuristic's order and its cost, row 1 the victims-first
+    rule read from the heuristic routing's markers, every order is a permutation, and the
+    kept-if-cheaper rows are never above the heuristic or their own order."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import victims_learning as vl
+    from xroute.policies.rl.teacher import load_first_pass, route_order
+    from xroute.policy import heuristic_order
+
+    torch.set_num_threads(1)
+    regions = vl.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, variants=3, max_regions=24)
+    assert len(regions) >= 10
+    fp, dbu = load_first_pass(imitation_sample, SIZE)
+    with_victims = 0
+    for r in regions:
+        region = fp.open_region(r.index)
+        heuristic = np.asarray(heuristic_order(np.asarray(region.candidates)))
+        assert (r.orders[0] == heuristic).all() and r.orders.shape == (5, len(r.features))
+        assert r.costs[0] == pytest.approx(route_order(fp, r.index, heuristic, dbu))
+        victim = r.outcome[:, 0] > 0
+        assert (r.orders[1] == np.concatenate([heuristic[victim[heuristic]], heuristic[~victim[heuristic]]])).all()
+        for order in r.orders:
+            assert sorted(order) == list(range(len(r.features)))
+        with_victims += victim.any()
+    assert with_victims > 0  # the sample's heuristic routing leaves markers somewhere
+    rows = vl.evaluate(regions, steps=10, region_size=SIZE)[imitation_sample]
+    assert rows["regions"] > 0
+    for name in ("rule", "learned", "learned from the rule"):
+        kept = rows[f"{name} kept if cheaper"]
+        assert kept <= rows["heuristic"] + 1e-6 and kept <= rows[name] + 1e-6
+    assert rows["best tried"] <= rows["rule kept if cheaper"] + 1e-6

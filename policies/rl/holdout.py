@@ -61,6 +61,32 @@ def region_score(region: Any, dbu_per_micron: int, weights: CostSection = CostSe
                        vias=int(m["vias"]), drvs=int(m["violations"]))
 
 
+def marker_roles(region: Any) -> tuple[dict[int, int], dict[int, int], dict[int, int]]:
+    """(victims, aggressors, alone) of a routed engine Region's markers (``Region.markers()``), each a
+    net -> marker count. Of a two-net marker the net routed later is its victim and the other its
+    aggressor (a net the region did not route counts as routed earliest); a one-net marker (minimum
+    area, an obstruction) names its own net as victim, and counts in ``alone`` too. A net in two
+    parts counts at its first part."""
+    nets = np.asarray(region.candidates)[:, 0]
+    position: dict[int, int] = {}
+    for p, k in enumerate(region.route_order):
+        position.setdefault(int(nets[k]), p)
+    victims: dict[int, int] = {}
+    aggressors: dict[int, int] = {}
+    alone: dict[int, int] = {}
+    for m in region.markers():
+        a, b = (int(n) for n in m["nets"])
+        if a >= 0 and b >= 0 and a != b:
+            v, g = (a, b) if position.get(a, -1) > position.get(b, -1) else (b, a)
+            victims[v] = victims.get(v, 0) + 1
+            aggressors[g] = aggressors.get(g, 0) + 1
+        else:
+            for n in {x for x in (a, b) if x >= 0}:
+                victims[n] = victims.get(n, 0) + 1
+                alone[n] = alone.get(n, 0) + 1
+    return victims, aggressors, alone
+
+
 def held_out_regions(first_pass: Any, hold_out_every: int, region_size: int,
                      min_candidates: int = 2) -> Iterator[HeldOutRegion]:
     """The held-out regions of ``first_pass`` with at least ``min_candidates`` nets, in the flow's order
