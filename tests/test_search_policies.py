@@ -184,10 +184,13 @@ def test_a_budget_above_the_engine_limit_is_one_line_error(generated: Path) -> N
 
     with pytest.raises(RouteArgumentError, match=rf"rollout search budget must be an integer in 1..{MAX_SEARCH_BUDGET}"):
         route_design(load(generated), policy=RolloutPolicy(MAX_SEARCH_BUDGET + 1), iterations=1)
+    with pytest.raises(RouteArgumentError, match=rf"victims search budget must be an integer in 1..{MAX_SEARCH_BUDGET}"):
+        route_design(load(generated), policy=VictimsPolicy(MAX_SEARCH_BUDGET + 1), iterations=1)
     from xroute import _engine
 
-    with pytest.raises(ValueError, match=r"search budget must be in 1\.\.\d+, got 0"):
-        _engine.route(load(generated).engine, policy="rollout", search_budget=0, iterations=1)
+    for name in ("rollout", "victims"):
+        with pytest.raises(ValueError, match=r"search budget must be in 1\.\.\d+, got 0"):
+            _engine.route(load(generated).engine, policy=name, search_budget=0, iterations=1)
 
 
 def test_cli_and_config_reject_bad_budgets(generated: Path, tmp_path: Path) -> None:

@@ -32,10 +32,10 @@ returns. A policy with ``next_net`` is used that way even if it also has ``order
 ``order`` only gives the whole order in one call (the fast path).
 
 **Search policies** ``rollout``, ``victims`` and ``best-of-K`` (:class:`RolloutPolicy`,
-:class:`VictimsPolicy`, :class:`BestOfPolicy`) run in the engine: they route trial orders on copies of the region, score each by the region's
-cost (0.5 WL(um) + 4 vias + 500 markers inside the region) and keep the cheapest, the
-heuristic's order among the trials, so a region never ends costlier than the heuristic's
-routing. ``budget`` = trial routings per region (see engine_cpp/flow/README.md).
+:class:`VictimsPolicy`, :class:`BestOfPolicy`) run in the engine: they route trial orders on
+copies of the region, score each by the region's cost (0.5 WL(um) + 4 vias + 500 markers inside
+the region) and keep the cheapest, the heuristic's order among the trials, so a region never
+ends costlier than the heuristic's routing. ``budget`` = trial routings per region (see engine_cpp/flow/README.md).
 
 A policy that sets ``needs_region = True`` (an ONNX model, a learning environment) also finds, in
 ``region["engine_region"]``, the engine's Region being routed, lent for that one call: its live
@@ -306,8 +306,8 @@ def check_order(order: Any, n: int, policy_name: str) -> list[int]:
 
 def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:
     """The built-in policy called ``name`` (:func:`is_builtin_name`); ``random`` and best-of-K are
-    seeded with ``seed``; ``search_budget`` is rollout's and victims' budget and ``bestof``'s K (None: the
-    engine's default); ``best-of-K`` takes its K from the name."""
+    seeded with ``seed``; ``search_budget`` is rollout's and victims' budget and ``bestof``'s K
+    (None: the engine's default); ``best-of-K`` takes its K from the name."""
     if name == "heuristic":
         return HeuristicPolicy()
     if name == "random":

@@ -24,8 +24,8 @@ from xroute.policy import (
     NetOrderPolicy,
     RandomPolicy,
     RolloutPolicy,
-    VictimsPolicy,
     SequentialPolicy,
+    VictimsPolicy,
     builtin_policy,
     check_order,
 )
@@ -304,7 +304,8 @@ def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[s
         budget = check_search_budget("rollout search budget", pol.budget)
         return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
     if builtin == "victims":
-        return {"policy": "victims", "search_budget": check_search_budget("victims search budget", pol.budget)}, None
+        budget = check_search_budget("victims search budget", pol.budget)
+        return {"policy": "victims", "search_budget": budget}, None
     if builtin == "bestof":
         k = check_search_budget("best-of-K: K", pol.k)
         return {"policy": f"best-of-{k}", "seed": pol.seed}, None
