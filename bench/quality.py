@@ -5,10 +5,10 @@ the reference routes that are present (another router's routed DEFs, judged by t
 
 For each testcase found on the search path (default: the demo and the seven contest testcases),
 one fresh process per `--policy` (default: heuristic) runs `xroute route TESTCASE --threads T
---policy P --json` (the pipeline: built-in global routing when there is no guide); its wall time and peak RSS come from the kernel (wait4). Then
-`xroute check` reads the routed DEF back with the testcase's LEF and guide: opens, violations by
-type, wirelength, vias, off-track vias, out-of-guide wire and the contest score before
-violations. Reference routes: `../shared/reference_routes/<name>.<router>.def.gz`, unpacked to a
+--policy P --json` (the pipeline: built-in global routing when there is no guide); its wall time
+and peak RSS come from the kernel (wait4). Then `xroute check` reads the routed DEF back with the
+testcase's LEF and guide: opens, violations by type, wirelength, vias, off-track vias,
+out-of-guide wire and the contest score before violations. Reference routes: `../shared/reference_routes/<name>.<router>.def.gz`, unpacked to a
 temporary file and checked the same way (their wall time and memory are not ours to measure;
 the reference folder's README has the figures its router reported).
 

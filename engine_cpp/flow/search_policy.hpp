@@ -42,7 +42,7 @@ inline constexpr int kMaxSearchBudget = 1024;  // trial routings per region at m
 
 struct SearchSettings {
   // Trial routings per region: each routes the region's unrouted nets to the end in one order
-  // and checks it (rollout: at most this many; best-of-K: K). 1 = the heuristic alone.
+  // and checks it (rollout, victims: at most this many; best-of-K: K). 1 = the heuristic alone.
   // Default 4: rollout's first pass (2 threads, loaded machine) took 3.6x the heuristic's time on
   // ispd18_test1 and 4.8x on ispd19_test1 (policies/models/MODEL_CARD.md).
   int budget = 4;
