@@ -9,10 +9,10 @@ its nets; the score is the region's first-pass cost ``0.5 WL(um) + 4 vias + 500 
 its box. Every policy starts from the same state (nothing is committed).
 
 A policy is named by a spec: a built-in name the engine routes itself (``heuristic``, ``random``,
-the searches ``rollout``, ``bestof`` and ``best-of-K``: :func:`xroute.policy.is_builtin_name`,
-through ``Region.route_rest(name, seed, search_budget)``), or anything
-:func:`xroute.policies.registry.get_policy` resolves (a ``.py`` file, an ``.onnx`` model), asked
-once per region for an order (a sequential one, with ``next_net``, once per net).
+the searches ``rollout``, ``victims``, ``bestof`` and ``best-of-K``:
+:func:`xroute.policy.is_builtin_name`, through ``Region.route_rest(name, seed, search_budget)``),
+or anything :func:`xroute.policies.registry.get_policy` resolves (a ``.py`` file, an ``.onnx``
+model), asked once per region for an order (a sequential one, with ``next_net``, once per net).
 """
 
 from __future__ import annotations
@@ -103,7 +103,7 @@ def route_in_context(first_pass: Any, region: HeldOutRegion, spec: str | Any, se
                      weights: CostSection = CostSection(), search_budget: int = SEARCH_BUDGET) -> PolicyScore:
     """Opens ``region`` in context and routes it with ``spec`` (a built-in name, or a policy object with
     ``order(region, features)`` or ``next_net(region, features)``); returns its score. ``search_budget``:
-    rollout's trial routings per region (and ``bestof``'s K)."""
+    the trial routings per region of rollout and victims (and ``bestof``'s K)."""
     r = first_pass.open_region(region.index)
     t0 = time.perf_counter()
     if isinstance(spec, str):
