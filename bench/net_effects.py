@@ -173,18 +173,25 @@ def evaluate(regions: list[RegionEffects], steps: int, loss_kind: str) -> dict[s
     return {"testcases": rows, "corr_train": float(np.mean(corr_train)), "corr_test": float(np.mean(corr_test))}
 
 
-def main() -> None:
-    import torch
-
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def training_regions_parser(doc: str) -> argparse.ArgumentParser:
+    """The options of a bench over the training regions: --testcase (repeatable), --region-size,
+    --hold-out-every, --workers, --steps (of the scorer's training) and --json."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("--testcase", action="append")
     ap.add_argument("--region-size", type=int, default=REGION_SIZE)
     ap.add_argument("--hold-out-every", type=int, default=3)
-    ap.add_argument("--per-region", type=int, default=12, help="nets tried per region (drawn, seeded)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--steps", type=int, default=800)
-    ap.add_argument("--loss", choices=("mse", "listwise"), default="mse")
     ap.add_argument("--json", type=Path)
+    return ap
+
+
+def main() -> None:
+    import torch
+
+    ap = training_regions_parser(__doc__)
+    ap.add_argument("--per-region", type=int, default=12, help="nets tried per region (drawn, seeded)")
+    ap.add_argument("--loss", choices=("mse", "listwise"), default="mse")
     a = ap.parse_args()
     torch.set_num_threads(1)
     t0 = time.perf_counter()

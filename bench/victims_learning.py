@@ -26,16 +26,14 @@ trial gives), the mean of the variants and the best of all orders tried.
 
 from __future__ import annotations
 
-import argparse
 import json
 import time
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from net_effects import run_shards
+from net_effects import run_shards, training_regions_parser
 from xroute.defaults import REGION_SIZE
 
 OUTCOME = ("victim", "aggressor", "markers", "alone")
@@ -137,46 +135,24 @@ def make_scorer(from_rule: bool) -> Any:
     return FromRule()
 
 
-def inputs(r: RegionTrials, flip: tuple[bool, bool] = (False, False)) -> np.ndarray:
-    from xroute.policies.rl.imitation import mirrored
-
-    return np.concatenate([mirrored(r.features, *flip), r.outcome], 1).astype(np.float32)
+def inputs(r: RegionTrials) -> np.ndarray:
+    """float32[N, 23]: the set features and the outcome columns."""
+    return np.concatenate([r.features, r.outcome], 1).astype(np.float32)
 
 
 def fit(regions: list[RegionTrials], steps: int, from_rule: bool, seed: int = 1) -> Any:
-    """The scorer trained to imitate each region's second orders (all but the heuristic's), weighted by cost."""
+    """The scorer trained by ``xroute train imitate``'s loop (:func:`~xroute.policies.rl.imitation.train`)
+    to imitate each region's second orders (all but the heuristic's), weighted by cost."""
     import torch
 
-    from xroute.policies.rl.imitation import order_weights, plackett_luce_loss
+    from xroute.policies.rl.imitation import ImitationConfig, train
+    from xroute.policies.rl.teacher import TeacherRegion
 
     torch.manual_seed(seed)
-    rng = np.random.default_rng(seed)
-    data = [r for r in regions if np.ptp(r.costs[1:]) > 1e-6]
     model = make_scorer(from_rule)
-    opt = torch.optim.AdamW(model.parameters(), lr=1e-3, weight_decay=1e-4)
-    sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, max(1, steps))
-    model.train()
-    for _ in range(steps):
-        pick = [data[i] for i in rng.choice(len(data), size=min(16, len(data)), replace=False)]
-        flips = [(bool(rng.integers(2)), bool(rng.integers(2))) for _ in pick]
-        n, k = max(len(r.features) for r in pick), max(len(r.costs) for r in pick) - 1
-        feats = np.zeros((len(pick), n, inputs(pick[0]).shape[1]), np.float32)
-        mask = np.zeros((len(pick), n), bool)
-        orders = np.tile(np.arange(n), (len(pick), k, 1))
-        weights = np.zeros((len(pick), k), np.float32)
-        for j, r in enumerate(pick):
-            m = len(r.features)
-            feats[j, :m], mask[j, :m] = inputs(r, flips[j]), True
-            orders[j, :len(r.costs) - 1, :m] = r.orders[1:]
-            weights[j, :len(r.costs) - 1] = order_weights(r.costs[1:], TEMPERATURE)
-        f, msk = torch.from_numpy(feats), torch.from_numpy(mask)
-        loss = plackett_luce_loss(model(f, msk), msk, torch.from_numpy(orders), torch.from_numpy(weights))
-        opt.zero_grad()
-        loss.backward()
-        torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
-        opt.step()
-        sched.step()
-    return model.eval()
+    second = [TeacherRegion(r.testcase, r.index, inputs(r), r.orders[1:], r.costs[1:]) for r in regions]
+    cfg = ImitationConfig(steps=steps, temperature=TEMPERATURE, seed=seed, device="cpu")
+    return train(second, cfg, model=model)[0]
 
 
 def learned_order(model: Any, r: RegionTrials) -> np.ndarray:
@@ -216,14 +192,8 @@ def evaluate(regions: list[RegionTrials], steps: int, region_size: int = REGION_
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--testcase", action="append")
-    ap.add_argument("--region-size", type=int, default=REGION_SIZE)
-    ap.add_argument("--hold-out-every", type=int, default=3)
+    ap = training_regions_parser(__doc__)
     ap.add_argument("--variants", type=int, default=8, help="orders drawn around the rule's per region")
-    ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--steps", type=int, default=800)
-    ap.add_argument("--json", type=Path)
     a = ap.parse_args()
     import torch
 

@@ -384,3 +384,19 @@ def test_route_settings_fields_are_route_design_keywords() -> None:
 
     keywords = set(inspect.signature(route_design).parameters) - {"design", "policy", "progress"}
     assert keywords == set(RouteSettings().keywords())
+
+
+def test_every_builtin_policy_class_runs_in_the_engine() -> None:
+    """Each class of xroute.policy that names a built-in is handed to the engine by that name (no
+    Python call per region); a new built-in needs nothing more in the router."""
+    import inspect
+
+    import xroute.policy as policy_module
+    from xroute.policy import BUILTIN_POLICIES
+    from xroute.router import _builtin
+
+    classes = [c for _, c in inspect.getmembers(policy_module, inspect.isclass)
+               if c.__module__ == "xroute.policy" and c.__dict__.get("builtin")]
+    assert sorted(c.builtin for c in classes) == sorted(BUILTIN_POLICIES)
+    for cls in classes:
+        assert _builtin(cls()) == cls.builtin, cls

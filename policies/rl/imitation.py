@@ -80,7 +80,7 @@ def batch_tensors(regions: list[TeacherRegion], temperature: float,
     b = len(regions)
     n = max(len(r.features) for r in regions)
     k1 = max(len(r.costs) for r in regions)
-    feats = np.zeros((b, n, len(SET_FEATURES)), dtype=np.float32)
+    feats = np.zeros((b, n, regions[0].features.shape[1]), dtype=np.float32)
     mask = np.zeros((b, n), dtype=bool)
     orders = np.tile(np.arange(n), (b, k1, 1))
     weights = np.zeros((b, k1), dtype=np.float32)
@@ -124,16 +124,20 @@ def contrast_loss(scores: torch.Tensor, mask: torch.Tensor, orders: torch.Tensor
 
 
 def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig(),
-          on_log: Any = None) -> tuple[SetScorer, list[dict[str, Any]]]:
+          on_log: Any = None, model: SetScorer | None = None) -> tuple[SetScorer, list[dict[str, Any]]]:
     """Trains a :class:`SetScorer` on ``regions`` (their informative part) on ``cfg.device``; returns it (eval
-    mode, on the CPU) and the log."""
+    mode, on the CPU) and the log. ``model``: the scorer to train (None: a new one from ``cfg`` over
+    the set features, made after torch is seeded). The regions' feature columns begin with
+    :data:`SET_FEATURES`; mirroring changes only the box columns, so further ones pass unchanged."""
     device = pick_device(cfg.device)
     torch.manual_seed(cfg.seed)
     rng = np.random.default_rng(cfg.seed)
     data = informative(regions)
     if not data:
         raise ValueError("no teacher region where the order changed the cost: nothing to imitate")
-    model = SetScorer(len(SET_FEATURES), cfg.width, cfg.heads, cfg.layers, cfg.prior).to(device)
+    if model is None:
+        model = SetScorer(len(SET_FEATURES), cfg.width, cfg.heads, cfg.layers, cfg.prior)
+    model = model.to(device)
     opt = torch.optim.AdamW(model.parameters(), lr=cfg.lr, weight_decay=cfg.weight_decay)
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(opt, max(1, cfg.steps))
     log: list[dict[str, Any]] = []

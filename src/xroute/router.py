@@ -19,13 +19,9 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 import numpy as np
 
 from xroute.policy import (
-    BestOfPolicy,
-    HeuristicPolicy,
     NetOrderPolicy,
     RandomPolicy,
-    RolloutPolicy,
     SequentialPolicy,
-    VictimsPolicy,
     builtin_policy,
     check_order,
 )
@@ -239,9 +235,11 @@ def _builtin(policy: NetOrderPolicy) -> str | None:
     (including a subclass of a built-in that overrides ``order``)."""
     if isinstance(policy, SequentialPolicy):
         return None
-    for cls in (HeuristicPolicy, RandomPolicy, RolloutPolicy, VictimsPolicy, BestOfPolicy):
-        if isinstance(policy, cls) and type(policy).order is cls.order:
-            return cls.builtin
+    # The nearest class of xroute.policy that names a built-in (its `builtin` attribute), so a new
+    # built-in needs no list here.
+    for cls in type(policy).__mro__:
+        if cls.__module__ == "xroute.policy" and cls.__dict__.get("builtin"):
+            return cls.builtin if type(policy).order is cls.order else None
     return None
 
 
