@@ -1,0 +1,127 @@
+"""bench/pair_victims.py (features of pairs of nets, a victim classifier) and bench/order_ceiling.py's
+stubborn-marker row, on drawn grids and the generated imitation sample (conftest)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+torch = pytest.importorskip("torch")
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+
+SIZE = 2  # regions of the imitation_sample fixture: 64 of 2x2 GCells
+HOLD_OUT = 3
+
+
+def test_pair_features_on_a_drawn_grid() -> None:
+    """Five candidates and one other net on a 2-layer 5x6 grid; every column worked out by hand."""
+    import pair_victims as pv
+
+    access = np.full((2, 5, 6), -1, np.int32)
+    access[0, 0, 0] = access[0, 0, 1] = 10
+    access[0, 0, 2] = 20  # 1 step from 10
+    access[0, 3, 3] = 30
+    access[1, 3, 3] = 40  # straight above 30
+    access[0, 2, 0] = 50  # 2 steps from 10 and from 20
+    access[0, 1, 3] = 99  # not a candidate: 1 step from 20, 2 from 30
+    ids = np.array([10, 20, 30, 40, 50])
+    heuristic = np.array([1, 0, 4, 2, 3])  # ranks: 10 -> 1, 20 -> 0, 30 -> 3, 40 -> 4, 50 -> 2
+    f = pv.pair_features(access, ids, heuristic)
+    one, two = 1 / 3, np.log2(3) / 3
+    col = {n: i for i, n in enumerate(pv.PAIR_FEATURES)}
+    expect = {
+        "near1_before": [one, 0, 0, one, 0],
+        "near1_after": [0, one, one, 0, 0],
+        "near2_before": [one, 0, 0, one, two],
+        "near2_after": [one, two, one, 0, 0],
+        "near1_fixed": [0, one, 0, 0, 0],
+        "touch1_share": [0.5, 1, 1, 1, 0],
+        "touch2_share": [1, 1, 1, 1, 1],
+        "rank": [0.25, 0, 0.75, 1, 0.5],
+    }
+    assert set(expect) == set(pv.PAIR_FEATURES)
+    for name, values in expect.items():
+        np.testing.assert_allclose(f[:, col[name]], values, atol=1e-6, err_msg=name)
+    assert pv.pair_features(access, ids[:0], heuristic[:0]).shape == (0, len(pv.PAIR_FEATURES))
+
+
+def test_auc_matches_counting_pairs() -> None:
+    import pair_victims as pv
+
+    rng = np.random.default_rng(3)
+    score = rng.integers(0, 6, 80).astype(float)  # many ties
+    label = rng.random(80) < 0.3
+    pos, neg = score[label], score[~label]
+    brute = ((pos[:, None] > neg[None, :]).sum() + 0.5 * (pos[:, None] == neg[None, :]).sum()) / (len(pos) * len(neg))
+    assert pv.auc(score, label) == pytest.approx(brute)
+    assert np.isnan(pv.auc(score, np.zeros(80, bool)))
+
+
+def test_pair_victims_bench_labels_the_heuristic_routing_and_scores_out_of_sample(imitation_sample: str) -> None:
+    """Each region's label is the victims of its heuristic routing, its rule cost a fresh routing of
+    the true victims first; the cross-validation scores every region once, and its orders are the
+    heuristic's with the predicted victims moved to the front."""
+    import pair_victims as pv
+    from xroute.policies.rl.holdout import marker_roles
+    from xroute.policies.rl.teacher import load_first_pass, route_order
+    from xroute.policy import heuristic_order
+
+    torch.set_num_threads(1)
+    regions = pv.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, max_regions=24)
+    assert len(regions) >= 10
+    fp, dbu = load_first_pass(imitation_sample, SIZE)
+    for r in regions:
+        region = fp.open_region(r.index)
+        heuristic = np.asarray(heuristic_order(np.asarray(region.candidates)))
+        assert (r.heuristic == heuristic).all()
+        for k in heuristic:
+            region.route_net(int(k))
+        victims = set(marker_roles(region)[0])
+        assert [int(n) in victims for n in np.asarray(region.candidates)[:, 0]] == r.victim.tolist()
+        first = r.victim[heuristic]
+        assert r.costs[1] == pytest.approx(route_order(fp, r.index, np.concatenate([heuristic[first], heuristic[~first]]), dbu))
+    assert any(r.victim.any() for r in regions)
+    r = next(r for r in regions if len(r.victim) >= 3)
+    prob = np.linspace(0.9, 0.1, len(r.victim))
+    orders = pv.predicted_orders(r, prob)
+    for order in orders.values():
+        assert sorted(order) == list(range(len(r.victim)))
+    top = int(round(prob.sum()))
+    assert set(orders["top sum(p) first"][:top]) == set(range(top))
+    rows = pv.evaluate(regions, steps=20, region_size=SIZE)[imitation_sample]
+    assert rows["regions"] == len(regions)
+    assert rows["nets"] == sum(len(x.victim) for x in regions)
+    assert rows["heuristic"] == pytest.approx(sum(x.costs[0] for x in regions))
+    for w in pv.INPUTS:
+        assert 0.0 <= rows[f"AUC {w}"] <= 1.0
+
+
+def test_order_ceiling_counts_stubborn_markers(imitation_sample: str) -> None:
+    """The best-of-K rows are the minimum of holdout.best_of_random's orders, and ``avoidable removed``
+    is the heuristic's cost less 500 per marker that some routing avoids."""
+    import argparse
+
+    import order_ceiling as oc
+    from xroute import load_design
+    from xroute.policies.rl.holdout import best_of_random, held_out_regions, route_in_context
+    from xroute.session import first_pass, open_session
+
+    a = argparse.Namespace(region_size=SIZE, hold_out_every=HOLD_OUT, min_candidates=2, best_of=[1, 3], threads=1)
+    res = oc.bench_testcase(imitation_sample, a)
+    design = load_design(imitation_sample)
+    dbu = design.dbu_per_micron
+    fp = first_pass(open_session(design), SIZE)
+    regions = list(held_out_regions(fp, HOLD_OUT, SIZE, 2))
+    assert res["regions"] == len(regions) > 0
+    samples = [best_of_random(fp, reg, 3, dbu) for reg in regions]
+    assert res["totals"]["best-of-3"] == pytest.approx(sum(min(s.cost for s in x) for x in samples))
+    assert res["totals"]["best-of-1"] == pytest.approx(sum(x[0].cost for x in samples))
+    heuristic = [route_in_context(fp, reg, "heuristic", 1, dbu) for reg in regions]
+    assert res["markers"] == sum(s.drvs for s in heuristic)
+    assert 0 <= res["stubborn"] <= res["markers"]
+    assert res["totals"]["avoidable removed"] == pytest.approx(
+        res["totals"]["heuristic"] - oc.MARKER_COST * (res["markers"] - res["stubborn"]))
