@@ -127,6 +127,38 @@ def test_victims_routes_the_heuristic_routings_victims_first(generated: Path) ->
     assert moved > 0  # some region is cheaper with its victims first
 
 
+def test_a_larger_victims_budget_adds_shuffled_trials_and_is_never_costlier(generated: Path) -> None:
+    """The victims search's trials for a budget are the first trials for any larger budget (the
+    shuffles are seeded by the trial, not the budget), so a larger budget never ends costlier; once
+    no new victim appears, the rest of the budget routes the victims first in shuffled orders, so
+    some region adopts an order whose victims are not in heuristic rank."""
+    from xroute.session import open_session
+
+    design = load(generated)
+    session = open_session(design)
+    dbu = design.dbu_per_micron
+    totals = dict.fromkeys((2, 4, 16), 0.0)
+    shuffled = 0
+    for box in boxes(session):
+        costs = {}
+        for budget in totals:
+            region = session.open_region(box)
+            region.route_rest("victims", 1, search_budget=budget)
+            costs[budget] = region_cost(region, dbu)
+            totals[budget] += costs[budget]
+        assert costs[16] <= costs[4] + 1e-9 and costs[4] <= costs[2] + 1e-9, (box, costs)
+        rows = np.asarray(region.candidates)
+        if len(rows) < 2:
+            continue
+        rank = {int(k): p for p, k in enumerate(heuristic_order(rows))}
+        order = [int(k) for k in region.route_order]
+        # The adopted order is some set first, then the rest, each part in heuristic rank, unless shuffled.
+        breaks = sum(rank[a] > rank[b] for a, b in zip(order, order[1:]))
+        shuffled += breaks > 1
+    assert shuffled > 0
+    assert totals[16] < totals[4], totals
+
+
 def test_a_search_routes_the_order_it_returns(generated: Path) -> None:
     """The region adopts the cheapest trial's routing: replaying its order net by net gives the same cost."""
     from xroute.session import open_session

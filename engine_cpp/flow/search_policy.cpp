@@ -208,30 +208,49 @@ std::vector<int32_t> victimNets(const RegionSearch& search, const std::vector<in
 
 class VictimsPolicy final : public NetOrderPolicy {
  public:
+  static constexpr int kMaxRedraws = 64;  // draws of a victims' order over a whole search
   explicit VictimsPolicy(const SearchSettings& s) : s_(s) {}
   std::vector<int32_t> order(const RegionInfo& r, const std::vector<NetCandidate>& c) override {
     return RolloutPolicy(s_).order(r, c);
   }
   // Trial 1 routes the heuristic order. Each later trial routes the victims of every trial so far
-  // first and the other nets after them, both parts in heuristic rank. It stops when a trial
-  // names no new victim (the next order would repeat one tried) or the budget is spent; the
-  // cheapest trial is kept.
+  // first and the other nets after them, both parts in heuristic rank, until a trial names no new
+  // victim. Trials left in the budget then route the victims (of every trial so far) first in a
+  // seeded random order, the rest in heuristic rank; a drawn order tried before is drawn again
+  // (kMaxRedraws times at most, then the search stops). The cheapest trial is kept.
   std::vector<int32_t> orderRegion(RegionRouter& router, const RegionInfo& r, const std::vector<NetCandidate>& c) override {
     if (c.size() < 2 || s_.budget < 2) return order(r, c);
     RegionSearch search(router, c, s_.weights);
     std::vector<int32_t> best = search.rank(), current = best, victims;
+    std::vector<std::vector<int32_t>> tried{current};
     std::vector<Marker> markers;
     search.trial(router, current, &markers);
+    bool shuffling = false;
+    int draws = 0;
     while (search.trials() < s_.budget) {
       std::vector<int32_t> found = victimNets(search, current, markers), merged;
       std::set_union(victims.begin(), victims.end(), found.begin(), found.end(), std::back_inserter(merged));
-      if (merged.size() == victims.size()) break;
+      shuffling = shuffling || merged.size() == victims.size();
       victims = std::move(merged);
       std::vector<int32_t> early, late;
       for (int32_t k : search.rank())
         (std::binary_search(victims.begin(), victims.end(), search.net(k)) ? early : late).push_back(k);
-      early.insert(early.end(), late.begin(), late.end());
-      current = std::move(early);
+      if (shuffling) {
+        if (early.size() < 2) break;
+        std::vector<int32_t> drawn;
+        do {
+          if (draws == kMaxRedraws) break;
+          drawn.clear();
+          for (int32_t i : seededOrder(early.size(), s_.seed, r, ++draws)) drawn.push_back(early[i]);
+          drawn.insert(drawn.end(), late.begin(), late.end());
+        } while (std::find(tried.begin(), tried.end(), drawn) != tried.end());
+        if (std::find(tried.begin(), tried.end(), drawn) != tried.end() || drawn.empty()) break;
+        current = std::move(drawn);
+      } else {
+        early.insert(early.end(), late.begin(), late.end());
+        current = std::move(early);
+      }
+      tried.push_back(current);
       if (search.trial(router, current, &markers)) best = current;
     }
     return search.finish(best);

@@ -10,8 +10,9 @@
 //   victims    - the nets the markers of the trials so far leave in violation
 //                (the victims: of a two-net marker the net routed later, of a
 //                one-net marker its net) routed first, the rest after them,
-//                both in heuristic rank, until a trial names no new victim or
-//                the budget is spent.
+//                both in heuristic rank, until a trial names no new victim;
+//                the budget's other trials route the victims first in seeded
+//                random orders.
 //   best-of-K  - the heuristic order plus K-1 seeded random orders.
 // All count the heuristic's own order among their trials and keep the
 // cheapest, so a region never ends costlier than the heuristic's routing.

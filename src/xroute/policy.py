@@ -201,9 +201,10 @@ class VictimsPolicy:
     """The engine's victims search (see the module doc): in each region the heuristic order is
     routed, then again with the *victims* of every trial so far first (the nets its markers leave
     in violation: of a two-net marker the net routed later, a one-net marker's own net), the
-    others after them, both in heuristic order, until a trial names no new victim or ``budget``
-    trial routings are spent (None: the engine's default); the cheapest trial is kept. Outside
-    the router :meth:`order` is the heuristic's."""
+    others after them, both in heuristic order, until a trial names no new victim; the rest of
+    ``budget`` trial routings (None: the engine's default) route the victims first in seeded random
+    orders (seeded from the route's seed, the iteration, the region and the trial). The cheapest
+    trial is kept. Outside the router :meth:`order` is the heuristic's."""
 
     name = "victims"
     builtin = "victims"
