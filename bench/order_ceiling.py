@@ -17,9 +17,9 @@ routings of the region came out. They bound what a learned order could reach:
 * ``best-of-K``: per region the cheapest of K random orders (the engine's, seeds 1..K: the orders
   of ``rl_holdout.py``'s random-best-of-K row).
 * ``avoidable removed``: the heuristic's cost less 500 for each of its markers that at least one
-  of the other routings above does not have (a marker is its type, layer, box and nets). No one
-  order need avoid them all at once, so this is optimistic: orders from these searches are
-  unlikely to do better. The markers every routing has are printed as ``stubborn``.
+  of the other routings above does not have (a marker is its type, layer, box and nets). No
+  single order need avoid them all at once, so this figure is optimistic, not one any order is
+  known to reach. The markers every routing has are printed as ``stubborn``.
 
 Cost: the region's first-pass cost 0.5 WL(um) + 4 vias + 500 violations, summed over the regions.
 """
@@ -35,13 +35,14 @@ from typing import Any
 import numpy as np
 
 from xroute import load_design
+from xroute.config import CostSection
 from xroute.defaults import REGION_SIZE
 from xroute.policy import heuristic_order
 from xroute.policies.rl.holdout import held_out_regions, marker_roles, region_score
 from xroute.session import first_pass, open_session
 
 
-MARKER_COST = 500.0
+MARKER_COST = CostSection().drv_weight  # what one marker adds to a region's cost
 
 
 def marker_keys(region: Any) -> set[tuple]:
