@@ -173,6 +173,14 @@ def evaluate(regions: list[RegionEffects], steps: int, loss_kind: str) -> dict[s
     return {"testcases": rows, "corr_train": float(np.mean(corr_train)), "corr_test": float(np.mean(corr_test))}
 
 
+def print_against_heuristic(row: dict[str, Any], names: list[str], width: int) -> None:
+    """One line per name of ``row``: its summed cost and its change against ``row["heuristic"]``."""
+    base = row["heuristic"]
+    for name in names:
+        cost = row[name]
+        print(f"  {name:<{width}}{cost:>12,.1f}{100.0 * (cost - base) / base if base else 0.0:>+8.2f}%")
+
+
 def training_regions_parser(doc: str) -> argparse.ArgumentParser:
     """The options of a bench over the training regions: --testcase (repeatable), --region-size,
     --hold-out-every, --workers, --steps (of the scorer's training) and --json."""

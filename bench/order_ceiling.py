@@ -38,7 +38,7 @@ from xroute import load_design
 from xroute.config import CostSection
 from xroute.defaults import REGION_SIZE
 from xroute.policy import heuristic_order
-from xroute.policies.rl.holdout import held_out_regions, marker_roles, region_score
+from xroute.policies.rl.holdout import held_out_regions, marker_roles, moved_first, region_score
 from xroute.session import first_pass, open_session
 
 
@@ -50,7 +50,7 @@ def marker_keys(region: Any) -> set[tuple]:
     return {(m["type"], m["layer"], tuple(m["box"]), tuple(sorted(m["nets"]))) for m in region.markers()}
 
 
-def route_victims(fp: Any, index: int, order: list[int], dbu: int) -> tuple[float, set[int], set[tuple]]:
+def route_victims(fp: Any, index: int, order: Any, dbu: int) -> tuple[float, set[int], set[tuple]]:
     """Cost of region ``index`` routed in ``order``, the nets its markers leave in violation, its markers."""
     r = fp.open_region(index)
     for k in order:
@@ -63,10 +63,6 @@ def route_random(fp: Any, index: int, seed: int, dbu: int) -> tuple[float, set[t
     r = fp.open_region(index)
     r.route_rest("random", seed)
     return region_score(r, dbu).cost, marker_keys(r)
-
-
-def victims_first(order: list[int], nets: np.ndarray, victims: set[int]) -> list[int]:
-    return [k for k in order if nets[k] in victims] + [k for k in order if nets[k] not in victims]
 
 
 def bench_testcase(name: str, a: argparse.Namespace) -> dict[str, Any]:
@@ -84,8 +80,8 @@ def bench_testcase(name: str, a: argparse.Namespace) -> dict[str, Any]:
         nets = rows[:, 0]
         order = [int(k) for k in heuristic_order(rows)]
         c0, v0, m0 = route_victims(fp, reg.index, order, dbu)
-        c1, v1, m1 = route_victims(fp, reg.index, victims_first(order, nets, v0), dbu)
-        c2, _, m2 = route_victims(fp, reg.index, victims_first(order, nets, v0 | v1), dbu)
+        c1, v1, m1 = route_victims(fp, reg.index, moved_first(order, np.isin(nets, list(v0))), dbu)
+        c2, _, m2 = route_victims(fp, reg.index, moved_first(order, np.isin(nets, list(v0 | v1))), dbu)
         costs = {"heuristic": c0, "victims-first": c1, "victims-first-2": c2}
         samples = [route_random(fp, reg.index, s, dbu) for s in range(1, max(a.best_of) + 1)]
         for k in a.best_of:

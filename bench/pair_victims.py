@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from net_effects import run_shards, training_regions_parser
+from net_effects import print_against_heuristic, run_shards, training_regions_parser
 from xroute.defaults import REGION_SIZE
 
 PAIR_FEATURES: tuple[str, ...] = (
@@ -125,12 +125,6 @@ class RegionVictims:
     costs: np.ndarray  # float64[2]: heuristic, rule (victims first)
 
 
-def rule_order(heuristic: np.ndarray, first: np.ndarray) -> np.ndarray:
-    """The heuristic order with the rows where ``first`` is set moved to the front (both parts in heuristic order)."""
-    f = np.asarray(first, bool)[heuristic]
-    return np.concatenate([heuristic[f], heuristic[~f]]).astype(np.int32)
-
-
 def region_inputs(region: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(set features, pair features, heuristic order) of an engine Region as it opens."""
     from xroute.policies.rl.set_features import region_set_features
@@ -143,7 +137,7 @@ def region_inputs(region: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def collect_shard(job: tuple) -> list[RegionVictims]:
     testcase, shard, shards, region_size, hold_out_every, max_regions = job
-    from xroute.policies.rl.holdout import marker_roles, region_score
+    from xroute.policies.rl.holdout import marker_roles, moved_first, region_score
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
 
     fp, dbu = load_first_pass(testcase, region_size)
@@ -156,7 +150,7 @@ def collect_shard(job: tuple) -> list[RegionVictims]:
         base = region_score(region, dbu).cost
         victims = marker_roles(region)[0]
         victim = np.isin(np.asarray(region.candidates)[:, 0], list(victims))
-        rule = route_order(fp, index, rule_order(heuristic, victim), dbu) if victim.any() else base
+        rule = route_order(fp, index, moved_first(heuristic, victim), dbu) if victim.any() else base
         out.append(RegionVictims(testcase, index, features, pairs, victim, heuristic, np.array([base, rule])))
     return out
 
@@ -227,10 +221,12 @@ def auc(score: np.ndarray, label: np.ndarray) -> float:
 
 
 def predicted_orders(r: RegionVictims, prob: np.ndarray) -> dict[str, np.ndarray]:
+    from xroute.policies.rl.holdout import moved_first
+
     top = int(round(float(prob.sum())))
     chosen = np.zeros(len(prob), bool)
     chosen[np.argsort(-prob, kind="stable")[:top]] = True
-    return {"p > 0.5 first": rule_order(r.heuristic, prob > 0.5), "top sum(p) first": rule_order(r.heuristic, chosen)}
+    return {"p > 0.5 first": moved_first(r.heuristic, prob > 0.5), "top sum(p) first": moved_first(r.heuristic, chosen)}
 
 
 def evaluate(regions: list[RegionVictims], steps: int, region_size: int = REGION_SIZE) -> dict[str, Any]:
@@ -288,9 +284,8 @@ def main() -> None:
               f"heuristic {base:,.1f}")
         for w in INPUTS:
             print(f"  AUC, {w:<30}{row[f'AUC {w}']:>8.3f}")
-        for name, cost in row.items():
-            if isinstance(cost, float) and name != "heuristic" and not name.startswith("AUC"):
-                print(f"  {name:<50}{cost:>12,.1f}{100.0 * (cost - base) / base if base else 0.0:>+8.2f}%")
+        print_against_heuristic(row, [n for n, c in row.items() if isinstance(c, float) and n != "heuristic"
+                                      and not n.startswith("AUC")], 50)
     print(f"collection {collected:.0f} s, all {time.perf_counter() - t0:.0f} s")
     if a.json:
         a.json.write_text(json.dumps({"rows": rows, "seconds": time.perf_counter() - t0}, indent=1))

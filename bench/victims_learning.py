@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from net_effects import run_shards, training_regions_parser
+from net_effects import print_against_heuristic, run_shards, training_regions_parser
 from xroute.defaults import REGION_SIZE
 
 OUTCOME = ("victim", "aggressor", "markers", "alone")
@@ -62,12 +62,6 @@ def outcome_columns(region: Any) -> np.ndarray:
     return out
 
 
-def rule_order(heuristic: np.ndarray, victim: np.ndarray) -> np.ndarray:
-    """The heuristic order with the rows where ``victim`` is set first (the victims search's second trial)."""
-    first = victim[heuristic] > 0
-    return np.concatenate([heuristic[first], heuristic[~first]]).astype(np.int32)
-
-
 def variant_orders(rng: np.random.Generator, heuristic: np.ndarray, outcome: np.ndarray, count: int) -> list[np.ndarray]:
     p = np.where(outcome[:, 0] > 0, 0.7, np.where(outcome[:, 1] > 0, 0.2, 0.05))
     out = []
@@ -82,7 +76,7 @@ def variant_orders(rng: np.random.Generator, heuristic: np.ndarray, outcome: np.
 
 def collect_shard(job: tuple) -> list[RegionTrials]:
     testcase, shard, shards, region_size, hold_out_every, variants, max_regions = job
-    from xroute.policies.rl.holdout import region_score
+    from xroute.policies.rl.holdout import moved_first, region_score
     from xroute.policies.rl.set_features import region_set_features
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
     from xroute.policy import heuristic_order
@@ -97,7 +91,7 @@ def collect_shard(job: tuple) -> list[RegionTrials]:
             region.route_net(int(k))
         base = region_score(region, dbu).cost
         outcome = outcome_columns(region)
-        tried = [rule_order(heuristic, outcome[:, 0])]
+        tried = [moved_first(heuristic, outcome[:, 0] > 0)]  # the victims search's second trial
         tried += variant_orders(np.random.default_rng([7, index]), heuristic, outcome, variants)
         costs = [base] + [route_order(fp, index, o, dbu) for o in tried]
         out.append(RegionTrials(testcase, index, features, outcome, np.stack([heuristic] + tried),
@@ -206,9 +200,7 @@ def main() -> None:
     for t, row in rows.items():
         base = row["heuristic"]
         print(f"{t}: {int(row['regions'])} training regions, heuristic {base:,.1f}")
-        for name, cost in row.items():
-            if name not in ("regions", "heuristic"):
-                print(f"  {name:<40}{cost:>12,.1f}{100.0 * (cost - base) / base if base else 0.0:>+8.2f}%")
+        print_against_heuristic(row, [n for n in row if n not in ("regions", "heuristic")], 40)
     print(f"collection {collected:.0f} s, all {time.perf_counter() - t0:.0f} s")
     if a.json:
         a.json.write_text(json.dumps({"rows": rows, "seconds": time.perf_counter() - t0}, indent=1))

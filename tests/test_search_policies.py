@@ -195,6 +195,18 @@ def test_search_policies_route_the_same_def_for_any_thread_count(generated: Path
     assert heuristic.def_text() != defs[0]  # the search changed some region's routing
 
 
+def test_the_victims_search_shuffles_from_the_route_seed(generated: Path) -> None:
+    """The route's seed reaches the victims search's shuffled trials: with a budget large enough to
+    shuffle, two seeds route different DEFs, and one seed routes the same DEF twice."""
+    defs = {}
+    for seed in (1, 2, 1):
+        design = load(generated)
+        route_design(design, policy=VictimsPolicy(16), seed=seed, iterations=1, region_size=3)
+        defs.setdefault(seed, []).append(design.def_text())
+    assert defs[1][0] == defs[1][1]
+    assert defs[1][0] != defs[2][0]
+
+
 def test_search_policy_names_and_bad_budgets() -> None:
     assert builtin_policy("best-of-8").name == "best-of-8" and builtin_policy("best-of-8").k == 8
     assert builtin_policy("bestof", search_budget=5).k == 5

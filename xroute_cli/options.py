@@ -63,7 +63,7 @@ SearchBudgetOption = Annotated[
                  help=f"Trial routings per region of the rollout and victims policies (and bestof's K). Default: {SEARCH_BUDGET}.",
                  show_default=False),
 ]
-SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy. Default: 1.", show_default=False)]
+SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy and of the victims and best-of-K searches' random orders. Default: 1.", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]
 QuietOption = Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")]
 ScheduleOption = Annotated[

@@ -87,6 +87,14 @@ def marker_roles(region: Any) -> tuple[dict[int, int], dict[int, int], dict[int,
     return victims, aggressors, alone
 
 
+def moved_first(order: Any, first: Any) -> np.ndarray:
+    """int32 ``order`` (candidate rows) with the rows where the bool[N] mask ``first`` is set moved to
+    the front, both parts in their order there (victims first: ``first`` from :func:`marker_roles`)."""
+    order = np.asarray(order, np.int64)
+    f = np.asarray(first, bool)[order]
+    return np.concatenate([order[f], order[~f]]).astype(np.int32)
+
+
 def held_out_regions(first_pass: Any, hold_out_every: int, region_size: int,
                      min_candidates: int = 2) -> Iterator[HeldOutRegion]:
     """The held-out regions of ``first_pass`` with at least ``min_candidates`` nets, in the flow's order

@@ -303,7 +303,7 @@ def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[s
         return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
     if builtin == "victims":
         budget = check_search_budget("victims search budget", pol.budget)
-        return {"policy": "victims", "search_budget": budget}, None
+        return {"policy": "victims", "search_budget": budget, "seed": settings.seed}, None
     if builtin == "bestof":
         k = check_search_budget("best-of-K: K", pol.k)
         return {"policy": f"best-of-{k}", "seed": pol.seed}, None
