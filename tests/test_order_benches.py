@@ -1,5 +1,6 @@
-"""bench/pair_victims.py (features of pairs of nets, a victim classifier) and bench/order_ceiling.py's
-stubborn-marker row, on drawn grids and the generated imitation sample (conftest)."""
+"""bench/pair_victims.py (features of pairs of nets, a victim classifier), bench/order_ceiling.py's
+stubborn-marker row and bench/victims_order.py (a learned order of the victims search's victims),
+on drawn grids and the generated imitation sample (conftest)."""
 
 from __future__ import annotations
 
@@ -127,3 +128,77 @@ def test_order_ceiling_counts_stubborn_markers(imitation_sample: str) -> None:
     assert res["stubborn"] <= sum(min(s.drvs for s in x) for x in samples)
     removed = res["totals"]["heuristic"] - res["totals"]["avoidable removed"]
     assert removed == pytest.approx(500.0 * (res["markers"] - res["stubborn"]))
+
+
+def test_victims_order_positions_on_a_drawn_order() -> None:
+    import victims_order as vo
+
+    t = vo.SearchTrials("x", 0, False, np.zeros((10, 1), np.float32), np.arange(10, dtype=np.int32),
+                        np.array([5, 2, 9], np.int32), np.zeros(1), np.zeros((0, 3), np.int32), np.zeros(0))
+    np.testing.assert_allclose(vo.positions(t, np.array([9, 5, 2])), [0.5, 1.0, 0.0])  # victims 5, 2, 9
+    assert (vo.with_victims_first(np.array([3, 9, 1, 5, 2]), np.array([5, 9])) == [5, 9, 3, 1, 2]).all()
+
+
+def test_victims_order_fit_recovers_a_cost_linear_in_positions() -> None:
+    """Shuffle costs drawn from a known per-victim score (cost grows by score x position) are fitted back
+    to that score; a column that is constant within each region gets weight 0; and the learned order
+    (highest score first) is the cheapest of every order of the victims under that cost."""
+    import itertools
+
+    import victims_order as vo
+
+    rng = np.random.default_rng(5)
+    true = np.array([3.0, -2.0, 0.5, 0.0])  # three features and a constant column
+    regions = []
+    for index in range(30):
+        n = int(rng.integers(5, 9))
+        inputs = np.concatenate([rng.normal(size=(n, 3)), np.ones((n, 1))], 1).astype(np.float32)
+        victims = np.sort(rng.choice(n, int(rng.integers(2, n)), replace=False)).astype(np.int32)
+        shuffles = np.stack([rng.permutation(victims) for _ in range(12)]).astype(np.int32)
+        heuristic_cost = float(rng.uniform(1e3, 1e4))
+        t = vo.SearchTrials("x", index, False, inputs, np.arange(n, dtype=np.int32), victims,
+                            np.array([heuristic_cost]), shuffles, np.zeros(12))
+        score = inputs[victims].astype(np.float64) @ true
+        t.shuffle_costs = heuristic_cost * (1.0 + np.array([score @ vo.positions(t, o) for o in shuffles]))
+        regions.append(t)
+    w = vo.fit(regions)
+    np.testing.assert_allclose(w[:3], true[:3], rtol=1e-2, atol=1e-2)
+    assert w[3] == 0.0
+    t = next(r for r in regions if 3 <= len(r.victims) <= 6)
+    cost = {o: float(t.inputs[t.victims].astype(np.float64) @ true @ vo.positions(t, np.array(o)))
+            for o in itertools.permutations(t.victims.tolist())}
+    assert cost[tuple(vo.learned(t, true).tolist())] == pytest.approx(min(cost.values()))
+
+
+def test_victims_order_bench_replays_the_search(imitation_sample: str) -> None:
+    """Each region's rule trials start with the heuristic's routing and its victims include that
+    routing's victims; every shuffle routes the victims first in a new order and its cost is that
+    routing's; the budget rows never exceed the heuristic and a larger budget never costs more."""
+    import victims_order as vo
+    from xroute.policies.rl.holdout import marker_roles
+    from xroute.policies.rl.teacher import load_first_pass
+    from xroute.policy import heuristic_order
+
+    regions = vo.collect_shard((imitation_sample, 0, 1, SIZE, HOLD_OUT, 3, 24))
+    assert any(not t.held_out for t in regions) and any(t.held_out for t in regions)
+    fp, dbu = load_first_pass(imitation_sample, SIZE)
+    for t in regions:
+        region = fp.open_region(t.index)
+        nets = np.asarray(region.candidates)[:, 0]
+        assert (t.heuristic == np.asarray(heuristic_order(np.asarray(region.candidates)))).all()
+        cost, (victims, _, _) = vo.trial(fp, t.index, t.heuristic, dbu)
+        assert t.rule_costs[0] == pytest.approx(cost)
+        assert set(victims) <= set(nets[t.victims].tolist())
+        assert 1 <= len(t.rule_costs) <= vo.RULE_TRIALS and len(t.victims) >= 2
+        for o, c in zip(t.shuffles, t.shuffle_costs):
+            assert sorted(o) == sorted(t.victims)
+            order = vo.with_victims_first(t.heuristic, o)
+            assert sorted(order) == list(range(len(nets)))
+            assert c == pytest.approx(vo.trial(fp, t.index, order, dbu)[0])
+    train = [t for t in regions if not t.held_out]
+    models = {k: vo.fit(train) for k in (-1, 0, 1, 2, 3, 4)}
+    rows = vo.rows_for(regions, models, {imitation_sample: (fp, dbu)})
+    assert sum(int(r["regions"]) for r in rows.values()) == len(regions)
+    for r in rows.values():
+        assert r["search b8"] <= r["search b4"] <= r["rule"] <= r["heuristic"]
+        assert r["learned in search b8"] <= r["rule"]
