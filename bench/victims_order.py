@@ -59,6 +59,7 @@ class SearchTrials:
 
 
 def trial(fp: Any, index: int, order: np.ndarray, dbu: int) -> tuple[float, Any]:
+    """(cost, holdout.marker_roles) of region ``index`` opened in context and routed in ``order``."""
     from xroute.policies.rl.holdout import marker_roles, region_score
 
     r = fp.open_region(index)
@@ -68,12 +69,16 @@ def trial(fp: Any, index: int, order: np.ndarray, dbu: int) -> tuple[float, Any]
 
 
 def with_victims_first(heuristic: np.ndarray, victims_order: np.ndarray) -> np.ndarray:
+    """int32[N]: ``victims_order`` (candidate rows) first, the other rows after them in heuristic rank."""
     rest = heuristic[~np.isin(heuristic, victims_order)]
     return np.concatenate([victims_order, rest]).astype(np.int32)
 
 
 def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles: int, held_out: bool,
                   testcase: str) -> SearchTrials | None:
+    """The rule trials of region ``index`` and ``shuffles`` seeded shuffles of their victims (None when
+    the rule names fewer than 2 victims)."""
+    from xroute.policies.rl.holdout import moved_first
     from xroute.policy import heuristic_order
 
     region = fp.open_region(index)
@@ -92,7 +97,7 @@ def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles:
         victims |= set(v)
         if not new or len(costs) == RULE_TRIALS:
             break
-        order = with_victims_first(heuristic, heuristic[np.isin(nets[heuristic], list(victims))])
+        order = moved_first(heuristic, np.isin(nets, list(victims)))
     vic = heuristic[np.isin(nets[heuristic], list(victims))].astype(np.int32)
     if len(vic) < 2:
         return None
@@ -160,11 +165,15 @@ def fit(regions: list[SearchTrials]) -> np.ndarray:
 
 
 def learned(t: SearchTrials, w: np.ndarray) -> np.ndarray:
+    """int32[V]: the victims by score under weights ``w``, highest first (ties in heuristic rank)."""
     s = t.inputs[t.victims].astype(np.float64) @ w
     return t.victims[np.argsort(-s, kind="stable")]
 
 
 def rows_for(regions: list[SearchTrials], models: dict[int, np.ndarray], fps: dict[str, Any]) -> dict[str, dict]:
+    """Per "testcase held-out" / "testcase training (5-fold)": the regions, and the summed cost of the
+    heuristic and of each row of the module docstring. ``models``: weights by fold (region index % 5)
+    for training regions, -1 for the held-out ones; ``fps``: (first pass, DBU) by testcase."""
     names = ("rule", "shuffle (mean)", "learned", "search b4", "learned in search b4", "search b8",
              "learned in search b8")
     rows: dict[str, dict] = {}
