@@ -9,6 +9,16 @@ Spaces (M = ``max_candidates``, S = ``len(NET_FEATURES)``; see :mod:`xroute.poli
                        action_mask:  MultiBinary(M))
     action      = Discrete(M)   # the row of the next net to route
 
+With ``observation="compact"`` (every env takes it; the default is ``"grid"``, the paper's), the
+grids are left out and each row carries the set scorer's features instead
+(:data:`~xroute.policies.rl.set_features.SET_FEATURES`, F of them, computed from the region as it
+is at that step)::
+
+    observation = Dict(set_features: Box(-inf, inf, (M, F), float32),
+                       action_mask:  MultiBinary(M))
+
+about 5 KB at M = 64 against 22 MB for the grids.
+
 Rows: when the region has N <= M candidates, row i is candidate i (rows of routed candidates and
 rows past N are masked out; rows past N are zero). When N > M, the rows are the M unrouted
 candidates first in the heuristic order, chosen again at every step. An action on a masked row
@@ -32,8 +42,11 @@ from gymnasium import spaces
 from xroute.config import CostSection
 from xroute.policy import heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
+from xroute.policies.rl.set_features import SET_FEATURES, set_features
 
 DEFAULT_MAX_CANDIDATES = 64
+OBSERVATIONS = ("grid", "compact")
+"""The observation kinds (see the module docstring); ``grid`` is the default."""
 
 RewardFn = Callable[[dict[str, Any], dict[str, Any]], float]
 
@@ -42,9 +55,20 @@ CostWeights = CostSection
 """The paper's cost weights (:class:`xroute.config.CostSection`, their one definition)."""
 
 
-def observation_space(max_candidates: int) -> spaces.Dict:
+def check_observation(value: str) -> str:
+    if value not in OBSERVATIONS:
+        raise ValueError(f"observation must be one of {list(OBSERVATIONS)}, got {value!r}")
+    return value
+
+
+def observation_space(max_candidates: int, observation: str = "grid") -> spaces.Dict:
     """The Dict observation space of every xroute env (see the module docstring)."""
     m = int(max_candidates)
+    if check_observation(observation) == "compact":
+        return spaces.Dict({
+            "set_features": spaces.Box(-np.inf, np.inf, (m, len(SET_FEATURES)), np.float32),
+            "action_mask": spaces.MultiBinary(m),
+        })
     return spaces.Dict({
         "obstacle": spaces.Box(0.0, 1.0, ALIGNED_SHAPE, np.float32),
         "nets": spaces.Box(0.0, 1.0, (m, NET_CHANNELS) + ALIGNED_SHAPE, np.float32),
@@ -53,9 +77,11 @@ def observation_space(max_candidates: int) -> spaces.Dict:
     })
 
 
-def empty_observation(max_candidates: int) -> dict[str, np.ndarray]:
+def empty_observation(max_candidates: int, observation: str = "grid") -> dict[str, np.ndarray]:
     """An all-zero observation (every row masked): what an env shows once there is nothing left."""
     m = int(max_candidates)
+    if check_observation(observation) == "compact":
+        return {"set_features": np.zeros((m, len(SET_FEATURES)), np.float32), "action_mask": np.zeros(m, np.int8)}
     return {
         "obstacle": np.zeros(ALIGNED_SHAPE, np.float32),
         "nets": np.zeros((m, NET_CHANNELS) + ALIGNED_SHAPE, np.float32),
@@ -74,8 +100,9 @@ class RegionStepper:
     """One engine Region routed one net per step, with observations, costs and rewards."""
 
     def __init__(self, region: Any, dbu_per_micron: int, max_candidates: int, weights: CostWeights,
-                 reward_fn: RewardFn | None = None) -> None:
+                 reward_fn: RewardFn | None = None, observation: str = "grid") -> None:
         self.region = region
+        self.kind = check_observation(observation)
         self.dbu = int(dbu_per_micron)
         self.m = int(max_candidates)
         self.weights = weights
@@ -105,7 +132,13 @@ class RegionStepper:
         """The padded observation dict of the region now (and fixes the rows the next action means)."""
         mask = unrouted_mask(self.region)
         self.slots = self._choose_slots(mask)
-        out = empty_observation(self.m)
+        out = empty_observation(self.m, self.kind)
+        if self.kind == "compact":
+            k = len(self.slots)
+            features = set_features(self.region.grid(), self.rows, mask, tuple(self.region.box))
+            out["set_features"][:k] = features[self.slots]
+            out["action_mask"][:k] = mask[self.slots]
+            return out
         reuse = self._nets is not None and np.array_equal(self._nets_slots, self.slots)
         obs = observe_arrays(self.region.grid(), self.rows, mask, tuple(self.region.box), select=self.slots,
                              nets_out=None if reuse else out["nets"], with_nets=not reuse)

@@ -32,6 +32,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_observation,
     check_render_mode,
     empty_observation,
     observation_space,
@@ -76,11 +77,13 @@ class NetOrderingEvaluationEnv(RegionEnv):
         reward_fn: RewardFn | None = None,
         out_dir: str | None = None,
         render_mode: str | None = None,
+        observation: str = "grid",
     ) -> None:
         from xroute.router import RouteSettings
 
         RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
         self.render_mode = check_render_mode(render_mode)
+        self.observation = check_observation(observation)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.iteration_count = iteration_count
@@ -88,7 +91,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
         self.weights = weights
         self.reward_fn = reward_fn
         self.out_dir = out_dir
-        self.observation_space = observation_space(self.max_candidates)
+        self.observation_space = observation_space(self.max_candidates, self.observation)
         self.action_space = gym.spaces.Discrete(self.max_candidates)
         self.design: Any = None
         self._thread: threading.Thread | None = None
@@ -143,7 +146,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
         kind, payload, info = self._events.get()
         if kind == "region":
             self._stepper = RegionStepper(payload, self.design.dbu_per_micron, self.max_candidates, self.weights,
-                                          self.reward_fn)
+                                          self.reward_fn, self.observation)
             self._region_info = info
             return {}
         self._finished = True
@@ -166,7 +169,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
         self._start()
         final = self._next_event()
         if self._stepper is None:  # nothing to route at all
-            return empty_observation(self.max_candidates), self._with_mask(final)
+            return empty_observation(self.max_candidates, self.observation), self._with_mask(final)
         observation = self._stepper.observation()
         return observation, self._with_mask(self._info())
 
@@ -186,7 +189,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
         final = self._next_event()
         if self._stepper is None:
             info.update(final)
-            return empty_observation(self.max_candidates), reward, True, False, self._with_mask(info)
+            return empty_observation(self.max_candidates, self.observation), reward, True, False, self._with_mask(info)
         info.update(self._info())
         observation = self._stepper.observation()
         return observation, reward, False, False, self._with_mask(info)

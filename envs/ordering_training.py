@@ -39,6 +39,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_observation,
     check_render_mode,
     observation_space,
 )
@@ -48,7 +49,8 @@ class NetOrderingTrainingEnv(RegionEnv):
     """Net ordering on the regions of a testcase, one region per episode (see the module docstring).
 
     observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
-    action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
+    action_mask MultiBinary(M)), or with ``observation="compact"`` Dict(set_features (M, F), action_mask);
+    action_space: Discrete(M), M = ``max_candidates``.
     """
 
     def __init__(
@@ -65,6 +67,7 @@ class NetOrderingTrainingEnv(RegionEnv):
         region_order: str = "sequential",
         in_context: bool = False,
         render_mode: str | None = None,
+        observation: str = "grid",
     ) -> None:
         if region_size is None:
             from xroute.defaults import REGION_SIZE
@@ -82,11 +85,12 @@ class NetOrderingTrainingEnv(RegionEnv):
         self.testcase_loop = testcase_loop
         self.region_location = None if region_location is None else (int(region_location[0]), int(region_location[1]))
         self.region_loop = region_loop
+        self.observation = check_observation(observation)
         self.max_candidates = check_max_candidates(max_candidates)
         self.weights = weights
         self.reward_fn = reward_fn
         self.region_order = region_order
-        self.observation_space = observation_space(self.max_candidates)
+        self.observation_space = observation_space(self.max_candidates, self.observation)
         self.action_space = gym.spaces.Discrete(self.max_candidates)
         self.passes_done = 0
         self._design: Any = None
@@ -168,7 +172,8 @@ class NetOrderingTrainingEnv(RegionEnv):
         self._box, self._location, self._index, self._replay = box, location, index, 1
 
     def _stepper_for(self, region: Any) -> RegionStepper:
-        return RegionStepper(region, self._design.dbu_per_micron, self.max_candidates, self.weights, self.reward_fn)
+        return RegionStepper(region, self._design.dbu_per_micron, self.max_candidates, self.weights, self.reward_fn,
+                             self.observation)
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)

@@ -22,6 +22,7 @@ from xroute.envs.core import (
     RegionStepper,
     RewardFn,
     check_max_candidates,
+    check_observation,
     check_render_mode,
     observation_space,
 )
@@ -31,24 +32,26 @@ class StaticRegionEnv(RegionEnv):
     """One static region, one episode per reset (see the module docstring).
 
     observation_space: Dict(obstacle (3, 64, 64), nets (M, 7, 3, 64, 64), net_features (M, S),
-    action_mask MultiBinary(M)); action_space: Discrete(M), M = ``max_candidates``.
+    action_mask MultiBinary(M)), or with ``observation="compact"`` Dict(set_features (M, F), action_mask);
+    action_space: Discrete(M), M = ``max_candidates``.
     """
 
     def __init__(self, region_dir: str, *, max_candidates: int = DEFAULT_MAX_CANDIDATES,
                  weights: CostWeights = CostWeights(), reward_fn: RewardFn | None = None,
-                 render_mode: str | None = None) -> None:
+                 render_mode: str | None = None, observation: str = "grid") -> None:
         from xroute.testcases.regions import load_region
         from xroute.session import open_session
 
         self.region_dir = str(region_dir)
         self.render_mode = check_render_mode(render_mode)
+        self.observation = check_observation(observation)
         self.max_candidates = check_max_candidates(max_candidates)
         self.weights = weights
         self.reward_fn = reward_fn
         self.design, self.meta = load_region(self.region_dir)
         self.box = tuple(self.meta["die"])
         self._session = open_session(self.design)
-        self.observation_space = observation_space(self.max_candidates)
+        self.observation_space = observation_space(self.max_candidates, self.observation)
         self.action_space = gym.spaces.Discrete(self.max_candidates)
         self._stepper: RegionStepper | None = None
 
@@ -56,7 +59,7 @@ class StaticRegionEnv(RegionEnv):
         super().reset(seed=seed)
         region = self._session.open_region(self.box)
         self._stepper = RegionStepper(region, self.design.dbu_per_micron, self.max_candidates, self.weights,
-                                      self.reward_fn)
+                                      self.reward_fn, self.observation)
         observation = self._stepper.observation()
         return observation, self._with_mask(self._info())
 

@@ -183,3 +183,44 @@ def test_holdout_scoring_matches_the_first_pass_and_takes_any_policy() -> None:
         assert best_score(samples).cost <= mean_score(samples).cost
     with pytest.raises(ValueError, match="built-in"):
         route_in_context(fp, regions[0], "no-such-policy", 1, dbu)
+
+
+def test_compact_observation_of_every_ordering_env() -> None:
+    """observation="compact": check_env passes; each row is the set scorer's features of its candidate as
+    the region is at that step (routed nets change the obstacle column); the observation is far under
+    1 MB at M = 64; the mask is the grid observation's; an unknown kind is a one-line ValueError."""
+    from gymnasium.utils.env_checker import check_env
+
+    from xroute.envs import ordering_evaluation_env, ordering_training_env
+    from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
+
+    require_testcase(DESIGN)
+    env = ordering_training_env(DESIGN, region_size=SIZE, in_context=True, max_candidates=64, observation="compact")
+    check_env(env)
+    assert set(env.observation_space.spaces) == {"set_features", "action_mask"}
+    obs, info = env.reset(seed=0)
+    assert obs["set_features"].shape == (64, len(SET_FEATURES)) and sum(v.nbytes for v in obs.values()) < 2**20
+    grid_env = ordering_training_env(DESIGN, region_size=SIZE, in_context=True, max_candidates=64)
+    grid_obs, _ = grid_env.reset(seed=0)
+    assert np.array_equal(grid_obs["action_mask"], obs["action_mask"])
+    steps = 0
+    while True:
+        stepper = env._stepper
+        k = len(stepper.slots)
+        np.testing.assert_array_equal(obs["set_features"][:k], region_set_features(stepper.region)[stepper.slots])
+        assert not obs["set_features"][k:].any()
+        if stepper.done:
+            break
+        obs, _, done, _, info = env.step(_first_legal(obs["action_mask"]))
+        assert np.array_equal(info["action_mask"], obs["action_mask"].astype(bool))
+        steps += 1
+    assert steps >= 2
+    evaluation = ordering_evaluation_env(DESIGN, region_size=4, iteration_count=1, max_candidates=16,
+                                         observation="compact")
+    obs, info = evaluation.reset(seed=0)
+    assert evaluation.observation_space.contains(obs) and np.array_equal(info["action_mask"], obs["action_mask"].astype(bool))
+    evaluation.close()
+    for make in (lambda: ordering_training_env(DESIGN, region_size=SIZE, observation="grids"),
+                 lambda: ordering_evaluation_env(DESIGN, observation="")):
+        with pytest.raises(ValueError, match="observation must be one of"):
+            make()

@@ -66,16 +66,41 @@ def test_violations_reward_sums_to_the_cost_drop(region_dir: str) -> None:
     assert total == pytest.approx((start - info["cost"]) / 500.0)
 
 
-def test_maskable_ppo_learns_the_region(region_dir: str) -> None:
+def test_set_extractor_scores_each_row_and_pools_the_legal_ones(region_dir: str) -> None:
+    from xroute.envs import static_region_env
+    from xroute.policies.rl.sb3 import SetOrderExtractor
+
+    env = static_region_env(region_dir, max_candidates=M, observation="compact")
+    obs, info = env.reset(seed=0)
+    torch.manual_seed(0)
+    extractor = SetOrderExtractor(env.observation_space, width=16)
+    batch = {k: torch.as_tensor(np.stack([v, v])).float() for k, v in obs.items()}
+    n = info["candidates"]
+    perm = list(range(M))
+    perm[0], perm[n - 1] = perm[n - 1], perm[0]
+    swapped = {k: v[:, perm] for k, v in batch.items()}
+    noise = {k: v.clone() for k, v in batch.items()}
+    noise["set_features"][:, n:] = 7.0  # padding rows: masked out of attention, scores and pooling
+    with torch.no_grad():
+        f, g, h = extractor(batch), extractor(swapped), extractor(noise)
+    assert f.shape == (2, M + 16) and extractor.features_dim == M + 16
+    torch.testing.assert_close(g[:, :M], f[:, perm])  # scores go with their rows
+    torch.testing.assert_close(g[:, M:], f[:, M:])  # the pooled vector does not see the rows' order
+    torch.testing.assert_close(h, f)
+    assert not f[:, n:M].any()
+
+
+@pytest.mark.parametrize("observation", ["grid", "compact"])
+def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> None:
     """384 steps (about 55 episodes) of MaskablePPO with fixed seeds take the greedy order from the
     untrained model's cost to one no higher than the best of 20 random orders."""
     from xroute.envs import static_region_env
     from xroute.policies.rl.sb3 import greedy_cost, make_maskable_ppo, random_costs, violations_reward
 
     torch.set_num_threads(1)
-    env = static_region_env(region_dir, max_candidates=M)
+    env = static_region_env(region_dir, max_candidates=M, observation=observation)
     env.reward_fn = violations_reward(env)
-    judge = static_region_env(region_dir, max_candidates=M)
+    judge = static_region_env(region_dir, max_candidates=M, observation=observation)
     model = make_maskable_ppo(env, seed=2)
     before = greedy_cost(model, judge)
     model.learn(total_timesteps=384)
@@ -83,3 +108,15 @@ def test_maskable_ppo_learns_the_region(region_dir: str) -> None:
     random = random_costs(judge, 20, seed=1)
     assert after < before
     assert after <= min(random) < np.mean(random)
+
+
+def test_the_example_script_trains_and_reports(region_dir: str, capsys: pytest.CaptureFixture[str]) -> None:
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import maskable_ppo
+
+    maskable_ppo.main([region_dir, "--steps", "64", "--observation", "compact"])
+    out = capsys.readouterr().out
+    assert "before training" in out and "after 64 steps" in out and "of 20" in out

@@ -1,11 +1,8 @@
 """MaskablePPO (sb3-contrib) on the net-ordering envs, with a features extractor over the shipped encoders.
 
-    python -m xroute.policies.rl.sb3 REGION_DIR [--steps 512] [--max-candidates 8] [--seed 1]
-
-REGION_DIR is a static region (``xroute make-region`` or :func:`xroute.envs.generate_static_region`);
-the script trains MaskablePPO on it and prints the cost of the region routed in the policy's
-greedy order before and after training, against the mean of random legal orders. Needs
-``pip install 'xroute[sb3]'`` (sb3-contrib, which brings stable-baselines3 and torch).
+Needs ``pip install 'xroute[sb3]'`` (sb3-contrib, which brings stable-baselines3 and torch). The
+envs are passed in (this module is layer 3 and does not import :mod:`xroute.envs`);
+``bench/maskable_ppo.py`` is the example that trains on a static region.
 
 :class:`NetOrderExtractor` is the piece to reuse with any xroute env. It turns the Dict observation
 (:mod:`xroute.envs.core`) into features with the encoders of :class:`~xroute.policies.rl.models.NetOrderModel`:
@@ -14,6 +11,8 @@ MLP gives one score per row, and the features are ``concat(scores [M], obstacle 
 SB3's action head (a linear layer) maps them to the M logits; MaskablePPO masks the rows that
 ``env.action_masks()`` marks illegal. Every row is encoded, so the cost of a batch grows with M: keep
 ``max_candidates`` small (the default of the envs, 64, makes each observation 22 MB).
+:class:`SetOrderExtractor` does the same for the envs' compact observation (``observation="compact"``:
+the set scorer's features per row, no grids) with the set scorer's network; there M can stay 64.
 
 Batch norm stays in eval mode (its running statistics fixed at their initial values, so each batch
 norm is a learned per-channel affine map): SB3 switches the policy between training and eval mode
@@ -22,7 +21,6 @@ between rollouts and updates, and with batch statistics the two would score diff
 
 from __future__ import annotations
 
-import argparse
 from typing import Any, Callable
 
 import numpy as np
@@ -60,6 +58,37 @@ class NetOrderExtractor(BaseFeaturesExtractor):
         return torch.cat([scores, obstacle], 1)
 
 
+class SetOrderExtractor(BaseFeaturesExtractor):
+    """The compact observation (``observation="compact"``: set features [M, F] and the mask) ->
+    ``concat(row scores [M], pooled embedding [width])`` with the set scorer's network
+    (:class:`~xroute.policies.rl.set_scorer.SetScorer`: an embedding, self-attention over the
+    unmasked rows, a score per row and its heuristic prior); the pooled embedding is the mean over
+    the unmasked rows, so the critic sees every net. Masked rows score 0 here (MaskablePPO masks
+    their logits)."""
+
+    def __init__(self, observation_space: spaces.Dict, width: int = 64) -> None:
+        from xroute.policies.rl.set_scorer import SetScorer
+
+        m, f = observation_space["set_features"].shape
+        super().__init__(observation_space, features_dim=int(m) + width)
+        self.scorer = SetScorer(int(f), width=width)
+
+    def forward(self, observations: dict[str, torch.Tensor]) -> torch.Tensor:
+        from xroute.policies.rl.set_scorer import MASKED_SCORE, RANK_COLUMN
+
+        features, mask = observations["set_features"], observations["action_mask"] > 0.5
+        net = self.scorer
+        x = net.embed(features)
+        key_bias = torch.where(mask, 0.0, MASKED_SCORE)[:, None, None, :]
+        for block in net.blocks:
+            x = block(x, key_bias)
+        x = net.norm(x)
+        scores = net.head(x).squeeze(-1) - net.prior * features[..., RANK_COLUMN]
+        weight = mask.float()
+        pooled = (x * weight[..., None]).sum(1) / weight.sum(1, keepdim=True).clamp(min=1.0)
+        return torch.cat([torch.where(mask, scores, torch.zeros_like(scores)), pooled], 1)
+
+
 def violations_reward(env: Any) -> Callable[[dict[str, Any], dict[str, Any]], float]:
     """A ``reward_fn`` for ``env`` (an xroute env): its reward, the drop of the region's cost, in units
     of one violation's weight (500). PPO's value loss grows with the square of the rewards; at the
@@ -74,12 +103,14 @@ def violations_reward(env: Any) -> Callable[[dict[str, Any], dict[str, Any]], fl
 
 def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: int = 32, **kwargs: Any) -> Any:
     """A MaskablePPO on ``env`` (an xroute net-ordering env, best with :func:`violations_reward`) with
-    :class:`NetOrderExtractor`, sized for CPU: ``n_steps`` steps per rollout (the rollout buffer holds
+    :class:`NetOrderExtractor` (grid observations) or :class:`SetOrderExtractor` (compact), sized for CPU: ``n_steps`` steps per rollout (the rollout buffer holds
     that many observations). Learning rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say
     otherwise."""
     from sb3_contrib import MaskablePPO
 
-    policy_kwargs = {"features_extractor_class": NetOrderExtractor, "net_arch": {"pi": [], "vf": [64]}}
+    compact = "set_features" in env.observation_space.spaces
+    policy_kwargs = {"features_extractor_class": SetOrderExtractor if compact else NetOrderExtractor,
+                     "net_arch": {"pi": [], "vf": [64]}}
     policy_kwargs.update(kwargs.pop("policy_kwargs", {}))
     settings = {"learning_rate": 1e-3, "gamma": 1.0, **kwargs}  # gamma 1: a region's cost is the sum of its rewards
     return MaskablePPO("MultiInputPolicy", env, n_steps=n_steps, batch_size=batch_size, seed=seed,
@@ -108,29 +139,3 @@ def random_costs(env: Any, episodes: int, seed: int) -> list[float]:
             obs, _, done, _, info = env.step(int(rng.choice(np.flatnonzero(obs["action_mask"]))))
         costs.append(float(info["cost"]))
     return costs
-
-
-def main(argv: list[str] | None = None) -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("region_dir")
-    ap.add_argument("--steps", type=int, default=512, help="environment steps (nets routed) to train for")
-    ap.add_argument("--max-candidates", type=int, default=8)
-    ap.add_argument("--seed", type=int, default=1)
-    a = ap.parse_args(argv)
-    from xroute.envs import static_region_env
-
-    torch.set_num_threads(1)
-    env = static_region_env(a.region_dir, max_candidates=a.max_candidates)
-    env.reward_fn = violations_reward(env)
-    judge = static_region_env(a.region_dir, max_candidates=a.max_candidates)
-    model = make_maskable_ppo(env, seed=a.seed)
-    before = greedy_cost(model, judge)
-    model.learn(total_timesteps=a.steps)
-    after = greedy_cost(model, judge)
-    rand = random_costs(judge, 20, a.seed)
-    print(f"greedy order: cost {before:,.1f} before training, {after:,.1f} after {a.steps} steps; "
-          f"random orders: mean {np.mean(rand):,.1f}, best {min(rand):,.1f} of {len(rand)}")
-
-
-if __name__ == "__main__":
-    main()
