@@ -38,7 +38,6 @@ class NetOrderExtractor(BaseFeaturesExtractor):
     def __init__(self, observation_space: spaces.Dict, width: int = 8) -> None:
         m = int(observation_space["action_mask"].n)
         super().__init__(observation_space, features_dim=m + EMBED)
-        self.rows = m
         self.model = NetOrderModel(int(observation_space["net_features"].shape[1]), critic=False, width=width)
         self.train(False)
 
@@ -74,16 +73,9 @@ class SetOrderExtractor(BaseFeaturesExtractor):
         self.scorer = SetScorer(int(f), width=width)
 
     def forward(self, observations: dict[str, torch.Tensor]) -> torch.Tensor:
-        from xroute.policies.rl.set_scorer import MASKED_SCORE, RANK_COLUMN
-
         features, mask = observations["set_features"], observations["action_mask"] > 0.5
-        net = self.scorer
-        x = net.embed(features)
-        key_bias = torch.where(mask, 0.0, MASKED_SCORE)[:, None, None, :]
-        for block in net.blocks:
-            x = block(x, key_bias)
-        x = net.norm(x)
-        scores = net.head(x).squeeze(-1) - net.prior * features[..., RANK_COLUMN]
+        x = self.scorer.encode(features, mask)
+        scores = self.scorer.score(x, features)
         weight = mask.float()
         pooled = (x * weight[..., None]).sum(1) / weight.sum(1, keepdim=True).clamp(min=1.0)
         return torch.cat([torch.where(mask, scores, torch.zeros_like(scores)), pooled], 1)
@@ -103,9 +95,9 @@ def violations_reward(env: Any) -> Callable[[dict[str, Any], dict[str, Any]], fl
 
 def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: int = 32, **kwargs: Any) -> Any:
     """A MaskablePPO on ``env`` (an xroute net-ordering env, best with :func:`violations_reward`) with
-    :class:`NetOrderExtractor` (grid observations) or :class:`SetOrderExtractor` (compact), sized for CPU: ``n_steps`` steps per rollout (the rollout buffer holds
-    that many observations). Learning rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say
-    otherwise."""
+    :class:`NetOrderExtractor` (grid observations) or :class:`SetOrderExtractor` (compact), sized for a
+    CPU: ``n_steps`` steps per rollout (the rollout buffer holds that many observations). Learning
+    rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say otherwise."""
     from sb3_contrib import MaskablePPO
 
     compact = "set_features" in env.observation_space.spaces

@@ -61,12 +61,20 @@ class SetScorer(nn.Module):
         nn.init.zeros_(self.head.bias)
         self.prior = nn.Parameter(torch.tensor(float(prior)))
 
-    def forward(self, features: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
+    def encode(self, features: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
+        """Row embeddings [B, N, width]: after attention over the unmasked rows and the final norm."""
         key_bias = torch.where(mask, 0.0, MASKED_SCORE)[:, None, None, :]
         x = self.embed(features)
         for block in self.blocks:
             x = block(x, key_bias)
-        s = self.head(self.norm(x)).squeeze(-1) - self.prior * features[..., RANK_COLUMN]
+        return self.norm(x)
+
+    def score(self, embedded: torch.Tensor, features: torch.Tensor) -> torch.Tensor:
+        """Raw scores [B, N] of the rows embedded by :meth:`encode` (the heuristic prior included)."""
+        return self.head(embedded).squeeze(-1) - self.prior * features[..., RANK_COLUMN]
+
+    def forward(self, features: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
+        s = self.score(self.encode(features, mask), features)
         return torch.where(mask, s, torch.full_like(s, MASKED_SCORE))
 
 
