@@ -4,7 +4,7 @@
                                  [--observation grid|compact]
 
 REGION_DIR is a static region (``xroute make-region`` or :func:`xroute.envs.generate_static_region`).
-The script trains MaskablePPO on it (rewards per violation, :func:`~xroute.policies.rl.sb3.violations_reward`)
+The script trains MaskablePPO on it (rewards per violation, :class:`~xroute.policies.rl.sb3.PerViolation`)
 and prints the cost of the region routed in the policy's greedy order before and after training,
 against 20 random legal orders. Needs ``pip install '.[sb3]'``.
 """
@@ -27,11 +27,10 @@ def main(argv: list[str] | None = None) -> None:
     import torch
 
     from xroute.envs import static_region_env
-    from xroute.policies.rl.sb3 import greedy_cost, make_maskable_ppo, random_costs, violations_reward
+    from xroute.policies.rl.sb3 import PerViolation, greedy_cost, make_maskable_ppo, random_costs
 
     torch.set_num_threads(1)
-    env = static_region_env(a.region_dir, max_candidates=a.max_candidates, observation=a.observation)
-    env.reward_fn = violations_reward(env)
+    env = PerViolation(static_region_env(a.region_dir, max_candidates=a.max_candidates, observation=a.observation))
     judge = static_region_env(a.region_dir, max_candidates=a.max_candidates, observation=a.observation)
     model = make_maskable_ppo(env, seed=a.seed)
     before = greedy_cost(model, judge)

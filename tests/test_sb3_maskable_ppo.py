@@ -52,15 +52,15 @@ def test_extractor_scores_each_row_and_keeps_batch_norm_fixed(region_dir: str) -
     torch.testing.assert_close(g[1, 2:], f[1, 2:])
 
 
-def test_violations_reward_sums_to_the_cost_drop(region_dir: str) -> None:
+def test_per_violation_reward_sums_to_the_cost_drop(region_dir: str) -> None:
     from xroute.envs import static_region_env
-    from xroute.policies.rl.sb3 import violations_reward
+    from xroute.policies.rl.sb3 import PerViolation
 
-    env = static_region_env(region_dir, max_candidates=M)
-    env.reward_fn = violations_reward(env)
+    env = PerViolation(static_region_env(region_dir, max_candidates=M))
     obs, info = env.reset(seed=0)
     start, total, done = info["cost"], 0.0, False
     while not done:
+        assert np.array_equal(env.action_masks(), obs["action_mask"].astype(bool))
         obs, r, done, _, info = env.step(int(np.flatnonzero(obs["action_mask"])[-1]))
         total += r
     assert total == pytest.approx((start - info["cost"]) / 500.0)
@@ -95,11 +95,10 @@ def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> No
     """384 steps (about 55 episodes) of MaskablePPO with fixed seeds take the greedy order from the
     untrained model's cost to one no higher than the best of 20 random orders."""
     from xroute.envs import static_region_env
-    from xroute.policies.rl.sb3 import greedy_cost, make_maskable_ppo, random_costs, violations_reward
+    from xroute.policies.rl.sb3 import PerViolation, greedy_cost, make_maskable_ppo, random_costs
 
     torch.set_num_threads(1)
-    env = static_region_env(region_dir, max_candidates=M, observation=observation)
-    env.reward_fn = violations_reward(env)
+    env = PerViolation(static_region_env(region_dir, max_candidates=M, observation=observation))
     judge = static_region_env(region_dir, max_candidates=M, observation=observation)
     model = make_maskable_ppo(env, seed=2)
     before = greedy_cost(model, judge)
@@ -120,3 +119,21 @@ def test_the_example_script_trains_and_reports(region_dir: str, capsys: pytest.C
     maskable_ppo.main([region_dir, "--steps", "64", "--observation", "compact"])
     out = capsys.readouterr().out
     assert "before training" in out and "after 64 steps" in out and "of 20" in out
+
+
+def test_in_context_bench_starts_as_the_heuristic_and_scores_the_held_out_regions(imitation_sample: str) -> None:
+    """bench/ppo_in_context.py: before training the greedy order is the heuristic's on every held-out
+    region (the set scorer's head at zero, the action head reading its prior); a short run trains and
+    scores the same regions again."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    import ppo_in_context
+
+    res = ppo_in_context.run([imitation_sample], steps=64, seed=1, region_size=2, max_candidates=16, sharpness=5.0)
+    before, after = res["before"][imitation_sample], res["after"][imitation_sample]
+    assert before["regions"] == after["regions"] > 0
+    assert before["model"] == pytest.approx(before["heuristic"]) and before["better"] == before["worse"] == 0
+    assert after["heuristic"] == pytest.approx(before["heuristic"])
+    assert after["better"] + after["worse"] <= after["regions"]

@@ -21,8 +21,9 @@ between rollouts and updates, and with batch statistics the two would score diff
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from typing import Any
 
+import gymnasium as gym
 import numpy as np
 import torch
 from gymnasium import spaces
@@ -81,23 +82,29 @@ class SetOrderExtractor(BaseFeaturesExtractor):
         return torch.cat([torch.where(mask, scores, torch.zeros_like(scores)), pooled], 1)
 
 
-def violations_reward(env: Any) -> Callable[[dict[str, Any], dict[str, Any]], float]:
-    """A ``reward_fn`` for ``env`` (an xroute env): its reward, the drop of the region's cost, in units
-    of one violation's weight (500). PPO's value loss grows with the square of the rewards; at the
-    envs' scale it swamps the policy's loss in the encoders the two share."""
-    weights, dbu = env.weights, env.design.dbu_per_micron
+class PerViolation(gym.RewardWrapper):
+    """An xroute net-ordering env (or a wrapper of one) with its reward divided by ``scale``, by default
+    one violation's weight (500): the reward becomes the drop of the region's cost in violations.
+    PPO's value loss grows with the square of the rewards; at the envs' own scale it swamps the
+    policy's loss in the encoders the two share. ``action_masks()`` is passed through for MaskablePPO."""
 
-    def reward(before: dict[str, Any], after: dict[str, Any]) -> float:
-        return (weights.region_cost(before, dbu) - weights.region_cost(after, dbu)) / weights.drv_weight
+    def __init__(self, env: gym.Env, scale: float | None = None) -> None:
+        super().__init__(env)
+        self.scale = float(scale if scale is not None else env.unwrapped.weights.drv_weight)
 
-    return reward
+    def reward(self, reward: Any) -> float:
+        return float(reward) / self.scale
+
+    def action_masks(self) -> np.ndarray:
+        return self.env.unwrapped.action_masks()
 
 
 def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: int = 32, **kwargs: Any) -> Any:
-    """A MaskablePPO on ``env`` (an xroute net-ordering env, best with :func:`violations_reward`) with
+    """A MaskablePPO on ``env`` (an xroute net-ordering env, best wrapped in :class:`PerViolation`) with
     :class:`NetOrderExtractor` (grid observations) or :class:`SetOrderExtractor` (compact), sized for a
     CPU: ``n_steps`` steps per rollout (the rollout buffer holds that many observations). Learning
-    rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say otherwise."""
+    rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say otherwise. With the set extractor its
+    row scores start as the heuristic prior alone (the scorer's head at zero, as in imitation)."""
     from sb3_contrib import MaskablePPO
 
     compact = "set_features" in env.observation_space.spaces
@@ -105,8 +112,14 @@ def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: in
                      "net_arch": {"pi": [], "vf": [64]}}
     policy_kwargs.update(kwargs.pop("policy_kwargs", {}))
     settings = {"learning_rate": 1e-3, "gamma": 1.0, **kwargs}  # gamma 1: a region's cost is the sum of its rewards
-    return MaskablePPO("MultiInputPolicy", env, n_steps=n_steps, batch_size=batch_size, seed=seed,
-                       policy_kwargs=policy_kwargs, device="cpu", **settings)
+    model = MaskablePPO("MultiInputPolicy", env, n_steps=n_steps, batch_size=batch_size, seed=seed,
+                        policy_kwargs=policy_kwargs, device="cpu", **settings)
+    if compact:  # SB3's orthogonal initialisation redrew the set scorer's head, which starts at zero
+        for extractor in {id(e): e for e in (model.policy.pi_features_extractor, model.policy.vf_features_extractor)}.values():
+            with torch.no_grad():
+                extractor.scorer.head.weight.zero_()
+                extractor.scorer.head.bias.zero_()
+    return model
 
 
 def greedy_cost(model: Any, env: Any) -> float:
