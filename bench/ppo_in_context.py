@@ -23,10 +23,9 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
-
-import numpy as np
 
 HOLD_OUT_EVERY = 3
 
@@ -52,8 +51,8 @@ def start_as_heuristic(model: Any, rows: int, sharpness: float) -> None:
         head.weight[:, :rows] = sharpness * torch.eye(rows)
 
 
-def greedy_in_context(model: Any, first_pass: Any, index: int, dbu: int, max_candidates: int) -> float:
-    """The cost of held-out region ``index`` routed in ``model``'s greedy order."""
+def greedy_in_context(model: Any, first_pass: Any, index: int, dbu: int, max_candidates: int) -> tuple[float, list[int]]:
+    """(cost, candidates in the order routed) of held-out region ``index`` routed in ``model``'s greedy order."""
     from xroute.config import CostSection
     from xroute.envs.core import RegionStepper
     from xroute.policies.rl.holdout import region_score
@@ -65,11 +64,20 @@ def greedy_in_context(model: Any, first_pass: Any, index: int, dbu: int, max_can
         action, _ = model.predict(obs, deterministic=True, action_masks=stepper.action_mask())
         stepper.step(int(action))
         obs = stepper.observation()
-    return region_score(region, dbu).cost
+    return region_score(region, dbu).cost, stepper.order
 
 
-def score_held_out(model: Any, testcases: list[str], region_size: int, max_candidates: int) -> dict[str, dict]:
-    """Per testcase: held-out regions, the heuristic's summed cost and the model's."""
+@dataclass
+class HeldOut:
+    """A testcase's first pass, its held-out regions and the heuristic's cost on each (routed once)."""
+
+    first_pass: Any
+    dbu: int
+    regions: list[Any]
+    heuristic: list[float]
+
+
+def held_out(testcases: list[str], region_size: int) -> dict[str, HeldOut]:
     from xroute.policies.rl.holdout import held_out_regions, route_in_context
     from xroute.policies.rl.teacher import load_first_pass
 
@@ -77,30 +85,46 @@ def score_held_out(model: Any, testcases: list[str], region_size: int, max_candi
     for t in testcases:
         fp, dbu = load_first_pass(t, region_size)
         regions = list(held_out_regions(fp, HOLD_OUT_EVERY, region_size, 2))
-        heuristic = [route_in_context(fp, h, "heuristic", 1, dbu).cost for h in regions]
-        learned = [greedy_in_context(model, fp, h.index, dbu, max_candidates) for h in regions]
-        out[t] = {"regions": len(regions), "heuristic": float(sum(heuristic)), "model": float(sum(learned)),
-                  "better": int(sum(m < h - 1e-6 for m, h in zip(learned, heuristic))),
-                  "worse": int(sum(m > h + 1e-6 for m, h in zip(learned, heuristic)))}
+        out[t] = HeldOut(fp, dbu, regions, [route_in_context(fp, h, "heuristic", 1, dbu).cost for h in regions])
     return out
+
+
+def score_held_out(model: Any, sets: dict[str, HeldOut], max_candidates: int) -> dict[str, dict]:
+    """Per testcase: held-out regions, the heuristic's summed cost and the model's greedy order's."""
+    out = {}
+    for t, h in sets.items():
+        learned = [greedy_in_context(model, h.first_pass, r.index, h.dbu, max_candidates)[0] for r in h.regions]
+        out[t] = {"regions": len(h.regions), "heuristic": float(sum(h.heuristic)), "model": float(sum(learned)),
+                  "better": int(sum(m < c - 1e-6 for m, c in zip(learned, h.heuristic))),
+                  "worse": int(sum(m > c + 1e-6 for m, c in zip(learned, h.heuristic)))}
+    return out
+
+
+def new_model(testcases: list[str], seed: int, region_size: int, max_candidates: int, sharpness: float) -> Any:
+    """MaskablePPO on one in-context training env per testcase, started as the heuristic."""
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    from xroute.policies.rl.sb3 import make_maskable_ppo
+
+    venv = DummyVecEnv([lambda t=t: make_env(t, region_size, max_candidates) for t in testcases])
+    model = make_maskable_ppo(venv, seed=seed, learning_rate=3e-4)
+    start_as_heuristic(model, max_candidates, sharpness)
+    return model
 
 
 def run(testcases: list[str], steps: int, seed: int, region_size: int, max_candidates: int,
         sharpness: float) -> dict[str, Any]:
     import torch
-    from stable_baselines3.common.vec_env import DummyVecEnv
-
-    from xroute.policies.rl.sb3 import make_maskable_ppo
 
     torch.set_num_threads(1)
-    venv = DummyVecEnv([lambda t=t: make_env(t, region_size, max_candidates) for t in testcases])
-    model = make_maskable_ppo(venv, seed=seed, learning_rate=3e-4)
-    start_as_heuristic(model, max_candidates, sharpness)
     t0 = time.perf_counter()
-    before = score_held_out(model, testcases, region_size, max_candidates)
+    model = new_model(testcases, seed, region_size, max_candidates, sharpness)
+    sets = held_out(testcases, region_size)
+    before = score_held_out(model, sets, max_candidates)
+    t1 = time.perf_counter()
     model.learn(total_timesteps=steps)
-    trained = time.perf_counter() - t0
-    after = score_held_out(model, testcases, region_size, max_candidates)
+    trained = time.perf_counter() - t1
+    after = score_held_out(model, sets, max_candidates)
     return {"steps": steps, "seed": seed, "before": before, "after": after, "seconds": time.perf_counter() - t0,
             "training_seconds": trained}
 
@@ -124,7 +148,7 @@ def main(argv: list[str] | None = None) -> None:
             print(f"{when} training, {t}: {r['regions']} held-out regions, heuristic {r['heuristic']:,.1f}, model "
                   f"{r['model']:,.1f} ({100 * (r['model'] / r['heuristic'] - 1):+.2f}%), better / worse "
                   f"{r['better']} / {r['worse']}")
-    print(f"{res['steps']} steps, {res['seconds']:.0f} s")
+    print(f"{res['steps']} steps, {res['training_seconds']:.0f} s training, {res['seconds']:.0f} s in all")
     if a.json:
         a.json.write_text(json.dumps(res, indent=1))
 

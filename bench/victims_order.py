@@ -79,6 +79,7 @@ def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles:
     """The rule trials of region ``index`` and ``shuffles`` seeded shuffles of their victims (None when
     the rule names fewer than 2 victims)."""
     from xroute.policies.rl.holdout import moved_first
+    from xroute.policies.rl.teacher import route_order
     from xroute.policy import heuristic_order
 
     region = fp.open_region(index)
@@ -103,7 +104,7 @@ def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles:
         return None
     rng = np.random.default_rng([11, index])
     drawn = np.stack([rng.permutation(vic) for _ in range(shuffles)]).astype(np.int32)
-    shuffle_costs = np.array([trial(fp, index, with_victims_first(heuristic, o), dbu)[0] for o in drawn])
+    shuffle_costs = np.array([route_order(fp, index, with_victims_first(heuristic, o), dbu) for o in drawn])
     inputs = np.concatenate([features, outcome, np.ones((len(nets), 1), np.float32)], 1)
     return SearchTrials(testcase, index, held_out, inputs, heuristic, vic, np.asarray(costs), drawn, shuffle_costs)
 
@@ -174,6 +175,8 @@ def rows_for(regions: list[SearchTrials], models: dict[int, np.ndarray], fps: di
     """Per "testcase held-out" / "testcase training (5-fold)": the regions, and the summed cost of the
     heuristic and of each row of the module docstring. ``models``: weights by fold (region index % 5)
     for training regions, -1 for the held-out ones; ``fps``: (first pass, DBU) by testcase."""
+    from xroute.policies.rl.teacher import route_order
+
     names = ("rule", "shuffle (mean)", "learned", "search b4", "learned in search b4", "search b8",
              "learned in search b8")
     rows: dict[str, dict] = {}
@@ -182,7 +185,7 @@ def rows_for(regions: list[SearchTrials], models: dict[int, np.ndarray], fps: di
         row = rows.setdefault(key, dict.fromkeys(("regions", "heuristic") + names, 0.0))
         w = models[-1 if t.held_out else t.index % 5]
         fp, dbu = fps[t.testcase]
-        cost = trial(fp, t.index, with_victims_first(t.heuristic, learned(t, w)), dbu)[0]
+        cost = route_order(fp, t.index, with_victims_first(t.heuristic, learned(t, w)), dbu)
         row["regions"] += 1
         row["heuristic"] += t.rule_costs[0]
         row["rule"] += t.rule_costs.min()

@@ -42,7 +42,7 @@ from gymnasium import spaces
 from xroute.config import CostSection
 from xroute.policy import heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
-from xroute.policies.rl.set_features import SET_FEATURES, set_features
+from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
 
 DEFAULT_MAX_CANDIDATES = 64
 OBSERVATIONS = ("grid", "compact")
@@ -135,8 +135,7 @@ class RegionStepper:
         out = empty_observation(self.m, self.kind)
         if self.kind == "compact":
             k = len(self.slots)
-            features = set_features(self.region.grid(), self.rows, mask, tuple(self.region.box))
-            out["set_features"][:k] = features[self.slots]
+            out["set_features"][:k] = region_set_features(self.region)[self.slots]
             out["action_mask"][:k] = mask[self.slots]
             return out
         reuse = self._nets is not None and np.array_equal(self._nets_slots, self.slots)

@@ -115,8 +115,8 @@ def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: in
     model = MaskablePPO("MultiInputPolicy", env, n_steps=n_steps, batch_size=batch_size, seed=seed,
                         policy_kwargs=policy_kwargs, device="cpu", **settings)
     if compact:  # SB3's orthogonal initialisation redrew the set scorer's head, which starts at zero
-        for extractor in {id(e): e for e in (model.policy.pi_features_extractor, model.policy.vf_features_extractor)}.values():
-            with torch.no_grad():
+        with torch.no_grad():
+            for extractor in (model.policy.pi_features_extractor, model.policy.vf_features_extractor):
                 extractor.scorer.head.weight.zero_()
                 extractor.scorer.head.bias.zero_()
     return model
