@@ -12,7 +12,7 @@ figures are printed once; the times of every run are listed, then min and median
 
 Default: ispd18_test1 with the router's defaults (region size 10, up to 10 iterations, 1 thread).
 Issue 3's reference on this machine: TritonRoute 25 s wall with 2 threads, 600 MB, 86,456 um,
-35,443 vias, 0 violations. `--policy bench/python_heuristic_policy.py` routes with the built-in
+35,443 vias, 0 violations. `--policy examples/python_heuristic_policy.py` routes with the built-in
 heuristic written in Python (same order, one Python call per region): the cost of the seam.
 """
 

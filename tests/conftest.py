@@ -20,16 +20,21 @@ list (for ``parametrize``: the contest ids are unchanged when the data is there)
 generated with ``xroute.testcases.generator`` on first use into one temporary folder per session,
 which ``pytest_configure`` appends to ``$XROUTE_TESTCASES`` so that everything that looks a
 testcase up by name (the CLI, batch jobs in child processes, the envs) finds them.
+``load_file(path)`` imports a repository file that is not part of the package (``fuzz/``,
+``examples/``) as a module of its own, without putting its folder on ``sys.path``.
 ``sample_lef()`` is ispd18_sample's LEF, or tests/data/lef/sample_names.lef (our own LEF with the
 names the tests' hand-written DEFs use) when the contest data is missing.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shutil
+import sys
 import tempfile
 from pathlib import Path
+from types import ModuleType
 from typing import Any, Callable
 
 import pytest
@@ -135,6 +140,20 @@ def nets_of(name: str) -> int:
 
     text = require_testcase(name).def_.read_text()
     return int(re.search(r"^NETS (\d+) ;", text, re.M).group(1))
+
+
+def load_file(relative: str) -> ModuleType:
+    """The repository file ``relative`` (``fuzz/fuzz_yaml.py``, ``examples/maskable_ppo.py``) imported
+    from its path as the module ``xroute_file_<stem>``; its folder does not go on ``sys.path``."""
+    path = REPO_ROOT / relative
+    name = f"xroute_file_{path.stem}"
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, path)
+        assert spec is not None and spec.loader is not None, path
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module  # dataclasses look their module up there
+        spec.loader.exec_module(module)
+    return sys.modules[name]
 
 
 def sample_lef() -> Path:

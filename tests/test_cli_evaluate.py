@@ -12,7 +12,7 @@ from conftest import pick
 from xroute.cli.app import app
 
 REPO = Path(__file__).resolve().parent.parent
-PY_POLICY = REPO / "bench" / "python_heuristic_policy.py"
+PY_POLICY = REPO / "examples" / "python_heuristic_policy.py"
 # The contest samples, or their generated stand-ins when the contest data is missing.
 SAMPLE, SAMPLE4 = pick("ispd18_sample"), pick("ispd19_sample4")
 

@@ -1,4 +1,4 @@
-"""Inputs found by the libFuzzer targets (bench/fuzz.sh), kept as regression files.
+"""Inputs found by the libFuzzer targets (fuzz/fuzz.sh), kept as regression files.
 
 Every file under tests/fuzz_regressions/<lef|def|guide>/ goes through the Python
 API: a LEF alone, a DEF with the ispd18_sample LEF, a guide with the ispd18_sample

@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from conftest import load_file
 from xroute import _engine
 from xroute.cli.app import app
 from xroute.errors import InputError
@@ -357,12 +358,7 @@ def test_batch_config_settings_names_checked_in_linear_time(tmp_path: Path) -> N
 
 @pytest.mark.parametrize("path", sorted((REGRESSIONS / "yaml").glob("*.yaml")), ids=lambda p: p.name)
 def test_yaml_fuzz_regressions(path: Path) -> None:
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    try:
-        import fuzz_yaml
-    finally:
-        sys.path.pop(0)
-    fuzz_yaml.one_input(path.read_bytes())
+    load_file("fuzz/fuzz_yaml.py").one_input(path.read_bytes())
 
 
 # ----------------------------------------------------------------------------- policies

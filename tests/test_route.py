@@ -216,7 +216,7 @@ def test_python_policy_order_is_honoured() -> None:
 def test_heuristic_in_python_gives_the_builtin_routing(name: str) -> None:
     builtin = route_def(name, policy="heuristic")
     assert route_def(name, policy=CallablePolicy(HeuristicPolicy().order, name="py")) == builtin
-    assert route_def(name, policy=get_policy(str(REPO_ROOT / "bench" / "python_heuristic_policy.py"))) == builtin
+    assert route_def(name, policy=get_policy(str(REPO_ROOT / "examples" / "python_heuristic_policy.py"))) == builtin
 
 
 def test_subclass_of_a_builtin_that_overrides_order_is_called() -> None:

@@ -10,7 +10,7 @@ import pytest
 torch = pytest.importorskip("torch")
 pytest.importorskip("sb3_contrib", reason="the sb3 extra (sb3-contrib) is not installed")
 
-from conftest import require_testcase  # noqa: E402
+from conftest import load_file, require_testcase  # noqa: E402
 
 pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
 
@@ -115,39 +115,6 @@ def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> No
 
 
 def test_the_example_script_trains_and_reports(region_dir: str, capsys: pytest.CaptureFixture[str]) -> None:
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    import maskable_ppo
-
-    maskable_ppo.main([region_dir, "--steps", "64", "--observation", "compact"])
+    load_file("examples/maskable_ppo.py").main([region_dir, "--steps", "64", "--observation", "compact"])
     out = capsys.readouterr().out
     assert "before training" in out and "after 64 steps" in out and "of 20" in out
-
-
-def test_in_context_bench_starts_as_the_heuristic_and_scores_the_held_out_regions(imitation_sample: str) -> None:
-    """bench/ppo_in_context.py: before training the greedy order is the heuristic's, net by net, on every
-    held-out region (the set scorer's head at zero, the action head reading its prior); a short run
-    trains and scores the same regions again."""
-    import sys
-    from pathlib import Path
-
-    from xroute.policy import heuristic_order
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    import ppo_in_context
-
-    torch.set_num_threads(1)
-    model = ppo_in_context.new_model([imitation_sample], seed=1, region_size=2, max_candidates=16, sharpness=5.0)
-    sets = ppo_in_context.held_out([imitation_sample], 2)
-    h = sets[imitation_sample]
-    assert h.regions
-    for r in h.regions:
-        cost, order = ppo_in_context.greedy_in_context(model, h.first_pass, r.index, h.dbu, 16)
-        rows = np.asarray(h.first_pass.open_region(r.index).candidates)
-        assert order == [int(k) for k in heuristic_order(rows)]
-    res = ppo_in_context.run([imitation_sample], steps=64, seed=1, region_size=2, max_candidates=16, sharpness=5.0)
-    before, after = res["before"][imitation_sample], res["after"][imitation_sample]
-    assert before["regions"] == after["regions"] == len(h.regions)
-    assert before["model"] == pytest.approx(before["heuristic"]) == pytest.approx(sum(h.heuristic))

@@ -2,7 +2,7 @@
 
 Needs ``pip install 'xroute[sb3]'`` (sb3-contrib, which brings stable-baselines3 and torch). The
 envs are passed in (this module is layer 3 and does not import :mod:`xroute.envs`);
-``bench/maskable_ppo.py`` is the example that trains on a static region.
+``examples/maskable_ppo.py`` is the example that trains on a static region.
 
 :class:`NetOrderExtractor` is the piece to reuse with any xroute env. It turns the Dict observation
 (:mod:`xroute.envs.core`) into features with the encoders of :class:`~xroute.policies.rl.models.NetOrderModel`:

@@ -93,7 +93,7 @@ def evaluate(
     routing time spent in a Python/ONNX policy. Writes <out>/evaluation.json and each run's outputs
     in <out>/policy-<name>/ and <out>/baseline-<name>/ (default out: ./out/evaluate/<testcase>).
 
-    Example: xroute evaluate --policy bench/python_heuristic_policy.py ispd18_sample --iterations 3
+    Example: xroute evaluate --policy examples/python_heuristic_policy.py ispd18_sample --iterations 3
     """
     from xroute.config import load_config
     from xroute.outputs import atomic_write_text

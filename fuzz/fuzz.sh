@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes the LEF, DEF and guide readers with libFuzzer (clang + AddressSanitizer), and the
-# YAML configs (route --config, batch) with bench/fuzz_yaml.py (atheris when installed,
+# YAML configs (route --config, batch) with fuzz/fuzz_yaml.py (atheris when installed,
 # `pip install atheris`; a built-in mutator otherwise).
 #
-#   bash bench/fuzz.sh [SECONDS_PER_TARGET]     (default 60)
+#   bash fuzz/fuzz.sh [SECONDS_PER_TARGET]     (default 60)
 #
 # Needs clang (15 or later) with its libFuzzer runtime. On Debian/Ubuntu:
 #   apt-get install clang-16 libclang-rt-16-dev
@@ -100,7 +100,7 @@ log=$build/fuzz_yaml.log
 if "$py" -c "import atheris" 2>/dev/null; then
   how=atheris
   set +e
-  PYTHONPATH=$root "$py" "$root/bench/fuzz_yaml.py" "$build/corpus/yaml" "$build/seeds/yaml" -dict="$build/yaml.dict" \
+  PYTHONPATH=$root "$py" "$root/fuzz/fuzz_yaml.py" "$build/corpus/yaml" "$build/seeds/yaml" -dict="$build/yaml.dict" \
     -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
     -artifact_prefix="$build/artifacts/yaml-" >"$log" 2>&1
   rc=$?
@@ -108,7 +108,7 @@ if "$py" -c "import atheris" 2>/dev/null; then
 else
   how=plain
   set +e
-  PYTHONPATH=$root "$py" "$root/bench/fuzz_yaml.py" --plain "$secs" "$build"/seeds/yaml/* >"$log" 2>&1
+  PYTHONPATH=$root "$py" "$root/fuzz/fuzz_yaml.py" --plain "$secs" "$build"/seeds/yaml/* >"$log" 2>&1
   rc=$?
   set -e
 fi

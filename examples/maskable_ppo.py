@@ -1,6 +1,6 @@
 """MaskablePPO (sb3-contrib) learns the net order of one static region: the example of xroute.policies.rl.sb3.
 
-    python bench/maskable_ppo.py REGION_DIR [--steps 512] [--max-candidates 8] [--seed 1]
+    python examples/maskable_ppo.py REGION_DIR [--steps 512] [--max-candidates 8] [--seed 1]
                                  [--observation grid|compact]
 
 REGION_DIR is a static region (``xroute make-region`` or :func:`xroute.envs.generate_static_region`).

@@ -1,14 +1,14 @@
 """Fuzz target for the YAML configs (`route --config`, `batch`): any bytes as a config file.
 
-    python bench/fuzz_yaml.py [libFuzzer flags] [CORPUS_DIR ...]     (with atheris: pip install atheris)
-    python bench/fuzz_yaml.py --plain SECONDS [SEED_FILE ...]        (no atheris: a built-in mutator)
+    python fuzz/fuzz_yaml.py [libFuzzer flags] [CORPUS_DIR ...]     (with atheris: pip install atheris)
+    python fuzz/fuzz_yaml.py --plain SECONDS [SEED_FILE ...]        (no atheris: a built-in mutator)
 
 Each input is written to a file and loaded twice, as an xroute config
 (:func:`xroute.config.load_config`) and as a batch file
 (:func:`xroute.cli.batch_config.load_batch_config`). Loading must return a config or raise
 :class:`xroute.config_schema.ConfigError` with a line inside the file; anything else
 (RecursionError, TypeError, a ConstructorError, ...) is a crash. Under atheris the target is
-coverage-guided (libFuzzer flags such as -max_total_time=600 -dict=... apply); bench/fuzz.sh runs it
+coverage-guided (libFuzzer flags such as -max_total_time=600 -dict=... apply); fuzz/fuzz.sh runs it
 beside the C++ targets. Inputs that crashed are kept as tests/fuzz_regressions/yaml/<name>.yaml
 (tests/test_hostile_input.py loads every file there).
 """
@@ -23,7 +23,6 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(REPO))
 
 _DIR = Path(tempfile.mkdtemp(prefix="xroute-fuzz-yaml-"))
 _FILE = _DIR / "fuzz.yaml"

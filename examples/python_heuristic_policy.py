@@ -1,9 +1,9 @@
 """The engine's heuristic net order written in Python: an example policy file, and the
-measure of the policy seam's cost (route with ``--policy bench/python_heuristic_policy.py``
+measure of the policy seam's cost (route with ``--policy examples/python_heuristic_policy.py``
 and compare with ``--policy heuristic``: same order, so the same routing, plus one Python
 call per region).
 
-A policy file defines ``order(region, features)`` (see ``policies/base.py``) and may set NAME.
+A policy file defines ``order(region, features)`` (the protocol ``xroute.policy.NetOrderPolicy``) and may set NAME.
 """
 
 import numpy as np

@@ -1,6 +1,6 @@
 """CLI-level mutation harness: hostile inputs through `xroute info` and `xroute route`.
 
-    python bench/mutate_cli.py [--cases N] [--seed S] [--route-share 0.3] [--timeout 60] [--keep DIR]
+    python fuzz/mutate_cli.py [--cases N] [--seed S] [--route-share 0.3] [--timeout 60] [--keep DIR]
 
 Starts from the shipped demo design (testcases/data/demo: LEF, DEF, guide), a tiny hand-drawn
 design, configs/default.yaml and a few policy files, and makes N mutated cases: numbers replaced
