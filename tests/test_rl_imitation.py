@@ -49,9 +49,9 @@ def test_imitation_beats_a_random_order_on_held_out_regions(imitation_sample: st
     against random orders; the exported ONNX model gives the same scores through OnnxPolicy."""
     from xroute import load_design
     from xroute.policies.onnx_policy import OnnxPolicy
-    from xroute.policies.rl.holdout import held_out_regions
     from xroute.policies.rl.imitation import ImitationConfig, train
     from xroute.policies.rl.set_features import region_set_features
+    from xroute.policies.rl.region_filter import held_out
     from xroute.policies.rl.set_scorer import export_onnx
     from xroute.policies.rl.teacher import collect, score_orders
     from xroute.session import first_pass, open_session
@@ -69,7 +69,8 @@ def test_imitation_beats_a_random_order_on_held_out_regions(imitation_sample: st
 
     design = load_design(imitation_sample)
     fp = first_pass(open_session(design), SIZE)
-    held = [r.index for r in held_out_regions(fp, HOLD_OUT, SIZE, 2)]
+    held = [i for i, (loc, _box, _colour, _nets) in enumerate(fp.regions)
+            if held_out(tuple(loc), HOLD_OUT, SIZE) and len(fp.open_region(i).candidates) >= 2]
     assert len(held) >= 5 and not {r.index for r in regions} & set(held)
     fns = {"model": lambda f: np.argsort(-scores(f), kind="stable")}
     for s in range(6):
@@ -184,71 +185,3 @@ def test_promoted_teacher_orders_move_a_drawn_subset_to_the_front(imitation_samp
             assert np.array_equal(r.orders[k + 1], promoted_order(heuristic, masks[k]))
             moved += int(not np.array_equal(r.orders[k + 1], heuristic))
     assert moved > 0
-
-
-def test_net_effects_bench_moves_one_net_first_and_scores_the_learned_pick(imitation_sample: str) -> None:
-    """bench/net_effects.py: effects exist for exactly the drawn nets, moving the heuristic's first net
-    changes nothing, and the rows keep their order: oracle <= 0, oracle <= learned and oracle <= random."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    import net_effects
-    from xroute.policies.rl.set_features import SET_FEATURES
-
-    torch.set_num_threads(1)
-    regions = net_effects.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, per_region=3,
-                                  max_regions=20)
-    assert len(regions) >= 10
-    rank = SET_FEATURES.index("heuristic_rank")
-    firsts = 0
-    for r in regions:
-        tried = ~np.isnan(r.effects)
-        assert tried.sum() == min(3, len(r.features))
-        first = int(np.argmin(r.features[:, rank]))
-        if tried[first]:
-            assert r.effects[first] == 0.0
-            firsts += 1
-    assert firsts > 0
-    assert any(np.nanmax(np.abs(r.effects)) > 0 for r in regions)
-    res = net_effects.evaluate(regions, steps=20, loss_kind="mse")
-    row = res["testcases"][imitation_sample]
-    assert row["regions"] == len(regions)
-    assert row["heuristic"] == pytest.approx(sum(r.heuristic for r in regions))
-    assert row["oracle"] <= 0 and row["oracle"] <= row["learned"] + 1e-9 and row["oracle"] <= row["random"] + 1e-9
-    assert -1.0 <= res["corr_test"] <= 1.0
-
-
-def test_victims_learning_bench_tries_the_rule_and_scores_learned_second_orders(imitation_sample: str) -> None:
-    """bench/victims_learning.py: row 0 is the heuristic's order and its cost, row 1 the victims-first
-    rule read from the heuristic routing's markers and its cost, every order is a permutation, and
-    the cross-validation scores every region once, out of sample."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    import victims_learning as vl
-    from xroute.policies.rl.teacher import load_first_pass, route_order
-    from xroute.policy import heuristic_order
-
-    torch.set_num_threads(1)
-    regions = vl.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, variants=3, max_regions=24)
-    assert len(regions) >= 10
-    fp, dbu = load_first_pass(imitation_sample, SIZE)
-    with_victims = 0
-    for r in regions:
-        region = fp.open_region(r.index)
-        heuristic = np.asarray(heuristic_order(np.asarray(region.candidates)))
-        assert (r.orders[0] == heuristic).all() and r.orders.shape == (5, len(r.features))
-        assert r.costs[0] == pytest.approx(route_order(fp, r.index, heuristic, dbu))
-        victim = r.outcome[:, 0] > 0
-        assert (r.orders[1] == np.concatenate([heuristic[victim[heuristic]], heuristic[~victim[heuristic]]])).all()
-        assert r.costs[1] == pytest.approx(route_order(fp, r.index, r.orders[1], dbu))
-        for order in r.orders:
-            assert sorted(order) == list(range(len(r.features)))
-        with_victims += victim.any()
-    assert with_victims > 0  # the sample's heuristic routing leaves markers somewhere
-    rows = vl.evaluate(regions, steps=10, region_size=SIZE)[imitation_sample]
-    assert rows["regions"] == len(regions)
-    assert rows["heuristic"] == pytest.approx(sum(r.costs[0] for r in regions))
-    assert rows["rule"] == pytest.approx(sum(r.costs[1] for r in regions))

@@ -1,6 +1,6 @@
 """Users' tools of the net-ordering envs: in-context training episodes, ``info["action_mask"]``,
-``render()``, ``generate_static_region``, held-out regions at the router's size and the hold-out
-scoring of bench/rl_holdout.py, on generated designs (no contest data needed)."""
+``render()``, ``generate_static_region`` and held-out regions at the router's size, on generated
+designs (no contest data needed)."""
 
 from __future__ import annotations
 
@@ -155,34 +155,6 @@ def test_render_grid_draws_each_kind_of_node() -> None:
     assert at(2, 1) == tuple(LAYER_COLOURS[1])
     assert at(3, 2) == (0, 0, 0)
     assert at(1, 0) == (225, 225, 225)
-
-
-def test_holdout_scoring_matches_the_first_pass_and_takes_any_policy() -> None:
-    """bench/rl_holdout.py's scoring: the heuristic scores what the first pass routed; a Python policy
-    returning the heuristic order scores the same; best-of-K is never worse than the random mean."""
-    from xroute import load_design
-    from xroute.config import CostSection
-    from xroute.policy import CallablePolicy, heuristic_order
-    from xroute.policies.rl.holdout import best_of_random, best_score, held_out_regions, mean_score, route_in_context
-    from xroute.session import first_pass, open_session
-
-    require_testcase(DESIGN)
-    design = load_design(DESIGN)
-    dbu = design.dbu_per_micron
-    fp = first_pass(open_session(design), SIZE)
-    regions = list(held_out_regions(fp, 1, SIZE, min_candidates=2))  # every region
-    assert {r.colour for r in regions} == {0, 1, 2, 3}
-    python_heuristic = CallablePolicy(lambda region, features: heuristic_order(features), name="py")
-    for reg in regions:
-        h = route_in_context(fp, reg, "heuristic", 1, dbu)
-        reference = fp.open_region(reg.index)
-        reference.route_rest("heuristic")
-        assert h.cost == pytest.approx(CostSection().region_cost(reference.metrics(), dbu))
-        assert route_in_context(fp, reg, python_heuristic, 1, dbu).cost == pytest.approx(h.cost)
-        samples = best_of_random(fp, reg, 4, dbu)
-        assert best_score(samples).cost <= mean_score(samples).cost
-    with pytest.raises(ValueError, match="built-in"):
-        route_in_context(fp, regions[0], "no-such-policy", 1, dbu)
 
 
 def test_compact_observation_of_every_ordering_env() -> None:

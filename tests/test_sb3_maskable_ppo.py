@@ -1,6 +1,6 @@
 """MaskablePPO (sb3-contrib) with the features extractors of xroute.policies.rl.sb3 (over the shipped
 3D encoders, and over the set scorer) on a static region of a generated design; the example
-bench/maskable_ppo.py; bench/ppo_in_context.py on the generated imitation sample."""
+examples/maskable_ppo.py."""
 
 from __future__ import annotations
 

@@ -13,7 +13,7 @@ The update is PPO's clipped objective per placement step (choosing the net at po
 left, the same factors as :func:`~xroute.policies.rl.imitation.order_log_probs`), ``epochs`` passes
 over the iteration's samples. Every ``eval_every`` iterations the greedy order is routed on the
 validation regions; the checkpoint kept is the one with the lowest validation cost (the held-out
-regions of :mod:`~xroute.policies.rl.holdout` are never routed here).
+regions (:func:`~xroute.policies.rl.region_filter.held_out`) are never routed here).
 
 Routing runs in ``workers`` processes, or Ray actors on a cluster (:mod:`~xroute.policies.rl.ray_pool`),
 each with its own first pass of every testcase (the state the regions open in); a region's routing

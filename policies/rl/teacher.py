@@ -5,7 +5,7 @@ For every region of the router's first pass that the hold-out rule keeps for tra
 opened in context (:meth:`FirstPass.open_region`): the candidates' :func:`set_features` as the
 region opens (what the policy sees), then the heuristic order and ``orders`` seeded random
 orders, each routed from that same state (the region reopened each time) and scored with the
-region's first-pass cost (:func:`~xroute.policies.rl.holdout.region_score`).
+region's first-pass cost (:meth:`xroute.config.CostSection.region_cost`).
 
 Work is split into shards (region index % shards); :func:`collect_shard` is a plain function of
 its arguments (it loads the design and routes its own first pass), so a process pool runs it

@@ -1,6 +1,6 @@
 """Can learning add to the victims search? A set scorer that sees the heuristic routing's outcome.
 
-    python bench/victims_learning.py [--testcase ispd18_test1 --testcase ispd19_test1] [--variants 8]
+    python -m experiments.net_order.victims_learning [--testcase ispd18_test1 --testcase ispd19_test1] [--variants 8]
                                      [--workers 2] [--steps 800] [--json out.json]
 
 The victims search (``--policy victims``) routes a region's heuristic order, reads its markers and
@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from net_effects import print_against_heuristic, run_shards, training_regions_parser
+from .net_effects import print_against_heuristic, run_shards, training_regions_parser
 from xroute.defaults import REGION_SIZE
 
 OUTCOME = ("victim", "aggressor", "markers", "alone")
@@ -52,7 +52,7 @@ class RegionTrials:
 
 def outcome_columns(region: Any) -> np.ndarray:
     """float32[N, 4]: the OUTCOME columns of a routed region's candidates."""
-    from xroute.policies.rl.holdout import marker_roles
+    from .holdout import marker_roles
 
     victims, aggressors, alone = marker_roles(region)
     nets = np.asarray(region.candidates)[:, 0]
@@ -76,7 +76,7 @@ def variant_orders(rng: np.random.Generator, heuristic: np.ndarray, outcome: np.
 
 def collect_shard(job: tuple) -> list[RegionTrials]:
     testcase, shard, shards, region_size, hold_out_every, variants, max_regions = job
-    from xroute.policies.rl.holdout import moved_first, region_score
+    from .holdout import moved_first, region_score
     from xroute.policies.rl.set_features import region_set_features
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
     from xroute.policy import heuristic_order

@@ -1,6 +1,6 @@
 """MaskablePPO on the compact observation, trained on in-context training regions, scored on held-out ones.
 
-    python bench/ppo_in_context.py [--testcase ispd18_test1 --testcase ispd19_test1] [--steps 20000]
+    python -m experiments.net_order.ppo_in_context [--testcase ispd18_test1 --testcase ispd19_test1] [--steps 20000]
                                    [--seed 1] [--max-candidates 64] [--json out.json]
 
 The issue-13 route with its named pieces: the net-ordering env in context (the router's first pass,
@@ -13,7 +13,7 @@ The policy starts as the heuristic: its action head reads the set scorer's row s
 value is the heuristic prior (-4 x heuristic rank), times ``--start-sharpness``. So its greedy order is
 the heuristic's before training, and training moves it where the rewards say.
 
-Scored like ``bench/rl_holdout.py``: each held-out region opened in context and routed in the greedy
+Scored like ``experiments/net_order/rl_holdout.py``: each held-out region opened in context and routed in the greedy
 order of the model (one net at a time, the compact observation recomputed after each), its cost
 against the heuristic's, before and after training.
 """
@@ -55,7 +55,7 @@ def greedy_in_context(model: Any, first_pass: Any, index: int, dbu: int, max_can
     """(cost, candidates in the order routed) of held-out region ``index`` routed in ``model``'s greedy order."""
     from xroute.config import CostSection
     from xroute.envs.core import RegionStepper
-    from xroute.policies.rl.holdout import region_score
+    from .holdout import region_score
 
     region = first_pass.open_region(index)
     stepper = RegionStepper(region, dbu, max_candidates, CostSection(), observation="compact")
@@ -78,7 +78,7 @@ class HeldOut:
 
 
 def held_out(testcases: list[str], region_size: int) -> dict[str, HeldOut]:
-    from xroute.policies.rl.holdout import held_out_regions, route_in_context
+    from .holdout import held_out_regions, route_in_context
     from xroute.policies.rl.teacher import load_first_pass
 
     out = {}

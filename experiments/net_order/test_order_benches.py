@@ -1,18 +1,15 @@
-"""bench/pair_victims.py (features of pairs of nets, a victim classifier), bench/order_ceiling.py's
-stubborn-marker row and bench/victims_order.py (a learned order of the victims search's victims),
-on drawn grids and the generated imitation sample (conftest)."""
+"""pair_victims.py (features of pairs of nets, a victim classifier), order_ceiling.py's stubborn-marker
+row and victims_order.py (a learned order of the victims search's victims), on drawn grids and the
+generated imitation sample (experiments/conftest.py). Experiment tests: ``-m experiment`` runs them."""
 
 from __future__ import annotations
-
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 torch = pytest.importorskip("torch")
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+pytestmark = pytest.mark.experiment
 
 SIZE = 2  # regions of the imitation_sample fixture: 64 of 2x2 GCells
 HOLD_OUT = 3
@@ -20,7 +17,7 @@ HOLD_OUT = 3
 
 def test_pair_features_on_a_drawn_grid() -> None:
     """Five candidates and one other net on a 2-layer 5x6 grid; every column worked out by hand."""
-    import pair_victims as pv
+    from experiments.net_order import pair_victims as pv
 
     access = np.full((2, 5, 6), -1, np.int32)
     access[0, 0, 0] = access[0, 0, 1] = 10
@@ -51,7 +48,7 @@ def test_pair_features_on_a_drawn_grid() -> None:
 
 
 def test_auc_matches_counting_pairs() -> None:
-    import pair_victims as pv
+    from experiments.net_order import pair_victims as pv
 
     rng = np.random.default_rng(3)
     score = rng.integers(0, 6, 80).astype(float)  # many ties
@@ -66,8 +63,8 @@ def test_pair_victims_bench_labels_the_heuristic_routing_and_scores_out_of_sampl
     """Each region's label is the victims of its heuristic routing, its rule cost a fresh routing of
     the true victims first; the cross-validation scores every region once, and its orders are the
     heuristic's with the predicted victims moved to the front."""
-    import pair_victims as pv
-    from xroute.policies.rl.holdout import marker_roles
+    from experiments.net_order import pair_victims as pv
+    from experiments.net_order.holdout import marker_roles
     from xroute.policies.rl.teacher import load_first_pass, route_order
     from xroute.policy import heuristic_order
 
@@ -97,8 +94,11 @@ def test_pair_victims_bench_labels_the_heuristic_routing_and_scores_out_of_sampl
     assert rows["regions"] == len(regions)
     assert rows["nets"] == sum(len(x.victim) for x in regions)
     assert rows["heuristic"] == pytest.approx(sum(x.costs[0] for x in regions))
+    assert rows["victims"] == sum(int(x.victim.sum()) for x in regions)
+    assert 0 < rows["victims"] < rows["nets"]  # both classes, so every AUC is defined
     for w in pv.INPUTS:
-        assert 0.0 <= rows[f"AUC {w}"] <= 1.0
+        # Out of sample, a classifier that learned nothing scores every net alike: exactly 0.5.
+        assert 0.0 < rows[f"AUC {w}"] < 1.0 and rows[f"AUC {w}"] != 0.5, w
 
 
 def test_order_ceiling_counts_stubborn_markers(imitation_sample: str) -> None:
@@ -108,9 +108,9 @@ def test_order_ceiling_counts_stubborn_markers(imitation_sample: str) -> None:
     the optimistic row."""
     import argparse
 
-    import order_ceiling as oc
+    from experiments.net_order import order_ceiling as oc
     from xroute import load_design
-    from xroute.policies.rl.holdout import best_of_random, held_out_regions, route_in_context
+    from experiments.net_order.holdout import best_of_random, held_out_regions, route_in_context
     from xroute.session import first_pass, open_session
 
     a = argparse.Namespace(region_size=SIZE, hold_out_every=HOLD_OUT, min_candidates=2, best_of=[1, 3], threads=1)
@@ -131,7 +131,7 @@ def test_order_ceiling_counts_stubborn_markers(imitation_sample: str) -> None:
 
 
 def test_victims_order_positions_on_a_drawn_order() -> None:
-    import victims_order as vo
+    from experiments.net_order import victims_order as vo
 
     t = vo.SearchTrials("x", 0, False, np.zeros((10, 1), np.float32), np.arange(10, dtype=np.int32),
                         np.array([5, 2, 9], np.int32), np.zeros(1), np.zeros((0, 3), np.int32), np.zeros(0))
@@ -145,7 +145,7 @@ def test_victims_order_fit_recovers_a_cost_linear_in_positions() -> None:
     (highest score first) is the cheapest of every order of the victims under that cost."""
     import itertools
 
-    import victims_order as vo
+    from experiments.net_order import victims_order as vo
 
     rng = np.random.default_rng(5)
     true = np.array([3.0, -2.0, 0.5, 0.0])  # three features and a constant column
@@ -174,8 +174,8 @@ def test_victims_order_bench_replays_the_search(imitation_sample: str) -> None:
     """Each region's rule trials start with the heuristic's routing and its victims include that
     routing's victims; every shuffle routes the victims first in a new order and its cost is that
     routing's; the budget rows never exceed the heuristic and a larger budget never costs more."""
-    import victims_order as vo
-    from xroute.policies.rl.holdout import marker_roles
+    from experiments.net_order import victims_order as vo
+    from experiments.net_order.holdout import marker_roles
     from xroute.policies.rl.teacher import load_first_pass
     from xroute.policy import heuristic_order
 

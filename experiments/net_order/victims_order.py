@@ -1,13 +1,13 @@
 """Can a learned order of the victims replace the victims search's random shuffles?
 
-    python bench/victims_order.py [--testcase ispd18_test1 --testcase ispd19_test1] [--shuffles 12]
+    python -m experiments.net_order.victims_order [--testcase ispd18_test1 --testcase ispd19_test1] [--shuffles 12]
                                   [--workers 2] [--json out.json]
 
 The victims search (``--policy victims``) routes the heuristic order, then the victims of every
 trial so far first, until no trial names a new victim (the *rule* trials); the rest of its budget
 routes the victims first in random orders (the *shuffles*), the other nets after them in
 heuristic rank. This replays that search in Python on the training regions (as
-``bench/victims_learning.py`` opens them) and on the held-out regions of ``bench/rl_holdout.py``,
+``experiments/net_order/victims_learning.py`` opens them) and on the held-out regions of ``experiments/net_order/rl_holdout.py``,
 and asks whether a learned score can order the victims better than a shuffle does.
 
 The model is linear in each victim's 19 set features (as the region opens) plus three outcome
@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from net_effects import print_against_heuristic, run_shards, training_regions_parser
+from .net_effects import print_against_heuristic, run_shards, training_regions_parser
 
 OUTCOME = ("victim", "aggressor", "alone")
 RULE_TRIALS = 4  # the rule stops earlier when a trial names no new victim
@@ -60,7 +60,7 @@ class SearchTrials:
 
 def trial(fp: Any, index: int, order: np.ndarray, dbu: int) -> tuple[float, Any]:
     """(cost, holdout.marker_roles) of region ``index`` opened in context and routed in ``order``."""
-    from xroute.policies.rl.holdout import marker_roles, region_score
+    from .holdout import marker_roles, region_score
 
     r = fp.open_region(index)
     for k in order:
@@ -78,7 +78,7 @@ def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles:
                   testcase: str) -> SearchTrials | None:
     """The rule trials of region ``index`` and ``shuffles`` seeded shuffles of their victims (None when
     the rule names fewer than 2 victims)."""
-    from xroute.policies.rl.holdout import moved_first
+    from .holdout import moved_first
     from xroute.policies.rl.teacher import route_order
     from xroute.policy import heuristic_order
 
@@ -113,7 +113,7 @@ def collect_shard(job: tuple) -> list[SearchTrials]:
     """The search trials of shard ``shard`` of ``shards`` of ``testcase``'s training regions (the first
     ``max_regions``, 0: all) and of its held-out regions (as many at most)."""
     testcase, shard, shards, region_size, hold_out_every, shuffles, max_regions = job
-    from xroute.policies.rl.holdout import held_out_regions
+    from .holdout import held_out_regions
     from xroute.policies.rl.set_features import region_set_features
     from xroute.policies.rl.teacher import load_first_pass, training_regions
 

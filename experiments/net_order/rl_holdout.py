@@ -1,6 +1,6 @@
 """Net-order policies compared on held-out in-context regions of the first pass (prints a table, writes JSON).
 
-    python bench/rl_holdout.py [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 5]
+    python -m experiments.net_order.rl_holdout [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 5]
                                [--hold-out-every 3] [--min-candidates 2] [--random-seeds 5]
                                [--best-of 20] [--search-budget 4] [--limit N] [--json out.json]
                                [POLICY ...]
@@ -13,7 +13,7 @@ x % K == K // 2 and y % K == K // 2; K odd mixes the four colours) with at least
 first pass routed them, the rest unrouted), once per policy and seed, routed completely and
 dropped, so every policy starts from the same state. Score: the region's first-pass cost
 0.5 WL(um) + 4 vias + 500 DRVs (DRVs: the markers inside the box after routing), summed over the
-regions (:mod:`xroute.policies.rl.holdout`).
+regions (:mod:`experiments.net_order.holdout`).
 
 Rows: heuristic (the router's order, so exactly what the first pass routed there); random (mean
 over ``--random-seeds`` seeds); random-best-of-K (per region the cheapest of K random orders, seeds
@@ -35,7 +35,7 @@ from xroute import load_design
 from xroute.defaults import REGION_SIZE, SEARCH_BUDGET
 from xroute.policy import is_builtin_name
 from xroute.policies.registry import get_policy
-from xroute.policies.rl.holdout import (
+from .holdout import (
     FIGURES,
     PolicyScore,
     best_of_random,

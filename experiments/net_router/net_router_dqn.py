@@ -1,7 +1,7 @@
 """Trains the paper's net-routing DQN on ``xroute/NetRouting-v0`` and compares it with A* on held-out
 regions (prints a table, writes JSON; ``--out`` writes the ONNX model).
 
-    python bench/net_router_dqn.py [--episodes 4000] [--seconds 240] [--out policies/models/net_router_dqn.onnx]
+    python -m experiments.net_router.net_router_dqn [--episodes 4000] [--seconds 240] [--out policies/models/net_router_dqn.onnx]
                                    [--json out.json] [--model M.onnx (evaluate only)]
 
 Regions: 1x1-GCell regions. Held out: lower-left GCell x % K == K // 2 and y % K == K // 2

@@ -1,6 +1,6 @@
 """Do features of pairs of nets tell which nets the heuristic order leaves in violation?
 
-    python bench/pair_victims.py [--testcase ispd18_test1 --testcase ispd19_test1] [--workers 2]
+    python -m experiments.net_order.pair_victims [--testcase ispd18_test1 --testcase ispd19_test1] [--workers 2]
                                  [--steps 600] [--json out.json]
 
 Earlier benches (``victims_learning.py``, ``net_effects.py``) found that a net's 19 set features do
@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from net_effects import print_against_heuristic, run_shards, training_regions_parser
+from .net_effects import print_against_heuristic, run_shards, training_regions_parser
 from xroute.defaults import REGION_SIZE
 
 PAIR_FEATURES: tuple[str, ...] = (
@@ -137,7 +137,7 @@ def region_inputs(region: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def collect_shard(job: tuple) -> list[RegionVictims]:
     testcase, shard, shards, region_size, hold_out_every, max_regions = job
-    from xroute.policies.rl.holdout import marker_roles, moved_first, region_score
+    from .holdout import marker_roles, moved_first, region_score
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
 
     fp, dbu = load_first_pass(testcase, region_size)
@@ -221,7 +221,7 @@ def auc(score: np.ndarray, label: np.ndarray) -> float:
 
 
 def predicted_orders(r: RegionVictims, prob: np.ndarray) -> dict[str, np.ndarray]:
-    from xroute.policies.rl.holdout import moved_first
+    from .holdout import moved_first
 
     top = int(round(float(prob.sum())))
     chosen = np.zeros(len(prob), bool)

@@ -1,6 +1,6 @@
 """Can a score per net tell which net to route first? Single-net moves on the training regions, in context.
 
-    python bench/net_effects.py [--testcase ispd18_test1 --testcase ispd19_test1] [--per-region 12]
+    python -m experiments.net_order.net_effects [--testcase ispd18_test1 --testcase ispd19_test1] [--per-region 12]
                                 [--workers 2] [--steps 800] [--loss mse|listwise] [--json out.json]
 
 The regions are the set scorer's teacher regions (``policies/rl/teacher.py``: the first pass's

@@ -1,9 +1,9 @@
 """How much can one net order per region gain? Oracle orders on the held-out in-context regions.
 
-    python bench/order_ceiling.py [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 10]
+    python -m experiments.net_order.order_ceiling [--testcase ispd18_test1 --testcase ispd19_test1] [--region-size 10]
                                   [--hold-out-every 3] [--best-of 20 --best-of 100] [--json out.json]
 
-The regions are those of ``bench/rl_holdout.py`` (same rule, same state: opened in context, every
+The regions are those of ``experiments/net_order/rl_holdout.py`` (same rule, same state: opened in context, every
 order routed from the same start). A net-order policy chooses one order per region without
 routing it. The rows here are orders that a policy cannot produce, because each one knows how
 routings of the region came out. They bound what a learned order could reach:
@@ -38,7 +38,7 @@ from xroute import load_design
 from xroute.config import CostSection
 from xroute.defaults import REGION_SIZE
 from xroute.policy import heuristic_order
-from xroute.policies.rl.holdout import held_out_regions, marker_roles, moved_first, region_score
+from .holdout import held_out_regions, marker_roles, moved_first, region_score
 from xroute.session import first_pass, open_session
 
 
