@@ -21,17 +21,15 @@ depends only on the order, so results do not depend on the worker count or the b
 model (72,578 parameters) scores and trains on ``device``: CUDA when torch sees one (``auto``), else
 the CPU; the routing stays on the CPU.
 
-``python -m xroute.policies.rl.finetune TESTCASE... --out DIR [--init CKPT.pt]``: starts from an
-imitation checkpoint, or from an untrained scorer (whose greedy order is the heuristic's).
+``xroute train finetune --testcase A,B --init CKPT.pt``: starts from an imitation checkpoint, or
+from an untrained scorer (whose greedy order is the heuristic's).
 """
 
 from __future__ import annotations
 
-import json
 import time
 from concurrent.futures import Executor, ProcessPoolExecutor
-from dataclasses import asdict, dataclass
-from pathlib import Path
+from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
@@ -274,34 +272,3 @@ def finetune(testcases: list[str], cfg: FinetuneConfig = FinetuneConfig(), *, mo
     if best_state is not None:
         model.load_state_dict(best_state)
     return model.cpu().eval(), log
-
-
-def main() -> None:  # python -m xroute.policies.rl.finetune TESTCASE... --out DIR
-    import argparse
-
-    from xroute.policies.rl.set_scorer import export_onnx, load_checkpoint, save_checkpoint
-
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("testcases", nargs="+")
-    ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--init", type=Path, help="set-scorer checkpoint to start from (default: untrained)")
-    ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--backend", choices=("local", "ray"), default="local")
-    ap.add_argument("--ray-address", default=None, help="with --backend ray: a cluster (default: a local instance)")
-    for name, value in FinetuneConfig().__dict__.items():
-        ap.add_argument("--" + name.replace("_", "-"), type=type(value), default=value)
-    a = ap.parse_args()
-    torch.set_num_threads(1)
-    cfg = FinetuneConfig(**{k: getattr(a, k) for k in FinetuneConfig().__dict__})
-    model = load_checkpoint(a.init) if a.init else None
-    a.out.mkdir(parents=True, exist_ok=True)
-    model, log = finetune(a.testcases, cfg, model=model, workers=a.workers, backend=a.backend,
-                          ray_address=a.ray_address, on_log=lambda row: print(json.dumps(row), flush=True))
-    save_checkpoint(model, a.out / "set-final.pt", {"finetune": asdict(cfg), "log": log})
-    export_onnx(model, a.out / "set.onnx", {"xroute_finetune_iterations": str(cfg.iterations)})
-    (a.out / "log.json").write_text(json.dumps(log, indent=1))
-    print(f"wrote {a.out / 'set-final.pt'} and {a.out / 'set.onnx'}")
-
-
-if __name__ == "__main__":
-    main()

@@ -9,22 +9,20 @@ cost the same teach nothing about order and are left out. Each region is also se
 in y and in both (the box columns of :data:`SET_FEATURES` reflected; the other columns do not
 change), as routing has no preferred side.
 
-``train(regions, ...)`` returns the model and a log; ``python -m xroute.policies.rl.imitation``
-(and ``xroute train imitate``) trains from a teacher ``.npz`` and writes a checkpoint and an ONNX model.
+``train(regions, ...)`` returns the model and a log; ``xroute train imitate`` routes (or loads) the
+teacher data, trains and writes a checkpoint and an ONNX model.
 """
 
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import torch
 
-from xroute.policies.rl.device import DEVICES, pick_device
+from xroute.policies.rl.device import pick_device
 from xroute.policies.rl.set_features import SET_FEATURES
 from xroute.policies.rl.set_scorer import SetScorer
 from xroute.policies.rl.teacher import TeacherRegion
@@ -171,21 +169,6 @@ def train(regions: list[TeacherRegion], cfg: ImitationConfig = ImitationConfig()
     return model.cpu().eval(), log
 
 
-def merge(regions: list[TeacherRegion]) -> list[TeacherRegion]:
-    """One region per (testcase, index): the orders and costs of several teacher runs put together."""
-    by_key: dict[tuple[str, int], TeacherRegion] = {}
-    for r in regions:
-        key = (r.testcase, r.index)
-        if key not in by_key:
-            by_key[key] = TeacherRegion(r.testcase, r.index, r.features, r.orders, r.costs)
-            continue
-        old = by_key[key]
-        if old.features.shape != r.features.shape or not np.allclose(old.features, r.features, atol=1e-5):
-            raise ValueError(f"teacher runs disagree on the features of {r.testcase} region {r.index}")
-        by_key[key] = TeacherRegion(r.testcase, r.index, r.features, np.concatenate([old.orders, r.orders]),
-                                    np.concatenate([old.costs, r.costs]))
-    return [by_key[k] for k in sorted(by_key)]
-
 
 def model_scores(model: SetScorer, features: np.ndarray) -> np.ndarray:
     """float64[N]: the model's scores of one region's candidates (features float32[N, F]), on the model's device."""
@@ -204,40 +187,3 @@ def scores_order(features: np.ndarray, scores: np.ndarray) -> np.ndarray:
 def model_order(model: SetScorer, features: np.ndarray) -> np.ndarray:
     """The model's order of one region's candidates (:func:`scores_order` of :func:`model_scores`)."""
     return scores_order(features, model_scores(model, features))
-
-
-def main() -> None:  # python -m xroute.policies.rl.imitation TEACHER.npz --out DIR
-    import argparse
-
-    from xroute.policies.rl.set_scorer import export_onnx, save_checkpoint
-    from xroute.policies.rl.teacher import load
-
-    ap = argparse.ArgumentParser(description="Train the set scorer by imitation of teacher orders.")
-    ap.add_argument("teacher", type=Path, nargs="+", help=".npz files of python -m xroute.policies.rl.teacher")
-    ap.add_argument("--out", type=Path, required=True)
-    for name, value in ImitationConfig().__dict__.items():
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            ap.add_argument("--" + name.replace("_", "-"), type=type(value), default=value)
-    ap.add_argument("--no-mirror", action="store_true")
-    ap.add_argument("--loss", choices=("pl", "contrast", "both"), default="pl")
-    ap.add_argument("--device", choices=DEVICES, default="auto", help="torch device (auto: cuda if present)")
-    ap.add_argument("--val-every", type=int, default=0,
-                    help="leave out teacher regions with index %% K == 0 (validate_imitation routes them)")
-    a = ap.parse_args()
-    torch.set_num_threads(1)
-    regions = merge([r for p in a.teacher for r in load(p)])
-    if a.val_every:
-        regions = [r for r in regions if r.index % a.val_every != 0]
-    cfg = ImitationConfig(**{k: getattr(a, k) for k in ImitationConfig().__dict__ if hasattr(a, k) and k not in ("extra", "loss", "mirror")},
-                          mirror=not a.no_mirror, loss=a.loss)
-    a.out.mkdir(parents=True, exist_ok=True)
-    model, log = train(regions, cfg, on_log=lambda row: print(json.dumps(row), flush=True))
-    save_checkpoint(model, a.out / "set-final.pt", {"imitation": cfg.__dict__, "log": log})
-    export_onnx(model, a.out / "set.onnx", {"xroute_steps": str(cfg.steps),
-                                             "xroute_teacher_regions": str(len(regions))})
-    (a.out / "log.json").write_text(json.dumps(log, indent=1))
-    print(f"wrote {a.out / 'set-final.pt'} and {a.out / 'set.onnx'}")
-
-
-if __name__ == "__main__":
-    main()

@@ -15,7 +15,6 @@ here (:func:`collect`, ``workers`` processes) and Ray tasks on a cluster run the
 
 from __future__ import annotations
 
-import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
@@ -191,37 +190,3 @@ def load(path: str | Path) -> list[TeacherRegion]:
                                  z["orders"][o:o + k1 * n].reshape(k1, n), costs[j]))
         o += k1 * n
     return out
-
-
-def main() -> None:  # python -m xroute.policies.rl.teacher OUT.npz TESTCASE...
-    import argparse
-
-    ap = argparse.ArgumentParser(description="Route teacher orders on training regions; write an .npz.")
-    ap.add_argument("out", type=Path)
-    ap.add_argument("testcases", nargs="+")
-    ap.add_argument("--orders", type=int, default=8)
-    ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--backend", choices=("local", "ray"), default="local")
-    ap.add_argument("--ray-address", default=None, help="with --backend ray: a cluster (default: a local instance)")
-    ap.add_argument("--hold-out-every", type=int, default=3)
-    ap.add_argument("--region-size", type=int, default=None)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--max-regions", type=int, default=0)
-    ap.add_argument("--jitter", type=float, default=0.0, help="perturbed heuristic orders (noise / N) instead of random")
-    ap.add_argument("--promote", type=float, default=0.0,
-                    help="heuristic orders with each net moved to the front with this probability, instead of random")
-    a = ap.parse_args()
-    t0 = time.perf_counter()
-    regions = collect(a.testcases, workers=a.workers, backend=a.backend, ray_address=a.ray_address, orders=a.orders,
-                      hold_out_every=a.hold_out_every, region_size=a.region_size, seed=a.seed,
-                      max_regions=a.max_regions, jitter=a.jitter, promote=a.promote)
-    save(regions, a.out)
-    heur = sum(r.costs[0] for r in regions)
-    best = sum(r.costs.min() for r in regions)
-    rand = sum(r.costs[1:].mean() for r in regions)
-    print(f"{len(regions)} regions, {time.perf_counter() - t0:.1f} s; heuristic {heur:,.1f}, "
-          f"random {rand:,.1f}, best of {a.orders + 1} {best:,.1f} ({100 * (best - heur) / max(heur, 1e-9):+.1f}%)")
-
-
-if __name__ == "__main__":
-    main()
