@@ -37,3 +37,20 @@ def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(alg
     for i in order:
         assert region.route_net(int(i))["routed"]
     assert region.metrics()["unreached"] == 0
+
+
+def test_every_shipped_model_has_a_short_card_and_the_package_ships_no_log() -> None:
+    """One card per model (STYLE.md habit 13): <model>.card.md beside <model>.onnx, at most 100 lines,
+    with its intended use, data, protocol and figures; nothing else in the folder but models and cards
+    (research logs live in experiments/)."""
+    models = sorted(p.stem for p in MODELS.glob("*.onnx"))
+    assert models == ["dqn", "net_router_dqn", "ppo", "set_imitation"]
+    for name in models:
+        card = MODELS / f"{name}.card.md"
+        text = card.read_text()
+        assert len(text.splitlines()) <= 100, card
+        for heading in ("## Intended use", "## Training data", "## Evaluation protocol", "## Figures"):
+            assert heading in text, (card, heading)
+        assert "2026-" in text.split("## Figures")[1], f"{card}: figures without a date"
+    assert sorted(p.name for p in MODELS.iterdir()) == sorted([f"{m}.onnx" for m in models] +
+                                                               [f"{m}.card.md" for m in models])

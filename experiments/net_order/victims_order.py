@@ -26,7 +26,7 @@ replaced by the learned order ("learned in search") or not ("search").
 A replay, not the engine's search: its victims are those of the rule trials (the engine also adds
 those its shuffles name) and its shuffles are numpy's, so its search rows differ a little from
 ``rl_holdout.py --policy victims``. Regions whose rule names fewer than 2 victims are left out.
-The figures of a run are in policies/models/MODEL_CARD.md.
+The figures of a run are in experiments/net_order/LOG.md.
 """
 
 from __future__ import annotations
