@@ -224,6 +224,7 @@ def test_bad_batch_file_is_one_line_exit_2(tmp_path: Path, testcase, text: str, 
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.slow
 def test_ray_backend_on_a_local_instance(tmp_path: Path, testcase, smoke_files) -> None:
     pytest.importorskip("ray", reason="ray is an optional extra (pip install 'xroute[ray]')")
     testcase(S1)

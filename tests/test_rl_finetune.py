@@ -74,6 +74,7 @@ def test_a_ppo_step_moves_the_greedy_order_towards_a_cheaper_sample() -> None:
     assert after[0] > before[0] and after[1] < before[1], (before, after)
 
 
+@pytest.mark.slow
 def test_finetune_starts_at_the_heuristic_and_does_not_depend_on_the_workers(imitation_sample: str) -> None:
     """An untrained scorer's greedy order is the heuristic's, so the first evaluation costs exactly the
     heuristic's on the validation regions; two worker processes, and two Ray actors on a local instance,
@@ -137,6 +138,7 @@ def test_xroute_train_finetune_writes_a_model_the_router_takes(imitation_sample:
     assert not (tmp_path / "bad").exists()
 
 
+@pytest.mark.slow
 def test_teacher_shards_on_ray_give_the_regions_of_one_process(imitation_sample: str) -> None:
     """The teacher's shards as Ray tasks on a local instance: the same regions, orders and costs as one process."""
     pytest.importorskip("ray")

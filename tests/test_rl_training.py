@@ -76,6 +76,7 @@ def test_training_writes_log_and_checkpoints_and_is_seeded(tmp_path: Path, algor
     assert without_time(other.episodes) != without_time(result.episodes)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("algorithm", ["ppo", "dqn"])
 def test_training_on_one_region_lowers_its_cost(tmp_path: Path, algorithm: str) -> None:
     """One fake region of 5 nets replayed: routing nets by decreasing feature 0 is cheapest; the
@@ -167,6 +168,7 @@ def test_cli_train_on_sample_regions_then_export_then_route_with_the_onnx_policy
     assert design.engine.check_connectivity()["open_nets"] == 0
 
 
+@pytest.mark.slow
 def test_cli_train_in_a_fresh_process(tmp_path: Path) -> None:
     """`xroute train` registers the env IDs itself (through xroute.envs): no earlier import needed."""
     import os

@@ -151,7 +151,7 @@ def test_repair_inside_the_region_lowers_the_first_iterations_markers() -> None:
     assert counts[1] < counts[0]
 
 
-@pytest.mark.parametrize("name", ["ispd19_sample4", "ispd18_sample3"])
+@pytest.mark.parametrize("name", ["ispd19_sample4", pytest.param("ispd18_sample3", marks=pytest.mark.slow)])
 def test_repair_rounds_do_not_depend_on_the_thread_count(tmp_path: Path, name: str) -> None:
     defs = []
     for threads in (1, 2):

@@ -95,6 +95,7 @@ def test_set_extractor_scores_each_row_and_pools_the_legal_ones(region_dir: str)
     assert not f[:, n:M].any()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("observation", ["grid", "compact"])
 def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> None:
     """384 steps (about 55 episodes) of MaskablePPO with fixed seeds take the greedy order from the
