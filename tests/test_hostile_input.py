@@ -254,7 +254,7 @@ def test_def_writer_does_not_follow_planted_symlinks(tmp_path: Path) -> None:
 
 
 def test_python_writer_does_not_follow_planted_symlinks(tmp_path: Path) -> None:
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
 
     victim = tmp_path / "victim.txt"
     victim.write_text("precious\n")
