@@ -10,7 +10,7 @@ import numpy as np
 
 NAME = "python-heuristic"
 
-# Columns of features (xroute.policy.FEATURE_COLUMNS).
+# Columns of features (xroute.net_order.FEATURE_COLUMNS).
 NET, TERMINALS, XLO, YLO, XHI, YHI = 0, 2, 4, 5, 6, 7
 
 

@@ -40,7 +40,7 @@ import numpy as np
 from gymnasium import spaces
 
 from xroute.config import CostSection
-from xroute.policy import heuristic_order
+from xroute.net_order import heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
 

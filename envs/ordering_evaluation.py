@@ -3,7 +3,7 @@
 ``reset()`` loads ``testcase_name`` afresh and starts the router's own flow (as ``xroute route``:
 regions of ``region_size`` GCells, up to ``iteration_count`` iterations, rip-up and reroute of the
 nets in design-rule markers, early stop at zero violations) in a background thread, with a policy
-that lends every region to this env (``needs_region = True``, see :mod:`xroute.policy`). Each
+that lends every region to this env (``needs_region = True``, see :mod:`xroute.net_order`). Each
 step routes one net of the region being routed (``action`` = its row, see
 :mod:`xroute.envs.core` for the spaces and the reward); when the region's last net is routed
 the router commits it and moves on, and the next observation is the next region's. The episode

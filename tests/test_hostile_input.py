@@ -429,7 +429,7 @@ def test_policy_blocked_outside_python_ends_the_process(tmp_path: Path) -> None:
 
 def test_library_callers_still_get_their_policy_exception() -> None:
     from xroute.design import load_design
-    from xroute.policy import CallablePolicy
+    from xroute.net_order import CallablePolicy
     from xroute.router import route_design
 
     def order(region, features):

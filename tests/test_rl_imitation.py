@@ -99,7 +99,7 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(im
     from xroute.policies.onnx_policy import OnnxPolicy
     from xroute.policies.registry import get_policy
     from xroute.policies.rl.set_scorer import SetScorer, export_onnx
-    from xroute.policy import PolicyError
+    from xroute.net_order import PolicyError
     from xroute.router import route_design
 
     torch.manual_seed(0)
@@ -229,7 +229,7 @@ def test_victims_learning_bench_tries_the_rule_and_scores_learned_second_orders(
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
     import victims_learning as vl
     from xroute.policies.rl.teacher import load_first_pass, route_order
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     torch.set_num_threads(1)
     regions = vl.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, variants=3, max_regions=24)

@@ -54,7 +54,7 @@ def test_in_context_episodes_are_the_first_pass_regions() -> None:
     from xroute import load_design
     from xroute.config import CostSection
     from xroute.envs.ordering_training import ordering_training_env
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
     from xroute.session import first_pass, open_session
 
     require_testcase(DESIGN)
@@ -162,7 +162,7 @@ def test_holdout_scoring_matches_the_first_pass_and_takes_any_policy() -> None:
     returning the heuristic order scores the same; best-of-K is never worse than the random mean."""
     from xroute import load_design
     from xroute.config import CostSection
-    from xroute.policy import CallablePolicy, heuristic_order
+    from xroute.net_order import CallablePolicy, heuristic_order
     from xroute.policies.rl.holdout import best_of_random, best_score, held_out_regions, mean_score, route_in_context
     from xroute.session import first_pass, open_session
 

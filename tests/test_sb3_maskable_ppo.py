@@ -133,7 +133,7 @@ def test_in_context_bench_starts_as_the_heuristic_and_scores_the_held_out_region
     import sys
     from pathlib import Path
 
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
     import ppo_in_context

@@ -68,7 +68,7 @@ def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
 def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     """A built-in policy name stays as it is; anything else is a policy file, which must be
     readable (relative to the config file's folder). Its format is checked when it is loaded."""
-    from xroute.policy import BUILTIN_POLICIES, is_builtin_name
+    from xroute.net_order import BUILTIN_POLICIES, is_builtin_name
 
     if is_builtin_name(value):
         if value.startswith("best-of-") and not 1 <= int(value[len("best-of-"):]) <= MAX_SEARCH_BUDGET:

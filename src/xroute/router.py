@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from xroute.policy import (
+from xroute.net_order import (
     NetOrderPolicy,
     RandomPolicy,
     SequentialPolicy,
@@ -235,10 +235,10 @@ def _builtin(policy: NetOrderPolicy) -> str | None:
     (including a subclass of a built-in that overrides ``order``)."""
     if isinstance(policy, SequentialPolicy):
         return None
-    # The nearest class of xroute.policy that names a built-in (its `builtin` attribute), so a new
+    # The nearest class of xroute.net_order that names a built-in (its `builtin` attribute), so a new
     # built-in needs no list here.
     for cls in type(policy).__mro__:
-        if cls.__module__ == "xroute.policy" and cls.__dict__.get("builtin"):
+        if cls.__module__ == "xroute.net_order" and cls.__dict__.get("builtin"):
             return cls.builtin if type(policy).order is cls.order else None
     return None
 
@@ -335,13 +335,13 @@ def route_design(
 
     ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"victims"``, ``"bestof"``,
     ``"best-of-K"`` (the engine's search policies with their default budget), or a policy object
-    (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
+    (:class:`~xroute.net_order.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
     ``RolloutPolicy(budget)``, ``VictimsPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
     ``name`` and ``order``, or with ``name`` and ``next_net`` (asked after every routed net);
     policy files and ONNX models through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
     fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
     Built-in policies run in C++; any other is called once per region (a sequential one once per net). Raises
-    :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
+    :class:`RouteArgumentError` for invalid settings and :class:`~xroute.net_order.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.
