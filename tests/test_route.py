@@ -392,11 +392,12 @@ def test_every_builtin_policy_class_runs_in_the_engine() -> None:
     import inspect
 
     import xroute.net_order as policy_module
-    from xroute.net_order import BUILTIN_POLICIES
+    from xroute.net_order import BUILTIN_POLICIES, BUILTINS
     from xroute.router import _builtin
 
     classes = [c for _, c in inspect.getmembers(policy_module, inspect.isclass)
                if c.__module__ == "xroute.net_order" and c.__dict__.get("builtin")]
+    assert {c.builtin: c for c in classes} == BUILTINS  # the one table names every built-in class
     assert sorted(c.builtin for c in classes) == sorted(BUILTIN_POLICIES)
     for cls in classes:
         assert _builtin(cls()) == cls.builtin, cls

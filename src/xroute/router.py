@@ -20,7 +20,6 @@ import numpy as np
 
 from xroute.net_order import (
     NetOrderPolicy,
-    RandomPolicy,
     SequentialPolicy,
     builtin_policy,
     check_order,
@@ -220,16 +219,6 @@ def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
     return policy
 
 
-def check_search_budget(what: str, value: int | None) -> int:
-    """A search policy's trial routings per region (None: the engine's default), checked against
-    the engine's limit; :class:`RouteArgumentError` (one line) otherwise."""
-    if value is None:
-        return defaults.SEARCH_BUDGET
-    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= defaults.MAX_SEARCH_BUDGET:
-        raise RouteArgumentError(f"{what} must be an integer in 1..{defaults.MAX_SEARCH_BUDGET}, got {value!r}")
-    return value
-
-
 def _builtin(policy: NetOrderPolicy) -> str | None:
     """The engine's name for a built-in policy; None for one that must be called from Python
     (including a subclass of a built-in that overrides ``order``)."""
@@ -293,20 +282,8 @@ def check_next(index: Any, n: int, policy_name: str) -> int:
 
 def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[str, Any], _PolicyCallback | None]:
     """The engine's policy arguments: a built-in's name (run in C++), or a checked, timed callback."""
-    builtin = _builtin(pol)
-    if builtin == "heuristic":
-        return {"policy": "heuristic"}, None
-    if builtin == "random":
-        return {"policy": "random", "seed": pol.seed if isinstance(pol, RandomPolicy) else settings.seed}, None
-    if builtin == "rollout":
-        budget = check_search_budget("rollout search budget", pol.budget)
-        return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
-    if builtin == "victims":
-        budget = check_search_budget("victims search budget", pol.budget)
-        return {"policy": "victims", "search_budget": budget, "seed": settings.seed}, None
-    if builtin == "bestof":
-        k = check_search_budget("best-of-K: K", pol.k)
-        return {"policy": f"best-of-{k}", "seed": pol.seed}, None
+    if _builtin(pol) is not None:
+        return pol.engine_arguments(settings.seed), None  # a class of xroute.net_order.BUILTINS
     callback = _PolicyCallback(pol, settings.policy_timeout)  # seconds per call (None: default, 0: none)
     # A policy that declares needs_region = True finds the region being routed (an _engine.Region
     # lent for the call: grid views, candidates, route_net) in region["engine_region"].
