@@ -22,7 +22,6 @@ import queue
 import threading
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 
 from xroute.envs.core import (
@@ -31,11 +30,7 @@ from xroute.envs.core import (
     RegionEnv,
     RegionStepper,
     RewardFn,
-    check_max_candidates,
-    check_observation,
-    check_render_mode,
     empty_observation,
-    observation_space,
 )
 
 
@@ -82,17 +77,11 @@ class NetOrderingEvaluationEnv(RegionEnv):
         from xroute.router import RouteSettings
 
         RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
-        self.render_mode = check_render_mode(render_mode)
-        self.observation = check_observation(observation)
+        self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.iteration_count = iteration_count
-        self.max_candidates = check_max_candidates(max_candidates)
-        self.weights = weights
-        self.reward_fn = reward_fn
         self.out_dir = out_dir
-        self.observation_space = observation_space(self.max_candidates, self.observation)
-        self.action_space = gym.spaces.Discrete(self.max_candidates)
         self.design: Any = None
         self._thread: threading.Thread | None = None
         self._events: queue.Queue = queue.Queue()
