@@ -12,10 +12,16 @@ microns, as LEF writes them (``DATABASE MICRONS 1000``: 0.001 = 1 DBU). A test's
 
 from __future__ import annotations
 
+import textwrap
+from pathlib import Path
 from typing import Iterable
 
 Rect = tuple[float, float, float, float]  # xlo, ylo, xhi, yhi in microns
 Shapes = Iterable[tuple[str, Rect]]  # (layer, rect) pairs; consecutive rects on one layer share its LAYER line
+
+# A 35-line technology LEF: UNITS 1000, SITE core, layers M1 V1 M2, VIA V12 (the LEF reader's tests).
+TECH_LEF = Path(__file__).resolve().parent / "data" / "lef" / "tech.lef"
+TECH = TECH_LEF.read_text()
 
 HEADER = 'VERSION 5.8 ;\nBUSBITCHARS "[]" ;\nDIVIDERCHAR "/" ;\nUNITS\n  DATABASE MICRONS 1000 ;\nEND UNITS\n'
 
@@ -128,3 +134,10 @@ def macro(name: str, width: float, height: float, *pins: str, site_name: str | N
     if obs:
         text += "  OBS\n" + _shapes(obs, "    ") + "  END\n"
     return text + f"END {name}\n"
+
+
+def write_lef(tmp_path: Path, text: str, name: str = "t.lef") -> str:
+    """Writes ``text`` (dedented, leading newlines dropped) to ``tmp_path/name``; returns the path."""
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text).lstrip("\n"))
+    return str(path)
