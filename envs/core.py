@@ -40,7 +40,7 @@ import numpy as np
 from gymnasium import spaces
 
 from xroute.config import CostSection
-from xroute.policy import heuristic_order
+from xroute.net_order import heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
 
@@ -196,13 +196,25 @@ def check_render_mode(render_mode: str | None) -> str | None:
 class RegionEnv(gym.Env):
     """What the net-ordering envs share: the current episode's :class:`RegionStepper` (None between
     episodes), its action mask and its engine Region, ``info["action_mask"]`` and ``render()``.
-    Subclasses set ``max_candidates`` and ``render_mode`` (:func:`check_render_mode`), create the
-    stepper in ``reset`` and define ``_info()`` (the env's own info keys)."""
+    Subclasses call :meth:`_init_spaces` in ``__init__``, create the stepper in ``reset`` and
+    define ``_info()`` (the env's own info keys)."""
 
     metadata = {"render_modes": RENDER_MODES, "render_fps": 4}
     max_candidates: int
     render_mode: str | None = None
     _stepper: RegionStepper | None = None
+
+    def _init_spaces(self, max_candidates: int, observation: str, render_mode: str | None,
+                     weights: CostWeights, reward_fn: RewardFn | None) -> None:
+        """Checks and keeps the settings every net-ordering env has, and sets its spaces:
+        Dict observations of ``max_candidates`` rows (:func:`observation_space`), Discrete(M) actions."""
+        self.render_mode = check_render_mode(render_mode)
+        self.observation = check_observation(observation)
+        self.max_candidates = check_max_candidates(max_candidates)
+        self.weights = weights
+        self.reward_fn = reward_fn
+        self.observation_space = observation_space(self.max_candidates, self.observation)
+        self.action_space = gym.spaces.Discrete(self.max_candidates)
 
     def _info(self) -> dict[str, Any]:
         raise NotImplementedError

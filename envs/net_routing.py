@@ -4,7 +4,7 @@ One episode routes one net of a region (a region of ``testcase_name`` cut as the
 iteration cuts them: ``region_size`` x ``region_size`` GCells, all of them row by row or the ones
 whose lower-left GCell ``region_location`` names, one (column, row) or a list; or the static
 region of ``region_dir`` written by ``xroute make-region``).
-The nets of a region come in the built-in heuristic order (:func:`xroute.policy.heuristic_order`;
+The nets of a region come in the built-in heuristic order (:func:`xroute.net_order.heuristic_order`;
 nets with fewer than two terminals on the grid are skipped); each is routed ``net_loop`` times
 (episodes), the last result is kept and the following nets are routed around it. After the last
 net of a region the env moves on to the next region with a routable net (regions are never
@@ -80,7 +80,7 @@ from xroute.policies.rl.net_walk import (
     net_hpwl,
     routable_terminals,
 )
-from xroute.policy import FEATURE_COLUMNS, heuristic_order
+from xroute.net_order import FEATURE_COLUMNS, heuristic_order
 
 __all__ = ["DIRECTIONS", "OBSERVATION_SIZE", "STATE_FIELDS", "NetRoutingEnv", "net_hpwl", "net_routing_env"]
 

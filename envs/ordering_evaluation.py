@@ -3,7 +3,7 @@
 ``reset()`` loads ``testcase_name`` afresh and starts the router's own flow (as ``xroute route``:
 regions of ``region_size`` GCells, up to ``iteration_count`` iterations, rip-up and reroute of the
 nets in design-rule markers, early stop at zero violations) in a background thread, with a policy
-that lends every region to this env (``needs_region = True``, see :mod:`xroute.policy`). Each
+that lends every region to this env (``needs_region = True``, see :mod:`xroute.net_order`). Each
 step routes one net of the region being routed (``action`` = its row, see
 :mod:`xroute.envs.core` for the spaces and the reward); when the region's last net is routed
 the router commits it and moves on, and the next observation is the next region's. The episode
@@ -22,7 +22,6 @@ import queue
 import threading
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 
 from xroute.envs.core import (
@@ -31,11 +30,7 @@ from xroute.envs.core import (
     RegionEnv,
     RegionStepper,
     RewardFn,
-    check_max_candidates,
-    check_observation,
-    check_render_mode,
     empty_observation,
-    observation_space,
 )
 
 
@@ -82,17 +77,11 @@ class NetOrderingEvaluationEnv(RegionEnv):
         from xroute.router import RouteSettings
 
         RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
-        self.render_mode = check_render_mode(render_mode)
-        self.observation = check_observation(observation)
+        self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.iteration_count = iteration_count
-        self.max_candidates = check_max_candidates(max_candidates)
-        self.weights = weights
-        self.reward_fn = reward_fn
         self.out_dir = out_dir
-        self.observation_space = observation_space(self.max_candidates, self.observation)
-        self.action_space = gym.spaces.Discrete(self.max_candidates)
         self.design: Any = None
         self._thread: threading.Thread | None = None
         self._events: queue.Queue = queue.Queue()

@@ -30,7 +30,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import gymnasium as gym
 
 from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
@@ -38,10 +37,6 @@ from xroute.envs.core import (
     RegionEnv,
     RegionStepper,
     RewardFn,
-    check_max_candidates,
-    check_observation,
-    check_render_mode,
-    observation_space,
 )
 
 
@@ -78,20 +73,14 @@ class NetOrderingTrainingEnv(RegionEnv):
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
         if region_order not in ("sequential", "random"):
             raise ValueError(f"region_order must be 'sequential' or 'random', got {region_order!r}")
-        self.render_mode = check_render_mode(render_mode)
+        self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.in_context = bool(in_context)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.testcase_loop = testcase_loop
         self.region_location = None if region_location is None else (int(region_location[0]), int(region_location[1]))
         self.region_loop = region_loop
-        self.observation = check_observation(observation)
-        self.max_candidates = check_max_candidates(max_candidates)
-        self.weights = weights
-        self.reward_fn = reward_fn
         self.region_order = region_order
-        self.observation_space = observation_space(self.max_candidates, self.observation)
-        self.action_space = gym.spaces.Discrete(self.max_candidates)
         self.passes_done = 0
         self._design: Any = None
         self._session: Any = None

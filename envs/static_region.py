@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import gymnasium as gym
 
 from xroute.envs.core import (
     DEFAULT_MAX_CANDIDATES,
@@ -21,10 +20,6 @@ from xroute.envs.core import (
     RegionEnv,
     RegionStepper,
     RewardFn,
-    check_max_candidates,
-    check_observation,
-    check_render_mode,
-    observation_space,
 )
 
 
@@ -43,16 +38,10 @@ class StaticRegionEnv(RegionEnv):
         from xroute.session import open_session
 
         self.region_dir = str(region_dir)
-        self.render_mode = check_render_mode(render_mode)
-        self.observation = check_observation(observation)
-        self.max_candidates = check_max_candidates(max_candidates)
-        self.weights = weights
-        self.reward_fn = reward_fn
+        self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.design, self.meta = load_region(self.region_dir)
         self.box = tuple(self.meta["die"])
         self._session = open_session(self.design)
-        self.observation_space = observation_space(self.max_candidates, self.observation)
-        self.action_space = gym.spaces.Discrete(self.max_candidates)
         self._stepper: RegionStepper | None = None
 
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):

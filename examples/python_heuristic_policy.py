@@ -3,14 +3,14 @@ measure of the policy seam's cost (route with ``--policy examples/python_heurist
 and compare with ``--policy heuristic``: same order, so the same routing, plus one Python
 call per region).
 
-A policy file defines ``order(region, features)`` (the protocol ``xroute.policy.NetOrderPolicy``) and may set NAME.
+A policy file defines ``order(region, features)`` (the protocol ``xroute.net_order.NetOrderPolicy``) and may set NAME.
 """
 
 import numpy as np
 
 NAME = "python-heuristic"
 
-# Columns of features (xroute.policy.FEATURE_COLUMNS).
+# Columns of features (xroute.net_order.FEATURE_COLUMNS).
 NET, TERMINALS, XLO, YLO, XHI, YHI = 0, 2, 4, 5, 6, 7
 
 

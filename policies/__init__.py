@@ -1,9 +1,9 @@
-"""Net-order policies: the protocol, the built-ins and the registry (see :mod:`xroute.policy`).
+"""Net-order policies: the protocol, the built-ins and the registry (see :mod:`xroute.net_order`).
 
 Importing this package loads no engine and no torch.
 """
 
-from xroute.policy import (
+from xroute.net_order import (
     FEATURE_COLUMNS,
     CallablePolicy,
     HeuristicPolicy,

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from xroute.config import CostSection
-from xroute.policy import heuristic_order
+from xroute.net_order import heuristic_order
 
 DEFAULT_MAX_MOVES = 2000
 

@@ -33,7 +33,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from xroute.policy import PolicyError, heuristic_order
+from xroute.net_order import PolicyError, heuristic_order
 from xroute.policies.rl.observation import ALIGNED_SHAPE, NET_CHANNELS, NET_FEATURES, observe_arrays, unrouted_mask
 from xroute.policies.rl.set_features import SET_FEATURES, set_features
 

@@ -2,7 +2,7 @@
 ``"victims"``, ``"best-of-8"`` or ``"path/to/file.py"``.
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
-define ``order(region, features)`` (see :mod:`xroute.policy`); it may also set ``NAME`` (default:
+define ``order(region, features)`` (see :mod:`xroute.net_order`); it may also set ``NAME`` (default:
 the file's stem). A ``.onnx`` file is an :class:`~xroute.policies.onnx_policy.OnnxPolicy` (onnxruntime
 loaded then, not before).
 """
@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from xroute.policy import (
+from xroute.net_order import (
     BUILTIN_POLICIES,
     CallablePolicy,
     CallableSequentialPolicy,

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from xroute.atomic_files import atomic_write_text
 from xroute.testcases.def_text import GuideNet, write_guides
 from xroute.testcases.gen_guides import net_guides
 from xroute.testcases.gen_netlist import GCELL_H, GCELL_W, Netlist, make_netlist, pin_center
@@ -126,10 +127,7 @@ def make_testcase(cells: int, seed: int, out_dir: str | Path) -> Path:
         "guide": write_guides(_guides(nl, net_names)),
     }
     for ext, text in files.items():
-        path = folder / f"{name}.{ext}"
-        tmp = path.with_suffix(path.suffix + ".tmp")
-        tmp.write_text(text)
-        tmp.replace(path)
+        atomic_write_text(folder / f"{name}.{ext}", text)
     return folder
 
 

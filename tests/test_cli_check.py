@@ -9,33 +9,11 @@ from pathlib import Path
 import pytest
 
 from conftest import make_runner
+from lef_text import cut, library, routing
 from xroute.cli.app import app
 
-LEF = """\
-VERSION 5.8 ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-END M1
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.1 ;
-END V1
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-END M2
-END LIBRARY
-"""
+LEF = library(routing("M1", "HORIZONTAL", 0.2, 0.1, 0.1), cut("V1", 0.1), routing("M2", "VERTICAL", 0.2, 0.1, 0.1),
+              grid=None)
 
 # Drawn in DBU (1000 per µm); M1 wires are 100 wide and extend 50 past their ends.
 #

@@ -10,99 +10,21 @@ from pathlib import Path
 import pytest
 
 from drawn import contest_input, load_drawn
+from lef_text import library, macro, pin, site, stack
 from xroute import _engine
 
 # Three routing layers, all 100 DBU wide (half width 50); V12 / V23 are
 # 100 x 100 squares on each of their three layers, centred on the via point.
-TECH_LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-END M1
-LAYER V1
-  TYPE CUT ;
-END V1
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-END M2
-LAYER V2
-  TYPE CUT ;
-END V2
-LAYER M3
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-END M3
-
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER V1 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER M2 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-END V12
-VIA V23 DEFAULT
-  LAYER M2 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER V2 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER M3 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-END V23
-
-SITE core
-  CLASS CORE ;
-  SIZE 0.2 BY 1.0 ;
-END core
-
-MACRO CELL
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 1.0 BY 1.0 ;
-  SITE core ;
-  PIN A
-    DIRECTION INPUT ;
-    PORT
-      LAYER M1 ;
-        RECT 0.1 0.4 0.3 0.6 ;
-    END
-  END A
-  PIN Y
-    DIRECTION OUTPUT ;
-    PORT
-      LAYER M1 ;
-        RECT 0.7 0.4 0.9 0.6 ;
-    END
-  END Y
-  PIN B
-    DIRECTION INPUT ;
-    PORT
-      LAYER M1 ;
-        RECT 0.4 0.1 0.6 0.2 ;
-    END
-    PORT
-      LAYER M2 ;
-        RECT 0.4 0.8 0.6 0.9 ;
-    END
-  END B
-END CELL
-
-END LIBRARY
-"""
+TECH_LEF = library(
+    stack(width=0.1, spacing=None, cut_width=None, cut_spacing=None),
+    site("core", 0.2, 1.0),
+    macro("CELL", 1.0, 1.0,
+          pin("A", "INPUT", [("M1", (0.1, 0.4, 0.3, 0.6))], use=None),
+          pin("Y", "OUTPUT", [("M1", (0.7, 0.4, 0.9, 0.6))], use=None),
+          pin("B", "INPUT", [("M1", (0.4, 0.1, 0.6, 0.2))], [("M2", (0.4, 0.8, 0.6, 0.9))], use=None),
+          site_name="core"),
+    grid=None,
+)
 
 # Cells at x = 0, 2000, 4000 (all N). Pin shapes in design coordinates:
 #   u1/Y (700,400)-(900,600)     u2/A (2100,400)-(2300,600)    u3/A (4100,400)-(4300,600)

@@ -11,51 +11,16 @@ import pytest
 
 from conftest import available, pick
 from drawn import load_contest, load_drawn
-from test_drc_rules import TECH_LEF
+from lef_text import macro, pin, site
+from test_drc_rules import tech_lef
 
-CELL_LEF = """\
-SITE core
-  CLASS CORE ;
-  SIZE 0.2 BY 1.0 ;
-END core
-
-MACRO INV
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 1.0 BY 1.0 ;
-  SITE core ;
-  PIN A
-    DIRECTION INPUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.1 0.4 0.3 0.6 ;
-    END
-  END A
-  PIN Y
-    DIRECTION OUTPUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.7 0.4 0.9 0.6 ;
-    END
-  END Y
-  PIN VDD
-    DIRECTION INOUT ;
-    USE POWER ;
-    PORT
-      LAYER M1 ;
-        RECT 0.0 0.9 1.0 1.1 ;
-    END
-  END VDD
-  OBS
-    LAYER M1 ;
-      RECT 0.4 0.3 0.6 0.7 ;
-  END
-END INV
-
-END LIBRARY
-"""
+CELL_LEF = site("core", 0.2, 1.0) + macro(
+    "INV", 1.0, 1.0,
+    pin("A", "INPUT", [("M1", (0.1, 0.4, 0.3, 0.6))]),
+    pin("Y", "OUTPUT", [("M1", (0.7, 0.4, 0.9, 0.6))]),
+    pin("VDD", "INOUT", [("M1", (0.0, 0.9, 1.0, 1.1))], use="POWER"),
+    site_name="core", obs=[("M1", (0.4, 0.3, 0.6, 0.7))],
+)
 
 #   u1 at (1000,1000) N, u2 at (2000,1000) FS (mirrored about the x axis).
 #   Net n1 joins u1/Y and u2/A with an M1 wire and a V12 via at its end; in
@@ -90,7 +55,7 @@ WIRE, VIA, PIN, OBS, SPECIAL = 0, 1, 2, 3, 4
 
 
 def load(tmp_path: Path, extra: str = ""):
-    return load_drawn(tmp_path, TECH_LEF.replace("END LIBRARY\n", "") + CELL_LEF, DEF_TEMPLATE.format(extra=extra))
+    return load_drawn(tmp_path, tech_lef(CELL_LEF), DEF_TEMPLATE.format(extra=extra))
 
 
 def test_collected_shapes(tmp_path):

@@ -11,105 +11,34 @@ import numpy as np
 import pytest
 
 from drawn import shape_rows
+from lef_text import cut, library, routing, stack_via
 from xroute import _engine
 
-TECH_LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-MANUFACTURINGGRID 0.001 ;
-CLEARANCEMEASURE EUCLIDEAN ;
+EOL = "SPACING 0.12 ENDOFLINE 0.15 WITHIN 0.05"
+TECH = (
+    routing("M1", "HORIZONTAL", 0.2, 0.1, rules=["AREA 0.05 ;", "SPACINGTABLE", "  PARALLELRUNLENGTH 0.0 0.5",
+                                                 "  WIDTH 0.0   0.10 0.10", "  WIDTH 0.2   0.10 0.20",
+                                                 "  WIDTH 0.4   0.30 0.40 ;"]),
+    cut("V1", 0.1, 0.1, rules=["SPACING 0.15 ADJACENTCUTS 3 WITHIN 0.2 ;"]),
+    routing("M2", "VERTICAL", 0.2, 0.1, 0.1, rules=["SPACING 0.2 RANGE 0.3 1.0 ;", f"{EOL} ;"]),
+    cut("V2", 0.1, rules=["SPACING 0.2 CENTERTOCENTER ;", "SPACING 0.05 SAMENET ;"]),
+    routing("M3", "HORIZONTAL", 0.2, 0.1, 0.1, rules=[f"{EOL} PARALLELEDGE 0.12 WITHIN 0.1 ;"]),
+    cut("V3", 0.1, 0.1),
+    routing("M4", "VERTICAL", 0.2, 0.1, 0.1, rules=[f"{EOL} PARALLELEDGE 0.12 WITHIN 0.1 TWOEDGES ;"]),
+    cut("V4", 0.1, 0.1),
+    routing("M5", "HORIZONTAL", 0.2, 0.1, 0.1, rules=[
+        'PROPERTY LEF58_CORNERSPACING "CORNERSPACING CONVEXCORNER EXCEPTEOL 0.15 WIDTH 0.0 SPACING 0.15 '
+        'WIDTH 0.3 SPACING 0.25 ;" ;']),
+    stack_via("V12", "M1", "V1", "M2", True, 0.1),
+)
 
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  AREA 0.05 ;
-  SPACINGTABLE
-    PARALLELRUNLENGTH 0.0 0.5
-    WIDTH 0.0   0.10 0.10
-    WIDTH 0.2   0.10 0.20
-    WIDTH 0.4   0.30 0.40 ;
-END M1
 
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-  SPACING 0.15 ADJACENTCUTS 3 WITHIN 0.2 ;
-END V1
+def tech_lef(*more: str) -> str:
+    """The rules' technology (five layers, one via), then ``more`` LEF parts (sites, macros)."""
+    return library(*TECH, *more, header=["CLEARANCEMEASURE EUCLIDEAN ;"])
 
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-  SPACING 0.2 RANGE 0.3 1.0 ;
-  SPACING 0.12 ENDOFLINE 0.15 WITHIN 0.05 ;
-END M2
 
-LAYER V2
-  TYPE CUT ;
-  WIDTH 0.1 ;
-  SPACING 0.2 CENTERTOCENTER ;
-  SPACING 0.05 SAMENET ;
-END V2
-
-LAYER M3
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-  SPACING 0.12 ENDOFLINE 0.15 WITHIN 0.05 PARALLELEDGE 0.12 WITHIN 0.1 ;
-END M3
-
-LAYER V3
-  TYPE CUT ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-END V3
-
-LAYER M4
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-  SPACING 0.12 ENDOFLINE 0.15 WITHIN 0.05 PARALLELEDGE 0.12 WITHIN 0.1 TWOEDGES ;
-END M4
-
-LAYER V4
-  TYPE CUT ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-END V4
-
-LAYER M5
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.1 ;
-  SPACING 0.1 ;
-  PROPERTY LEF58_CORNERSPACING "CORNERSPACING CONVEXCORNER EXCEPTEOL 0.15 WIDTH 0.0 SPACING 0.15 WIDTH 0.3 SPACING 0.25 ;" ;
-END M5
-
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER V1 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-  LAYER M2 ;
-    RECT -0.05 -0.05 0.05 0.05 ;
-END V12
-
-END LIBRARY
-"""
+TECH_LEF = tech_lef()
 
 LAYERS = ["M1", "V1", "M2", "V2", "M3", "V3", "M4", "V4", "M5"]
 WIRE, VIA, PIN, OBS, SPECIAL = 0, 1, 2, 3, 4

@@ -16,6 +16,7 @@ from typer.testing import CliRunner
 
 from conftest import pick, require_testcase
 from drawn import write_design
+from lef_text import library, macro, pin, stack
 from xroute import _engine
 from xroute.cli.app import app
 from xroute.design import load_design
@@ -35,76 +36,7 @@ from xroute.groute import GlobalRouteArgumentError, global_route
 # Row 2 loses both tracks there (capacity 0), rows 1 and 3 one each (capacity 1).
 # ---------------------------------------------------------------------------
 
-LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-MANUFACTURINGGRID 0.001 ;
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.1 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M1
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V1
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.1 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M2
-LAYER V2
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V2
-LAYER M3
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.1 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M3
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-  LAYER V1 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-END V12
-VIA V23 DEFAULT
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-  LAYER V2 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M3 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-END V23
-MACRO CELL
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 0.2 BY 0.2 ;
-  PIN A
-    DIRECTION INOUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.07 0.07 0.13 0.13 ;
-    END
-  END A
-END CELL
-END LIBRARY
-"""
+LEF = library(stack(pitch=0.1), macro("CELL", 0.2, 0.2, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.13))])))
 
 DEF = """\
 VERSION 5.8 ;

@@ -255,7 +255,7 @@ def test_def_writer_does_not_follow_planted_symlinks(tmp_path: Path) -> None:
 
 
 def test_python_writer_does_not_follow_planted_symlinks(tmp_path: Path) -> None:
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
 
     victim = tmp_path / "victim.txt"
     victim.write_text("precious\n")
@@ -425,7 +425,7 @@ def test_policy_blocked_outside_python_ends_the_process(tmp_path: Path) -> None:
 
 def test_library_callers_still_get_their_policy_exception() -> None:
     from xroute.design import load_design
-    from xroute.policy import CallablePolicy
+    from xroute.net_order import CallablePolicy
     from xroute.router import route_design
 
     def order(region, features):

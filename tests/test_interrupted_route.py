@@ -1,5 +1,7 @@
-"""An interrupted ``xroute route`` (SIGKILL or Ctrl-C at any moment) leaves no half-written DEF, JSON or
-report under the final names, and the next run cleans up and completes."""
+"""An interrupted ``xroute route`` (SIGKILL or Ctrl-C while it writes its outputs) leaves no half-written
+DEF, JSON or report under the final names, and the next run cleans up and completes. The signal comes at
+known points of the output writing (no timing: the child signals itself), so every run tests the same
+moments."""
 
 from __future__ import annotations
 
@@ -8,7 +10,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -19,12 +20,38 @@ REPO = Path(__file__).resolve().parent.parent
 DESIGN = pick("ispd19_sample4")  # or its generated stand-in without the contest data
 
 
-def start_route(out: Path, testcases_root: Path) -> subprocess.Popen:
+# The child routes through this wrapper, which sends itself the signal just before the N-th
+# os.replace of the run (N = 0: never). A route's output writing calls os.replace five times, in this
+# order: the staged metrics JSON, the publishing note, then the DEF, the DRC report and the metrics
+# JSON moved to their final names (xroute.output_set.publish). Stopping before each of them covers
+# every stage: files staged, the note written, none / one / two of the three files published.
+CHILD = """
+import os, signal, sys
+sig, at = int(sys.argv[1]), int(sys.argv[2])
+real_replace, calls = os.replace, 0
+
+def replace(src, dst, **kwargs):
+    global calls
+    calls += 1
+    if calls == at:
+        os.kill(os.getpid(), sig)
+    return real_replace(src, dst, **kwargs)
+
+os.replace = replace
+sys.argv = ["xroute", *sys.argv[3:]]
+from xroute.cli.app import main
+main()
+"""
+REPLACES = 5  # os.replace calls of one route's outputs
+
+
+def start_route(out: Path, testcases_root: Path, sig: int = 0, at: int = 0) -> subprocess.Popen:
     # The child runs in a temporary folder: name the testcases' root (an installed package has no
     # checkout beside which to look for ../shared/testcases).
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p), "CI": "true",
            "XROUTE_TESTCASES": str(testcases_root)}
-    return subprocess.Popen([sys.executable, "-m", "xroute", "route", DESIGN, "--iterations", "1", "--out", str(out)],
+    return subprocess.Popen([sys.executable, "-c", CHILD, str(int(sig)), str(at), "route", DESIGN, "--iterations", "1",
+                             "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=out.parent)
 
 
@@ -44,19 +71,15 @@ def assert_complete_or_absent(out: Path) -> None:
 def test_killed_route_leaves_whole_files_and_rerun_completes(testcase, tmp_path: Path, sig: int) -> None:
     root = testcase(DESIGN).folder.parent
     out = tmp_path / "out"
-    # Kill at several moments after the only iteration ends: while the outputs are written and checked.
-    for delay in (0.0, 0.05, 0.1, 0.15):
-        proc = start_route(out, root)
-        assert proc.stdout is not None
-        for line in proc.stdout:
-            if line.startswith("iteration 0:"):
-                break
-        time.sleep(delay)
-        proc.send_signal(sig)
-        proc.communicate(timeout=60)
+    # Stop the run before each os.replace of its output writing, one run after another in the same folder.
+    for at in range(1, REPLACES + 1):
+        proc = start_route(out, root, sig, at)
+        _, stderr = proc.communicate(timeout=120)
+        # Killed, or ended by KeyboardInterrupt (Typer exits 130): never a run that went on to the end.
+        assert proc.returncode == (-signal.SIGKILL if sig == signal.SIGKILL else 130), (at, stderr)
         assert_complete_or_absent(out)
-        if sig == signal.SIGINT:  # Ctrl-C: the atomic writers remove their temporary files themselves
-            assert not [p.name for p in out.iterdir() if ".tmp" in p.name]
+        if sig == signal.SIGINT:  # Ctrl-C: the atomic writers and the staging folder clean up themselves
+            assert [p.name for p in out.iterdir() if ".tmp" in p.name or p.name.startswith(".xroute-stage.")] == []
     proc = start_route(out, root)
     stdout, stderr = proc.communicate(timeout=120)
     assert proc.returncode == 0, stderr

@@ -59,9 +59,8 @@ def test_contest_lef_counts(name):
     assert db.manufacturing_grid == 1  # 0.0005 um
 
 
-@pytest.mark.parametrize("name", sorted(MACRO_TOTALS))
-def test_contest_lef_macro_totals(name):
-    db = _engine.load_lef([contest_lef(name)])
+def macro_totals(db) -> tuple[int, int, int, int]:
+    """(pins, ports, pin rects, obstruction rects) over every macro of a loaded LEF."""
     pins = ports = pin_rects = obs_rects = 0
     for macro_name in db.macro_names():
         macro = db.macro(macro_name)
@@ -70,7 +69,13 @@ def test_contest_lef_macro_totals(name):
             ports += pin["port_count"]
             pin_rects += len(pin["shapes"])
         obs_rects += len(macro["obstructions"])
-    assert (pins, ports, pin_rects, obs_rects) == MACRO_TOTALS[name]
+    return pins, ports, pin_rects, obs_rects
+
+
+@pytest.mark.parametrize("name", sorted(MACRO_TOTALS))
+def test_contest_lef_macro_totals(name):
+    db = _engine.load_lef([contest_lef(name)])
+    assert macro_totals(db) == MACRO_TOTALS[name]
 
 
 @pytest.mark.parametrize("name", sorted(COUNTS))
@@ -276,14 +281,7 @@ def test_generated_lef_counts_numbering_and_macros(tmp_path):
     assert db.lef_dbu_per_micron == 2000
     assert db.manufacturing_grid == 10  # 0.005 um
 
-    pins = ports = pin_rects = obs_rects = 0
-    for macro_name in db.macro_names():
-        macro = db.macro(macro_name)
-        for pin in macro["pins"].values():
-            pins += 1
-            ports += pin["port_count"]
-            pin_rects += len(pin["shapes"])
-        obs_rects += len(macro["obstructions"])
+    pins, ports, pin_rects, obs_rects = macro_totals(db)
     assert (pins, ports, pin_rects, obs_rects) == _macro_totals_from_text(text)
     assert pins > 0 and obs_rects > 0
 

@@ -10,17 +10,8 @@ from pathlib import Path
 import pytest
 
 from xroute import _engine
+from lef_text import TECH, write_lef
 from xroute.errors import InputError
-
-# A 35-line technology LEF: UNITS 1000, SITE core, layers M1 V1 M2, VIA V12.
-TECH_LEF = Path(__file__).resolve().parent / "data" / "lef" / "tech.lef"
-TECH = TECH_LEF.read_text()
-
-
-def write_lef(tmp_path: Path, text: str, name: str = "t.lef") -> str:
-    path = tmp_path / name
-    path.write_text(textwrap.dedent(text).lstrip("\n"))
-    return str(path)
 
 
 def marked_line(text: str, marker: str = "<-- here") -> int:

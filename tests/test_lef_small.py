@@ -5,20 +5,8 @@ Lengths in DBU (UNITS 1000 unless a test says otherwise).
 
 from __future__ import annotations
 
-import textwrap
-from pathlib import Path
-
+from lef_text import TECH, write_lef
 from xroute import _engine
-
-# A 35-line technology LEF: UNITS 1000, SITE core, layers M1 V1 M2, VIA V12.
-TECH_LEF = Path(__file__).resolve().parent / "data" / "lef" / "tech.lef"
-TECH = TECH_LEF.read_text()
-
-
-def write_lef(tmp_path: Path, text: str, name: str = "t.lef") -> str:
-    path = tmp_path / name
-    path.write_text(textwrap.dedent(text).lstrip("\n"))
-    return str(path)
 
 
 def layers_by_name(db) -> dict:

@@ -19,7 +19,7 @@ from onnx import TensorProto, helper  # noqa: E402
 from conftest import pick, require_testcase  # noqa: E402
 
 SAMPLE = pick("ispd18_sample")  # or its generated stand-in without the contest data
-from xroute.policy import PolicyError  # noqa: E402
+from xroute.net_order import PolicyError  # noqa: E402
 from xroute.policies.rl.observation import NET_FEATURES  # noqa: E402
 
 FEATURES = ",".join(NET_FEATURES)

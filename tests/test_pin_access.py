@@ -19,6 +19,7 @@ import pytest
 
 from conftest import available, pick
 from drawn import shape_rows, write_design
+from lef_text import Rect, library, macro, pin, stack
 from xroute import _engine
 from xroute.design import load_design
 
@@ -49,70 +50,13 @@ UP, EAST, WEST, NORTH, SOUTH = 1, 2, 4, 8, 16
 # come within 70), and west of x = 200 they leave the die.
 # ---------------------------------------------------------------------------
 
-TINY_LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-MANUFACTURINGGRID 0.001 ;
+def tiny_lef(a_rect: Rect = (0.10, 0.30, 0.26, 0.70)) -> str:
+    """M1 (horizontal), V1, M2 (vertical) and V12; CELL (1 x 1 um) with pins A (M1 ``a_rect``) and B."""
+    return library(stack(layers=2), macro("CELL", 1.0, 1.0, pin("A", "INPUT", [("M1", a_rect)]),
+                                          pin("B", "OUTPUT", [("M1", (0.34, 0.30, 0.50, 0.70))])))
 
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M1
 
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V1
-
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M2
-
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-  LAYER V1 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-END V12
-
-MACRO CELL
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 1.0 BY 1.0 ;
-  PIN A
-    DIRECTION INPUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.10 0.30 0.26 0.70 ;
-    END
-  END A
-  PIN B
-    DIRECTION OUTPUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.34 0.30 0.50 0.70 ;
-    END
-  END B
-END CELL
-
-END LIBRARY
-"""
+TINY_LEF = tiny_lef()
 
 TINY_DEF = """\
 VERSION 5.8 ;
@@ -200,7 +144,7 @@ def test_drawn_case_blocked_pin_falls_back(tmp_path: Path) -> None:
     # planar stub (60 wide, centred on x = 20) leaves the die. The fallback
     # point is the pin's centre snapped to the tracks (no x track crosses
     # it; y 500), cost 100, exit up through V12.
-    lef = TINY_LEF.replace("RECT 0.10 0.30 0.26 0.70 ;", "RECT 0.00 0.30 0.04 0.70 ;")
+    lef = tiny_lef(a_rect=(0.00, 0.30, 0.04, 0.70))
     lef_path, def_path = write_design(
         tmp_path, lef, tiny_def(["- u1 CELL + PLACED ( 0 0 ) N ;"], ["- a ( u1 A ) ;", "- b ( u1 B ) ;"])
     )

@@ -21,7 +21,7 @@ from xroute.policies import (
     get_policy,
     heuristic_order,
 )
-from xroute.policy import check_order
+from xroute.net_order import check_order
 from xroute.errors import XrouteError
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -146,7 +146,7 @@ def test_importing_policies_loads_no_engine_and_no_torch() -> None:
     code = textwrap.dedent(
         """
         import sys
-        import xroute.policies, xroute.policy, xroute.policies.registry
+        import xroute.policies, xroute.net_order, xroute.policies.registry
         xroute.policies.get_policy("heuristic", 1)
         print(sorted(m for m in sys.modules if m.startswith("xroute._engine") or m.split(".")[0] == "torch"))
         """

@@ -110,7 +110,7 @@ def test_an_invalid_action_routes_the_first_legal_row() -> None:
 def test_evaluation_env_routes_the_testcase_like_xroute_route(tmp_path) -> None:
     from gymnasium.utils.env_checker import check_env
 
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
     from xroute.envs.ordering_evaluation import ordering_evaluation_env
     from xroute import load_design
     from xroute.router import route_design

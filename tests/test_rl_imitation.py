@@ -100,7 +100,7 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(im
     from xroute.policies.onnx_policy import OnnxPolicy
     from xroute.policies.registry import get_policy
     from xroute.policies.rl.set_scorer import SetScorer, export_onnx
-    from xroute.policy import PolicyError
+    from xroute.net_order import PolicyError
     from xroute.router import route_design
 
     torch.manual_seed(0)

@@ -54,7 +54,7 @@ def test_in_context_episodes_are_the_first_pass_regions() -> None:
     from xroute import load_design
     from xroute.config import CostSection
     from xroute.envs.ordering_training import ordering_training_env
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
     from xroute.session import first_pass, open_session
 
     require_testcase(DESIGN)

@@ -17,7 +17,7 @@ import pytest
 
 from conftest import available, contest_found, is_standin, pick, require_testcase
 from xroute.policies import CallablePolicy, HeuristicPolicy, PolicyError, RandomPolicy, get_policy
-from xroute.policy import FEATURE_COLUMNS
+from xroute.net_order import FEATURE_COLUMNS
 from xroute.errors import XrouteError
 from xroute.outputs import RouteOutputs, write_route_outputs
 from xroute.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, route_design
@@ -387,16 +387,17 @@ def test_route_settings_fields_are_route_design_keywords() -> None:
 
 
 def test_every_builtin_policy_class_runs_in_the_engine() -> None:
-    """Each class of xroute.policy that names a built-in is handed to the engine by that name (no
+    """Each class of xroute.net_order that names a built-in is handed to the engine by that name (no
     Python call per region); a new built-in needs nothing more in the router."""
     import inspect
 
-    import xroute.policy as policy_module
-    from xroute.policy import BUILTIN_POLICIES
+    import xroute.net_order as policy_module
+    from xroute.net_order import BUILTIN_POLICIES, BUILTINS
     from xroute.router import _builtin
 
     classes = [c for _, c in inspect.getmembers(policy_module, inspect.isclass)
-               if c.__module__ == "xroute.policy" and c.__dict__.get("builtin")]
+               if c.__module__ == "xroute.net_order" and c.__dict__.get("builtin")]
+    assert {c.builtin: c for c in classes} == BUILTINS  # the one table names every built-in class
     assert sorted(c.builtin for c in classes) == sorted(BUILTIN_POLICIES)
     for cls in classes:
         assert _builtin(cls()) == cls.builtin, cls

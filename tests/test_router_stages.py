@@ -21,82 +21,12 @@ import numpy as np
 import pytest
 
 from drawn import write_design
+from lef_text import Rect, library, macro, pin, stack
 from xroute import _engine
 from xroute.check import check_design
 from xroute.design import load_design
 
-LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-MANUFACTURINGGRID 0.001 ;
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;{m1_area}
-END M1
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V1
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;{m2_area}
-END M2
-LAYER V2
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V2
-LAYER M3
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M3
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-  LAYER V1 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-END V12
-VIA V23 DEFAULT
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-  LAYER V2 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M3 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-END V23
-MACRO PIN1
-  CLASS CORE ;
-  ORIGIN 0 0 ;
-  SIZE 0.2 BY 0.2 ;
-  PIN A
-    DIRECTION INOUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.07 0.07 0.13 0.13 ;
-    END
-  END A
-END PIN1
-END LIBRARY
-"""
-
-AREA = "\n  AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
+AREA = "AREA 0.02 ;"  # 20000 nm^2: a 60 wide wire needs 334 nm
 
 
 def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, list[str]], extra: str = "",
@@ -118,8 +48,8 @@ def drawn(tmp_path: Path, comps: dict[str, tuple[int, ...]], nets: dict[str, lis
         f"COMPONENTS {len(comps)} ;\n{comp_lines}END COMPONENTS\n{extra}"
         f"NETS {len(nets)} ;\n{net_lines}END NETS\nEND DESIGN\n"
     )
-    lef_text = LEF.format(m1_area=(AREA if m1_area else "") + m1_rules, m2_area=(AREA if m2_area else "") + m2_rules)
-    lef_text = lef_text.replace("END LIBRARY", macros + "END LIBRARY")
+    rules = {"M1": [AREA] * m1_area + [m1_rules] * bool(m1_rules), "M2": [AREA] * m2_area + [m2_rules] * bool(m2_rules)}
+    lef_text = library(stack(rules=rules), cell("PIN1", (0.07, 0.07, 0.13, 0.13)), macros)
     lef, def_ = write_design(tmp_path, lef_text, def_text, stem="stages")
     if not guide:
         return load_design(lef=lef, def_=def_)
@@ -237,7 +167,7 @@ def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Pa
     # (670..730) is 140 from the patch (470..530), beside it and not beyond its ends: 70 is
     # enough. The patch scorer used to refuse any patch whose halo held a node another net's
     # wire makes unusable, so this stack kept its MinArea marker.
-    eol = "\n  SPACING 0.18 ENDOFLINE 0.07 WITHIN 0.025 ;"
+    eol = "SPACING 0.18 ENDOFLINE 0.07 WITHIN 0.025 ;"
     comps = {**ROW, "u3": (600, 200), "u4": (600, 1800)}
     d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]},
               blockage("M1", (640, 400, 2360, 1800)), m2_area=True, m2_rules=eol)
@@ -274,16 +204,14 @@ def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
-def cell(name: str, pin: str, obs: str | None = None) -> str:
-    """A 0.2 x 0.2 um LEF MACRO like PIN1: pin A one M1 RECT `pin` (um, "xlo ylo xhi yhi"), and an M1
+def cell(name: str, pin_rect: Rect, obs: Rect | None = None) -> str:
+    """A 0.2 x 0.2 um LEF MACRO like PIN1: pin A one M1 RECT `pin_rect` (um), and an M1
     obstruction RECT `obs` if given."""
-    obs_text = f"  OBS\n    LAYER M1 ;\n      RECT {obs} ;\n  END\n" if obs else ""
-    return (f"MACRO {name}\n  CLASS CORE ;\n  ORIGIN 0 0 ;\n  SIZE 0.2 BY 0.2 ;\n  PIN A\n    DIRECTION INOUT ;\n"
-            f"    USE SIGNAL ;\n    PORT\n      LAYER M1 ;\n        RECT {pin} ;\n    END\n  END A\n{obs_text}END {name}\n")
+    return macro(name, 0.2, 0.2, pin("A", "INOUT", [("M1", pin_rect)]), obs=[("M1", obs)] if obs else [])
 
 
 # PIN1 with an M1 obstruction ending 70 left of the pin's metal (x -0.1..0.0; placed at x = 400: 300..400).
-PINOBS = cell("PINOBS", "0.07 0.07 0.13 0.13", "-0.1 0.07 0.0 0.13")
+PINOBS = cell("PINOBS", (0.07, 0.07, 0.13, 0.13), (-0.1, 0.07, 0.0, 0.13))
 
 
 def test_no_via_at_an_access_point_that_pin_access_left_planar(tmp_path: Path) -> None:
@@ -306,7 +234,7 @@ def test_an_access_via_too_close_to_the_next_cells_pin_loses_its_via_exit(tmp_pa
     # cell placed right of it at x = 600 (metal 600..660), a wire there (470..530) 70. Pin access
     # computes u1's class alone, where the via is legal; checked among the neighbours it loses
     # the via exit, and the router joins the pin with a planar step first.
-    edge = cell("EDGEPIN", "0.0 0.07 0.06 0.13")  # pin A at the cell's left edge
+    edge = cell("EDGEPIN", (0.0, 0.07, 0.06, 0.13))  # pin A at the cell's left edge
     d = drawn(tmp_path, {"u1": (400, 1000), "u2": (600, 1000, "EDGEPIN"), "u3": (400, 2400)},
               {"n1": ["u1", "u3"]}, macros=edge)
     pa = d.engine.pin_access()
@@ -326,8 +254,8 @@ def test_the_route_leaves_an_access_point_only_where_pin_access_allows(tmp_path:
     # 60 tall line end 90 from the obstruction; pin access allows only north and south (and
     # no via: its cut would stick out of the pin). The maze used to take the straight M1 wire
     # east to u2 anyway (it trusted every step at the net's own access points).
-    eol = "\n  SPACING 0.12 ENDOFLINE 0.07 WITHIN 0.025 ;"
-    west = cell("PINWEST", "0.085 0.06 0.115 0.14", "-0.1 0.07 -0.02 0.13")
+    eol = "SPACING 0.12 ENDOFLINE 0.07 WITHIN 0.025 ;"
+    west = cell("PINWEST", (0.085, 0.06, 0.115, 0.14), (-0.1, 0.07, -0.02, 0.13))
     d = drawn(tmp_path, {"u1": (400, 1000, "PINWEST"), "u2": (2400, 1000)}, {"n1": ["u1", "u2"]},
               macros=west, m1_rules=eol)
     pa = d.engine.pin_access()

@@ -12,74 +12,21 @@ import pytest
 
 from conftest import require_testcase
 from drawn import write_design
+from lef_text import cut, library, macro, pin, routing, stack_via
 from xroute import _engine, load_design
 
 # M2 (vertical) has a wide-metal row: 0.07 um for short parallel runs, 0.5 um once a
 # shape at least 1 um wide runs parallel for more than 0.5 um. The macro's M2
 # obstruction is 2 um x 2 um at (0.6..2.6, 0.95..2.95).
-WIDE_LEF = """\
-VERSION 5.8 ;
-BUSBITCHARS "[]" ;
-DIVIDERCHAR "/" ;
-UNITS
-  DATABASE MICRONS 1000 ;
-END UNITS
-MANUFACTURINGGRID 0.001 ;
-
-LAYER M1
-  TYPE ROUTING ;
-  DIRECTION HORIZONTAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACING 0.07 ;
-END M1
-
-LAYER V1
-  TYPE CUT ;
-  WIDTH 0.06 ;
-  SPACING 0.08 ;
-END V1
-
-LAYER M2
-  TYPE ROUTING ;
-  DIRECTION VERTICAL ;
-  PITCH 0.2 ;
-  WIDTH 0.06 ;
-  SPACINGTABLE
-    PARALLELRUNLENGTH 0.0 0.5
-    WIDTH 0.0 0.07 0.07
-    WIDTH 1.0 0.07 0.5 ;
-END M2
-
-VIA V12 DEFAULT
-  LAYER M1 ;
-    RECT -0.05 -0.03 0.05 0.03 ;
-  LAYER V1 ;
-    RECT -0.03 -0.03 0.03 0.03 ;
-  LAYER M2 ;
-    RECT -0.03 -0.05 0.03 0.05 ;
-END V12
-
-MACRO BIG
-  CLASS BLOCK ;
-  ORIGIN 0 0 ;
-  SIZE 2.0 BY 2.0 ;
-  PIN P
-    DIRECTION INPUT ;
-    USE SIGNAL ;
-    PORT
-      LAYER M1 ;
-        RECT 0.0 0.0 0.2 0.06 ;
-    END
-  END P
-  OBS
-    LAYER M2 ;
-      RECT 0.0 0.0 2.0 2.0 ;
-  END
-END BIG
-
-END LIBRARY
-"""
+WIDE_LEF = library(
+    routing("M1", "HORIZONTAL", 0.2, 0.06, 0.07),
+    cut("V1", 0.06, 0.08),
+    routing("M2", "VERTICAL", 0.2, 0.06, rules=["SPACINGTABLE", "  PARALLELRUNLENGTH 0.0 0.5", "  WIDTH 0.0 0.07 0.07",
+                                               "  WIDTH 1.0 0.07 0.5 ;"]),
+    stack_via("V12", "M1", "V1", "M2", True, 0.06, metal_length=0.1),
+    macro("BIG", 2.0, 2.0, pin("P", "INPUT", [("M1", (0.0, 0.0, 0.2, 0.06))]), obs=[("M2", (0.0, 0.0, 2.0, 2.0))],
+          klass="BLOCK"),
+)
 
 WIDE_DEF = """\
 VERSION 5.8 ;

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 
 from xroute.config_schema import ConfigError
 from xroute.errors import PolicyError, RouteArgumentError
-from xroute.policy import FEATURE_COLUMNS, BestOfPolicy, RolloutPolicy, VictimsPolicy, builtin_policy, heuristic_order
+from xroute.net_order import FEATURE_COLUMNS, BestOfPolicy, RolloutPolicy, VictimsPolicy, builtin_policy, heuristic_order
 from xroute.router import route_design
 
 COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
@@ -362,7 +362,7 @@ def test_a_budget_of_one_is_the_heuristic(generated: Path) -> None:
 
 def test_a_policy_file_with_next_net_is_sequential(generated: Path, tmp_path: Path) -> None:
     from xroute.policies.registry import get_policy
-    from xroute.policy import CallableSequentialPolicy
+    from xroute.net_order import CallableSequentialPolicy
 
     path = tmp_path / "last_first.py"
     path.write_text(

@@ -10,7 +10,7 @@ its box. Every policy starts from the same state (nothing is committed).
 
 A policy is named by a spec: a built-in name the engine routes itself (``heuristic``, ``random``,
 the searches ``rollout``, ``victims``, ``bestof`` and ``best-of-K``:
-:func:`xroute.policy.is_builtin_name`, through ``Region.route_rest(name, seed, search_budget)``),
+:func:`xroute.net_order.is_builtin_name`, through ``Region.route_rest(name, seed, search_budget)``),
 or anything :func:`xroute.policies.registry.get_policy` resolves (a ``.py`` file, an ``.onnx``
 model), asked once per region for an order (a sequential one, with ``next_net``, once per net).
 """
@@ -25,7 +25,7 @@ import numpy as np
 
 from xroute.config import CostSection
 from xroute.defaults import SEARCH_BUDGET
-from xroute.policy import BUILTIN_POLICIES, check_order, is_builtin_name
+from xroute.net_order import BUILTIN_POLICIES, check_order, is_builtin_name
 from xroute.policies.rl.region_filter import held_out
 
 FIGURES = ("cost", "wl_um", "vias", "drvs")

@@ -52,7 +52,7 @@ def collect_shard(testcase: str, shard: int, shards: int, region_size: int, hold
     """The single-net moves of shard ``shard`` of ``shards`` of the testcase's training regions."""
     from xroute.policies.rl.set_features import region_set_features
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     fp, dbu = load_first_pass(testcase, region_size)
     out = []

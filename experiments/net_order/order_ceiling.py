@@ -37,7 +37,7 @@ import numpy as np
 from xroute import load_design
 from xroute.config import CostSection
 from xroute.defaults import REGION_SIZE
-from xroute.policy import heuristic_order
+from xroute.net_order import heuristic_order
 from .holdout import held_out_regions, marker_roles, moved_first, region_score
 from xroute.session import first_pass, open_session
 

@@ -128,7 +128,7 @@ class RegionVictims:
 def region_inputs(region: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(set features, pair features, heuristic order) of an engine Region as it opens."""
     from xroute.policies.rl.set_features import region_set_features
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     cand = np.asarray(region.candidates)
     heuristic = np.asarray(heuristic_order(cand), np.int32)

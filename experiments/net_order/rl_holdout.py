@@ -33,7 +33,7 @@ from typing import Any
 
 from xroute import load_design
 from xroute.defaults import REGION_SIZE, SEARCH_BUDGET
-from xroute.policy import is_builtin_name
+from xroute.net_order import is_builtin_name
 from xroute.policies.registry import get_policy
 from .holdout import (
     FIGURES,

@@ -54,7 +54,7 @@ def test_victims_learning_bench_tries_the_rule_and_scores_learned_second_orders(
     the cross-validation scores every region once, out of sample."""
     from experiments.net_order import victims_learning as vl
     from xroute.policies.rl.teacher import load_first_pass, route_order
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     torch.set_num_threads(1)
     regions = vl.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, variants=3, max_regions=24)
@@ -85,7 +85,7 @@ def test_in_context_bench_starts_as_the_heuristic_and_scores_the_held_out_region
     trains and scores the same regions again."""
     pytest.importorskip("sb3_contrib", reason="the sb3 extra (sb3-contrib) is not installed")
     from experiments.net_order import ppo_in_context
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     torch.set_num_threads(1)
     model = ppo_in_context.new_model([imitation_sample], seed=1, region_size=2, max_candidates=16, sharpness=5.0)
@@ -107,7 +107,7 @@ def test_holdout_scoring_matches_the_first_pass_and_takes_any_policy(generated: 
     returning the heuristic order scores the same; best-of-K is never worse than the random mean."""
     from xroute import load_design
     from xroute.config import CostSection
-    from xroute.policy import CallablePolicy, heuristic_order
+    from xroute.net_order import CallablePolicy, heuristic_order
     from experiments.net_order.holdout import best_of_random, best_score, held_out_regions, mean_score, route_in_context
     from xroute.session import first_pass, open_session
 
@@ -135,7 +135,7 @@ def test_marker_roles_victims_are_what_the_victims_search_moves_first(imitation_
     budget of 2 the search keeps the heuristic's routing or the one with marker_roles' victims first,
     whichever is cheaper."""
     from experiments.net_order.holdout import marker_roles, moved_first, region_score
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
     from xroute.policies.rl.teacher import load_first_pass
 
     fp, dbu = load_first_pass(imitation_sample, SIZE)

@@ -66,7 +66,7 @@ def test_pair_victims_bench_labels_the_heuristic_routing_and_scores_out_of_sampl
     from experiments.net_order import pair_victims as pv
     from experiments.net_order.holdout import marker_roles
     from xroute.policies.rl.teacher import load_first_pass, route_order
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     torch.set_num_threads(1)
     regions = pv.collect([imitation_sample], 1, region_size=SIZE, hold_out_every=HOLD_OUT, max_regions=24)
@@ -177,7 +177,7 @@ def test_victims_order_bench_replays_the_search(imitation_sample: str) -> None:
     from experiments.net_order import victims_order as vo
     from experiments.net_order.holdout import marker_roles
     from xroute.policies.rl.teacher import load_first_pass
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     regions = vo.collect_shard((imitation_sample, 0, 1, SIZE, HOLD_OUT, 3, 24))
     assert any(not t.held_out for t in regions) and any(t.held_out for t in regions)

@@ -79,7 +79,7 @@ def collect_shard(job: tuple) -> list[RegionTrials]:
     from .holdout import moved_first, region_score
     from xroute.policies.rl.set_features import region_set_features
     from xroute.policies.rl.teacher import load_first_pass, route_order, training_regions
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     fp, dbu = load_first_pass(testcase, region_size)
     out = []

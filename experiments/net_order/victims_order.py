@@ -80,7 +80,7 @@ def search_trials(fp: Any, index: int, dbu: int, features: np.ndarray, shuffles:
     the rule names fewer than 2 victims)."""
     from .holdout import moved_first
     from xroute.policies.rl.teacher import route_order
-    from xroute.policy import heuristic_order
+    from xroute.net_order import heuristic_order
 
     region = fp.open_region(index)
     rows = np.asarray(region.candidates)

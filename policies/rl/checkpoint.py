@@ -16,13 +16,14 @@ file that is missing, not a torch file or not an xroute checkpoint.
 
 from __future__ import annotations
 
-import os
+import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import torch
 
+from xroute.atomic_files import atomic_write_bytes
 from xroute.policies.rl.models import NetOrderModel
 from xroute.errors import XrouteError
 
@@ -63,9 +64,9 @@ def save_checkpoint(path: str | Path, ckpt: Checkpoint) -> Path:
         "steps": int(ckpt.steps),
         "state_dict": {k: v.detach().cpu() for k, v in m.state_dict().items()},
     }
-    tmp = p.with_name(p.name + ".tmp")
-    torch.save(data, tmp)
-    os.replace(tmp, p)
+    buf = io.BytesIO()
+    torch.save(data, buf)
+    atomic_write_bytes(p, buf.getvalue())
     return p
 
 

@@ -17,13 +17,13 @@ TorchScript-based exporter (no onnxscript needed) at opset :data:`OPSET`.
 from __future__ import annotations
 
 import io
-import os
 import warnings
 from pathlib import Path
 
 import onnx
 import torch
 
+from xroute.atomic_files import atomic_write_bytes
 from xroute.policies.rl.checkpoint import Checkpoint, load_checkpoint
 from xroute.policies.rl.models import ALIGNED_SHAPE, NET_CHANNELS, RegionScorer
 
@@ -89,7 +89,5 @@ def export_checkpoint(checkpoint: str | Path, out: str | Path) -> Path:
     proto = to_onnx(load_checkpoint(checkpoint))
     p = Path(out)
     p.parent.mkdir(parents=True, exist_ok=True)
-    tmp = p.with_name(p.name + ".tmp")
-    tmp.write_bytes(proto.SerializeToString())
-    os.replace(tmp, p)
+    atomic_write_bytes(p, proto.SerializeToString())
     return p

@@ -18,7 +18,6 @@ The env is passed in (this module is layer 3 and does not import :mod:`xroute.en
 from __future__ import annotations
 
 import io
-import os
 import time
 import warnings
 from dataclasses import dataclass
@@ -26,6 +25,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from xroute.atomic_files import atomic_write_bytes
 
 STATE_SIZE = 12
 ACTIONS = 6
@@ -197,9 +198,7 @@ def export_onnx(model: Any, out: str | Path, meta: dict[str, str] | None = None)
     onnx.checker.check_model(proto)
     p = Path(out)
     p.parent.mkdir(parents=True, exist_ok=True)
-    tmp = p.with_name(p.name + ".tmp")
-    tmp.write_bytes(proto.SerializeToString())
-    os.replace(tmp, p)
+    atomic_write_bytes(p, proto.SerializeToString())
     return p
 
 

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from xroute.policy import FEATURE_COLUMNS
+from xroute.net_order import FEATURE_COLUMNS
 
 ALIGNED_SHAPE: tuple[int, int, int] = (3, 64, 64)
 """The standard grid (z, y, x) every region is aligned to."""
@@ -56,7 +56,7 @@ NET_FEATURES: tuple[str, ...] = (
 # Grid flag bits (engine_cpp/grid/region_grid.hpp NodeFlag).
 _ACCESS = 2
 _OWNER_MIXED = -2
-# Columns of the engine's candidate rows, by name (xroute.policy.FEATURE_COLUMNS; later columns are
+# Columns of the engine's candidate rows, by name (xroute.net_order.FEATURE_COLUMNS; later columns are
 # not read here, and rows from before they were added, 9 columns wide, still work).
 _NET, _PINS, _TERMINALS, _APS, _XLO, _YLO, _XHI, _YHI, _NET_PINS = (
     FEATURE_COLUMNS.index(c) for c in ("net", "pins", "terminals", "access_points", "bbox_xlo", "bbox_ylo", "bbox_xhi",

@@ -23,7 +23,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from xroute.config import CostSection
-from xroute.policy import heuristic_order
+from xroute.net_order import heuristic_order
 from xroute.policies.rl.region_filter import held_out
 from xroute.policies.rl.set_features import SET_FEATURES, region_set_features
 

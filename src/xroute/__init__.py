@@ -4,7 +4,7 @@ One import root, in layers that only import downward (ARCHITECTURE.md):
 
 * bottom: :mod:`xroute.errors` and the private compiled engine ``xroute._engine``;
 * the library: :mod:`xroute.design` (load_design, Design), :mod:`xroute.groute` (built-in global
-  router), :mod:`xroute.router` (route_design), :mod:`xroute.policy` (the net-order seam and the
+  router), :mod:`xroute.router` (route_design), :mod:`xroute.net_order` (the net-order seam and the
   built-in policies), :mod:`xroute.outputs`, :mod:`xroute.config` and :mod:`xroute.pipeline`
   (load -> global route when needed -> route -> write and check), which every command and
   environment runs;

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.sax.saxutils import escape
 
-from xroute.outputs import atomic_write_text
+from xroute.atomic_files import atomic_write_text
 
 if TYPE_CHECKING:
     from xroute.design import Design

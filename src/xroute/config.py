@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
@@ -68,7 +67,7 @@ def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
 def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     """A built-in policy name stays as it is; anything else is a policy file, which must be
     readable (relative to the config file's folder). Its format is checked when it is loaded."""
-    from xroute.policy import BUILTIN_POLICIES, is_builtin_name
+    from xroute.net_order import BUILTIN_POLICIES, is_builtin_name
 
     if is_builtin_name(value):
         if value.startswith("best-of-") and not 1 <= int(value[len("best-of-"):]) <= MAX_SEARCH_BUDGET:
@@ -260,12 +259,3 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         search_budget=search_budget if search_budget is not None else cfg.policy.search_budget,
     )
 
-
-def config_path_option_help() -> str:
-    return "YAML config (see configs/default.yaml); command-line flags override its values."
-
-
-def default_config_path() -> Path | None:
-    """configs/default.yaml of a source checkout (None for an installed package)."""
-    p = Path(__file__).resolve().parent.parent / "configs" / "default.yaml"
-    return p if p.is_file() else None

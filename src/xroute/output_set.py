@@ -28,20 +28,11 @@ import uuid
 from pathlib import Path
 from typing import Iterable
 
+from xroute.atomic_files import atomic_write_text, pid_alive
 from xroute.safe_paths import inside
 
 STAGE_PREFIX = ".xroute-stage."
 NOTE = "publishing.json"
-
-
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError):
-        return True
-    return True
 
 
 def make_stage(out_dir: Path) -> Path:
@@ -67,8 +58,6 @@ def file_sha256(path: Path) -> str:
 def publish(out_dir: Path, stage: Path, files: Iterable[tuple[Path, Path]]) -> None:
     """Moves each staged ``(source, final)`` file into place, in order (the manifest last), as
     described in the module doc; every final path must lie inside ``out_dir``."""
-    from xroute.outputs import atomic_write_text
-
     pairs = [(Path(src), inside(out_dir, dst)) for src, dst in files]
     note = {"files": [dst.name for _, dst in pairs], "sha256": {dst.name: file_sha256(src) for src, dst in pairs}}
     atomic_write_text(stage / NOTE, json.dumps(note, indent=2) + "\n")
@@ -115,7 +104,7 @@ def clean_leftovers(out_dir: Path) -> list[Path]:
     for p in list(out_dir.iterdir()):
         if p.name.startswith(STAGE_PREFIX) and p.is_dir() and not p.is_symlink():
             pid_text = p.name[len(STAGE_PREFIX):].partition(".")[0]
-            if pid_text.isdigit() and int(pid_text) != os.getpid() and not _pid_alive(int(pid_text)):
+            if pid_text.isdigit() and int(pid_text) != os.getpid() and not pid_alive(int(pid_text)):
                 removed += _clean_partial_publish(out_dir, p)
                 shutil.rmtree(p, ignore_errors=True)
                 removed.append(p)

@@ -14,10 +14,12 @@ import os
 import resource
 import sys
 import time
-import uuid
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
+
+from xroute.atomic_files import atomic_write_text, pid_alive
+from xroute.output_set import clean_leftovers, file_sha256, make_stage, new_run_id, publish
 
 if TYPE_CHECKING:
     from xroute.design import Design
@@ -33,45 +35,10 @@ def peak_rss_mb() -> float:
     return peak / 2**20 if sys.platform == "darwin" else peak / 2**10  # bytes on macOS, KiB on Linux
 
 
-def atomic_write_text(path: Path, text: str) -> None:
-    """Writes ``text`` to ``path`` through a temporary file in the same folder and ``os.replace``
-    (the file gets the usual permissions: 0666 less the umask)."""
-    atomic_write_bytes(path, text.encode("utf-8"))
-
-
-def atomic_write_bytes(path: Path, data: bytes) -> None:
-    """Writes ``data`` to ``path`` atomically (see :func:`atomic_write_text`)."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-    try:
-        with open(tmp, "xb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
-
-
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
 def clean_stale_temporaries(folder: Path) -> list[Path]:
     """Removes the temporary files that a killed run left in ``folder`` (``.NAME.PID.XXXX.tmp``
-    from :func:`atomic_write_text`, ``NAME.tmp.PID`` from the engine's DEF writer) when their
+    from :func:`xroute.atomic_files.atomic_write_text`, ``NAME.tmp.PID`` from the engine's DEF writer) when their
     process is gone; returns the removed paths."""
-    from xroute.output_set import clean_leftovers
-
     removed: list[Path] = []
     if not folder.is_dir():
         return removed
@@ -83,7 +50,7 @@ def clean_stale_temporaries(folder: Path) -> list[Path]:
             pid = int(parts[-3])  # .NAME.PID.HEX.tmp
         elif len(parts) >= 3 and parts[-2] == "tmp" and parts[-1].isdigit():
             pid = int(parts[-1])  # NAME.tmp.PID
-        if pid is not None and pid != os.getpid() and not _pid_alive(pid) and p.is_file():
+        if pid is not None and pid != os.getpid() and not pid_alive(pid) and p.is_file():
             try:
                 p.unlink()
                 removed.append(p)
@@ -162,8 +129,6 @@ def write_route_outputs(
     """
     import shutil
 
-    from xroute.output_set import make_stage
-
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     def_path, metrics_path, drc_path = output_paths(out, design.name)
@@ -178,7 +143,6 @@ def write_route_outputs(
 def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, started: float | None,
                   final: tuple[Path, Path, Path]) -> RouteOutputs:
     from xroute.design import load_design
-    from xroute.output_set import file_sha256, new_run_id, publish
 
     def_path, metrics_path, drc_path = final
     staged_def, staged_metrics, staged_drc = (stage / p.name for p in final)

@@ -22,7 +22,7 @@ from xroute import router
 from xroute.router import RouteProgress, RouteResult, RouteSettings
 
 if TYPE_CHECKING:
-    from xroute.policy import NetOrderPolicy
+    from xroute.net_order import NetOrderPolicy
 
 PathLike = str | os.PathLike[str]
 

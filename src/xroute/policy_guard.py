@@ -25,7 +25,7 @@ import traceback
 from pathlib import Path
 from typing import Any
 
-from xroute.policy import PolicyError
+from xroute.net_order import PolicyError
 
 DEFAULT_CALL_TIMEOUT = 300.0  # seconds per order() call: generous (the built-in policies take milliseconds)
 GRACE_SECONDS = 5.0  # after the limit, before a call blocked outside Python ends the process

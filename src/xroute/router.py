@@ -18,9 +18,8 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from xroute.policy import (
+from xroute.net_order import (
     NetOrderPolicy,
-    RandomPolicy,
     SequentialPolicy,
     builtin_policy,
     check_order,
@@ -220,25 +219,15 @@ def resolve_policy(policy: str | NetOrderPolicy, seed: int) -> NetOrderPolicy:
     return policy
 
 
-def check_search_budget(what: str, value: int | None) -> int:
-    """A search policy's trial routings per region (None: the engine's default), checked against
-    the engine's limit; :class:`RouteArgumentError` (one line) otherwise."""
-    if value is None:
-        return defaults.SEARCH_BUDGET
-    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= defaults.MAX_SEARCH_BUDGET:
-        raise RouteArgumentError(f"{what} must be an integer in 1..{defaults.MAX_SEARCH_BUDGET}, got {value!r}")
-    return value
-
-
 def _builtin(policy: NetOrderPolicy) -> str | None:
     """The engine's name for a built-in policy; None for one that must be called from Python
     (including a subclass of a built-in that overrides ``order``)."""
     if isinstance(policy, SequentialPolicy):
         return None
-    # The nearest class of xroute.policy that names a built-in (its `builtin` attribute), so a new
+    # The nearest class of xroute.net_order that names a built-in (its `builtin` attribute), so a new
     # built-in needs no list here.
     for cls in type(policy).__mro__:
-        if cls.__module__ == "xroute.policy" and cls.__dict__.get("builtin"):
+        if cls.__module__ == "xroute.net_order" and cls.__dict__.get("builtin"):
             return cls.builtin if type(policy).order is cls.order else None
     return None
 
@@ -293,20 +282,8 @@ def check_next(index: Any, n: int, policy_name: str) -> int:
 
 def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[str, Any], _PolicyCallback | None]:
     """The engine's policy arguments: a built-in's name (run in C++), or a checked, timed callback."""
-    builtin = _builtin(pol)
-    if builtin == "heuristic":
-        return {"policy": "heuristic"}, None
-    if builtin == "random":
-        return {"policy": "random", "seed": pol.seed if isinstance(pol, RandomPolicy) else settings.seed}, None
-    if builtin == "rollout":
-        budget = check_search_budget("rollout search budget", pol.budget)
-        return {"policy": "rollout", "search_budget": budget, "search_width": pol.width}, None
-    if builtin == "victims":
-        budget = check_search_budget("victims search budget", pol.budget)
-        return {"policy": "victims", "search_budget": budget, "seed": settings.seed}, None
-    if builtin == "bestof":
-        k = check_search_budget("best-of-K: K", pol.k)
-        return {"policy": f"best-of-{k}", "seed": pol.seed}, None
+    if _builtin(pol) is not None:
+        return pol.engine_arguments(settings.seed), None  # a class of xroute.net_order.BUILTINS
     callback = _PolicyCallback(pol, settings.policy_timeout)  # seconds per call (None: default, 0: none)
     # A policy that declares needs_region = True finds the region being routed (an _engine.Region
     # lent for the call: grid views, candidates, route_net) in region["engine_region"].
@@ -335,13 +312,13 @@ def route_design(
 
     ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"victims"``, ``"bestof"``,
     ``"best-of-K"`` (the engine's search policies with their default budget), or a policy object
-    (:class:`~xroute.policy.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
+    (:class:`~xroute.net_order.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
     ``RolloutPolicy(budget)``, ``VictimsPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
     ``name`` and ``order``, or with ``name`` and ``next_net`` (asked after every routed net);
     policy files and ONNX models through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
     fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
     Built-in policies run in C++; any other is called once per region (a sequential one once per net). Raises
-    :class:`RouteArgumentError` for invalid settings and :class:`~xroute.policy.PolicyError`
+    :class:`RouteArgumentError` for invalid settings and :class:`~xroute.net_order.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.

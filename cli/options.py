@@ -12,6 +12,7 @@ from typing import Annotated
 import typer
 
 from xroute.defaults import MAX_SEARCH_BUDGET, SEARCH_BUDGET
+from xroute.net_order import BUILTIN_POLICIES
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS
 
 ConfigOption = Annotated[
@@ -46,7 +47,7 @@ RepairRoundsOption = Annotated[
 PolicyOption = Annotated[
     str | None,
     typer.Option("--policy",
-                 help="Net-order policy: heuristic, random, rollout, victims, bestof, best-of-K (search: fewer violations "
+                 help=f"Net-order policy: {', '.join(BUILTIN_POLICIES)}, best-of-K (search: fewer violations "
                       "for more time, see --search-budget), or a policy file (.py defining order(region, features) "
                       "or next_net(region, features)). "
                       "Default: heuristic.", show_default=False),

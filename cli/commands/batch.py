@@ -126,7 +126,7 @@ def batch(
     from xroute.cli.batch import BatchProgress, completed_record
     from xroute.cli.batch_config import load_batch_config
     from xroute.cli.batch_summary import baseline_doc, load_baseline, write_summary
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
 
     if backend not in ("local", "ray"):
         raise typer.BadParameter("use local or ray", param_hint="--backend")

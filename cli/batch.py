@@ -104,7 +104,7 @@ def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
 
 def clean_stale_job_folders(out_root: Path) -> list[Path]:
     """Removes temporary job folders whose process is gone (an interrupted batch)."""
-    from xroute.outputs import _pid_alive
+    from xroute.atomic_files import pid_alive
 
     removed = []
     jobs = out_root / "jobs"
@@ -113,7 +113,7 @@ def clean_stale_job_folders(out_root: Path) -> list[Path]:
     for p in jobs.iterdir():
         pid_text = p.name.rpartition(".tmp-")[2]
         if p.name.startswith(".") and ".tmp-" in p.name and pid_text.isdigit():
-            if int(pid_text) != os.getpid() and not _pid_alive(int(pid_text)):
+            if int(pid_text) != os.getpid() and not pid_alive(int(pid_text)):
                 shutil.rmtree(p, ignore_errors=True)
                 removed.append(p)
     return removed
@@ -127,7 +127,7 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     """
     from xroute.cli.console import error_line
     from xroute.errors import XrouteError
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
     from xroute.cli.progress import iteration_line
     from xroute.cli.runs import route_testcase, run_summary
 

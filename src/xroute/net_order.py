@@ -81,11 +81,6 @@ FEATURE_COLUMNS: tuple[str, ...] = (
 _COL = {name: i for i, name in enumerate(FEATURE_COLUMNS)}
 
 
-BUILTIN_POLICIES: tuple[str, ...] = ("heuristic", "random", "rollout", "victims", "bestof")
-"""Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`);
-``best-of-K`` (K an integer, e.g. ``best-of-8``) names :class:`BestOfPolicy` with that K too
-(:func:`is_builtin_name`)."""
-
 _BEST_OF = re.compile(r"best-of-([0-9]{1,6})")
 
 
@@ -135,6 +130,13 @@ class HeuristicPolicy:
     name = "heuristic"
     builtin = "heuristic"
 
+    @classmethod
+    def from_settings(cls, seed: int, search_budget: int | None) -> HeuristicPolicy:
+        return cls()
+
+    def engine_arguments(self, seed: int) -> dict[str, Any]:
+        return {"policy": "heuristic"}
+
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         return heuristic_order(features)
 
@@ -157,6 +159,13 @@ class RandomPolicy:
         if seed < 0:
             raise PolicyError(f"random policy seed must be >= 0, got {seed}")
         self.seed = int(seed)
+
+    @classmethod
+    def from_settings(cls, seed: int, search_budget: int | None) -> RandomPolicy:
+        return cls(seed)
+
+    def engine_arguments(self, seed: int) -> dict[str, Any]:
+        return {"policy": "random", "seed": self.seed}  # its own seed, not the route's
 
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         rng = np.random.default_rng([self.seed, int(region["iteration"]), int(region["region"])])
@@ -190,6 +199,14 @@ class RolloutPolicy:
             raise PolicyError(f"rollout width must be an integer >= 0 (0: every candidate), got {width!r}")
         self.width = int(width)
 
+    @classmethod
+    def from_settings(cls, seed: int, search_budget: int | None) -> RolloutPolicy:
+        return cls(search_budget)
+
+    def engine_arguments(self, seed: int) -> dict[str, Any]:
+        return {"policy": "rollout", "search_budget": check_search_budget("rollout search budget", self.budget),
+                "search_width": self.width}
+
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         return heuristic_order(features)
 
@@ -212,6 +229,14 @@ class VictimsPolicy:
     def __init__(self, budget: int | None = None) -> None:
         self.budget = _check_count("victims search budget (trial routings per region)", budget)
 
+    @classmethod
+    def from_settings(cls, seed: int, search_budget: int | None) -> VictimsPolicy:
+        return cls(search_budget)
+
+    def engine_arguments(self, seed: int) -> dict[str, Any]:
+        return {"policy": "victims", "search_budget": check_search_budget("victims search budget", self.budget),
+                "seed": seed}
+
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         return heuristic_order(features)
 
@@ -233,11 +258,44 @@ class BestOfPolicy:
         self.seed = int(seed)
         self.name = f"best-of-{self.k}" if self.k is not None else "bestof"
 
+    @classmethod
+    def from_settings(cls, seed: int, search_budget: int | None) -> BestOfPolicy:
+        return cls(search_budget, seed)
+
+    def engine_arguments(self, seed: int) -> dict[str, Any]:
+        return {"policy": f"best-of-{check_search_budget('best-of-K: K', self.k)}", "seed": self.seed}
+
     def order(self, region: dict[str, Any], features: np.ndarray) -> Sequence[int]:
         return heuristic_order(features)
 
     def __repr__(self) -> str:
         return f"BestOfPolicy(k={self.k}, seed={self.seed})"
+
+
+BUILTINS: dict[str, Any] = {cls.builtin: cls for cls in (HeuristicPolicy, RandomPolicy, RolloutPolicy,
+                                                          VictimsPolicy, BestOfPolicy)}
+"""The one table of built-in policies: the engine runs each in C++, under its ``builtin`` name.
+Each class makes itself from the run's settings (``from_settings(seed, search_budget)``, for
+:func:`builtin_policy`) and gives the engine's arguments (``engine_arguments(seed)``, for the
+router); a new built-in is a class here, added to this table, and its C++ side."""
+
+BUILTIN_POLICIES: tuple[str, ...] = tuple(BUILTINS)
+"""Policies the engine runs in C++, by name (files and models are resolved by :mod:`xroute.policies`);
+``best-of-K`` (K an integer, e.g. ``best-of-8``) names :class:`BestOfPolicy` with that K too
+(:func:`is_builtin_name`)."""
+
+
+def check_search_budget(what: str, value: int | None) -> int:
+    """A search policy's trial routings per region (None: the engine's default), checked against
+    the engine's limit; :class:`RouteArgumentError` (one line) otherwise."""
+    from xroute import defaults  # loads the engine: only when a route starts
+    from xroute.errors import RouteArgumentError
+
+    if value is None:
+        return defaults.SEARCH_BUDGET
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= defaults.MAX_SEARCH_BUDGET:
+        raise RouteArgumentError(f"{what} must be an integer in 1..{defaults.MAX_SEARCH_BUDGET}, got {value!r}")
+    return value
 
 
 class CallablePolicy:
@@ -309,16 +367,8 @@ def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -
     """The built-in policy called ``name`` (:func:`is_builtin_name`); ``random`` and best-of-K are
     seeded with ``seed``; ``search_budget`` is rollout's and victims' budget and ``bestof``'s K
     (None: the engine's default); ``best-of-K`` takes its K from the name."""
-    if name == "heuristic":
-        return HeuristicPolicy()
-    if name == "random":
-        return RandomPolicy(seed)
-    if name == "rollout":
-        return RolloutPolicy(search_budget)
-    if name == "victims":
-        return VictimsPolicy(search_budget)
-    if name == "bestof":
-        return BestOfPolicy(search_budget, seed)
+    if name in BUILTINS:
+        return BUILTINS[name].from_settings(seed, search_budget)
     m = _BEST_OF.fullmatch(name)
     if m is not None:
         return BestOfPolicy(int(m.group(1)), seed)

@@ -29,7 +29,7 @@ def report(
     Example: xroute report runs/train-ppo-ispd18_test1 --out training.html
     """
     from xroute.config import load_config
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
     from xroute.cli.report_html import find_all_runs, render
 
     cfg = load_config(config)

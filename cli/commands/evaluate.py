@@ -96,7 +96,7 @@ def evaluate(
     Example: xroute evaluate --policy examples/python_heuristic_policy.py ispd18_sample --iterations 3
     """
     from xroute.config import load_config
-    from xroute.outputs import atomic_write_text
+    from xroute.atomic_files import atomic_write_text
     from xroute.cli.runs import policy_label, route_testcase, run_summary
 
     cfg = load_config(config)

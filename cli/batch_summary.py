@@ -17,7 +17,7 @@ from typing import Any
 
 from xroute.cli.batch_config import Gates
 from xroute.config_schema import ConfigError
-from xroute.outputs import atomic_write_text
+from xroute.atomic_files import atomic_write_text
 
 SUMMARY_FORMAT = 1
 BASELINE_FORMAT = 1

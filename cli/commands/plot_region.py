@@ -34,7 +34,7 @@ def plot_region(
     Example: xroute plot-region out/ispd18_test1 --gcell 35,43 --size 1 --out region1.png
     """
     from xroute.design import load_design
-    from xroute.outputs import atomic_write_bytes
+    from xroute.atomic_files import atomic_write_bytes
     from xroute.cli.plot_region import describe, gcell_box, parse_ints, read_drc_report, render_png, run_dir_inputs
 
     if (box is None) == (gcell is None):
