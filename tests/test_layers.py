@@ -25,7 +25,7 @@ from pathlib import Path
 
 import pytest
 
-from pyproject_meta import package_map, source_modules
+from pyproject_meta import REPO_ROOT, package_map, source_modules
 
 ROOT = "xroute"
 
@@ -58,7 +58,11 @@ def _walk(package: str, found: dict[str, Path]) -> None:
     """Adds every Python module under ``package`` (imported to read its ``__path__``) to ``found``."""
     pkg = importlib.import_module(package)
     found[package] = Path(pkg.__file__)
-    for info in pkgutil.iter_modules(pkg.__path__, prefix=package + "."):
+    # An editable install made by scikit-build-core 1.x also lists the repository root in
+    # ``xroute.__path__`` (the parent of the mapped folders): its own packages (experiments/) are
+    # no part of the package map, so that entry is not walked.
+    paths = [p for p in pkg.__path__ if Path(p).resolve() != REPO_ROOT]
+    for info in pkgutil.iter_modules(paths, prefix=package + "."):
         if info.name in found:
             continue  # a name on two entries of __path__: the first wins, as for import
         if info.ispkg:
