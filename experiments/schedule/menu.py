@@ -1,0 +1,142 @@
+"""Run the settings menu of issue 33 on the contest designs in parallel, one JSON line per job.
+
+    python -m experiments.schedule.menu --out OUT [--cores N] [--cutoff S] [--only NAME]
+                                        [--src CHECKOUT] [--data TESTCASES]
+
+Without --src it runs the installed `xroute`; with --src, the package in CHECKOUT/src (whose
+src/xroute must hold a compiled _engine module, as on a borrowed machine without pip access).
+--data sets XROUTE_TESTCASES.
+
+Each job is `python -m xroute route DESIGN --quiet --threads T FLAGS`; its wall and CPU seconds
+(wait4, all threads) and its metrics JSON's final and per-iteration figures are appended to
+OUT/menu.jsonl when it ends. Jobs start longest-first while free cores allow; none starts after
+--cutoff seconds.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+TEN_THEN_FIVE = "10:0,5:1,5:3,5:0,5:1,5:3,5:0,5:1,5:3,5:0"
+# (name, flags, cost relative to the default at one thread)
+MENU = [
+    ("default", [], 1.0),
+    ("victims2", ["--policy", "victims", "--search-budget", "2"], 1.8),
+    ("victims4", ["--policy", "victims", "--search-budget", "4"], 2.5),
+    ("victims8", ["--policy", "victims", "--search-budget", "8"], 4.0),
+    ("bestof4", ["--policy", "bestof", "--search-budget", "4"], 3.0),
+    ("repair1", ["--repair-rounds", "1"], 2.0),
+    ("repair3", ["--repair-rounds", "3"], 4.8),
+    ("size5", ["--region-size", "5"], 0.65),
+    ("size7", ["--region-size", "7"], 0.7),
+    ("size10then5", ["--schedule", TEN_THEN_FIVE], 0.7),
+]
+EXTRA = [
+    ("size5_victims4", ["--region-size", "5", "--policy", "victims", "--search-budget", "4"], 2.0),
+    ("size5_repair1", ["--region-size", "5", "--repair-rounds", "1"], 1.5),
+    ("size3", ["--region-size", "3"], 0.8),
+    ("size15", ["--region-size", "15"], 1.2),
+]
+DESIGNS = {"ispd18_test1": 16.0, "ispd19_test1": 83.0, "ispd19_test3": 140.0}
+
+
+def jobs(only: str | None) -> list[dict]:
+    out = []
+    for design, unit in DESIGNS.items():
+        for rank, table in ((0, MENU), (1, EXTRA)):
+            for name, flags, rel in table:
+                if only and only not in (name, design, f"{design}:{name}"):
+                    continue
+                cost = unit * rel
+                threads = 4 if cost > 300 else 2
+                out.append({"design": design, "setting": name, "flags": flags, "cost": cost,
+                            "threads": threads, "extra": rank})
+    # The menu before the extras, each longest first.
+    return sorted(out, key=lambda j: (j["extra"], -j["cost"]))
+
+
+def summary(job: dict, run_dir: Path, wall: float, cpu: float, rc: int, err: str) -> dict:
+    row = {k: job[k] for k in ("design", "setting", "flags", "threads")}
+    row.update(rc=rc, wall_s=round(wall, 2), cpu_s=round(cpu, 2))
+    metrics = run_dir / f"{job['design']}.metrics.json"
+    if rc != 0 or not metrics.exists():
+        row["error"] = err[-2000:]
+        return row
+    data = json.loads(metrics.read_text())
+    final = data["final"]
+    row.update({k: final.get(k) for k in (
+        "violations", "violations_by_type", "wirelength_um", "vias", "opens", "open_nets",
+        "iterations_run", "route_seconds", "runtime_seconds", "peak_rss_mb")})
+    row["iterations"] = [{k: it.get(k) for k in (
+        "iteration", "region_size", "offset", "regions", "violations", "violations_by_type",
+        "wirelength_um", "vias", "seconds")} for it in data["iterations"]]
+    return row
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--src", default=None)
+    ap.add_argument("--data", default=None)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--cores", type=int, default=os.cpu_count() or 2)
+    ap.add_argument("--cutoff", type=float, default=330.0)
+    ap.add_argument("--only", default=None)
+    args = ap.parse_args()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    env = {**os.environ, "CI": "true", "PYTHONUNBUFFERED": "1"}
+    if args.src:
+        env["PYTHONPATH"] = str(Path(args.src) / "src")
+    if args.data:
+        env["XROUTE_TESTCASES"] = args.data
+    pending = jobs(args.only)
+    running: dict[int, tuple[dict, subprocess.Popen, float, Path]] = {}
+    free = args.cores
+    start = time.monotonic()
+    log = (out / "menu.jsonl").open("a")
+    while pending or running:
+        launched = True
+        while launched and pending and time.monotonic() - start < args.cutoff:
+            launched = False
+            for job in list(pending):
+                if job["threads"] <= free:
+                    run_dir = Path("/tmp/menu_runs") / f"{job['design']}-{job['setting']}"
+                    cmd = [sys.executable, "-m", "xroute", "route", job["design"], "--quiet",
+                           "--threads", str(job["threads"]), "--out", str(run_dir), *job["flags"]]
+                    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE,
+                                            stderr=subprocess.STDOUT, text=True)
+                    running[proc.pid] = (job, proc, time.monotonic(), run_dir)
+                    free -= job["threads"]
+                    pending.remove(job)
+                    launched = True
+                    print(f"[{time.monotonic() - start:6.1f}s] start {job['design']} {job['setting']}"
+                          f" threads={job['threads']}", flush=True)
+                    break
+        if not running:
+            break
+        pid, status, usage = os.wait4(-1, 0)
+        if pid not in running:
+            continue
+        job, proc, t0, run_dir = running.pop(pid)
+        free += job["threads"]
+        text = proc.stdout.read() if proc.stdout else ""
+        rc = os.waitstatus_to_exitcode(status)
+        row = summary(job, run_dir, time.monotonic() - t0, usage.ru_utime + usage.ru_stime, rc, text)
+        log.write(json.dumps(row) + "\n")
+        log.flush()
+        print(f"[{time.monotonic() - start:6.1f}s] done {job['design']} {job['setting']}: rc={rc} "
+              f"viol={row.get('violations')} wl={row.get('wirelength_um')} vias={row.get('vias')} "
+              f"wall={row['wall_s']} cpu={row['cpu_s']}", flush=True)
+    skipped = [f"{j['design']}:{j['setting']}" for j in pending]
+    print("not started (cutoff):", ", ".join(skipped) or "none", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
