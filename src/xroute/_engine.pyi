@@ -252,6 +252,8 @@ def load_lef(lef_paths: Sequence[str]) -> Database:
     Reads LEF files only (the design part stays empty). Raises InputError on bad input.
     """
 
+MARKER_TYPES: tuple = ...
+
 def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shape=(None, None), order='C', device='cpu', writable=False)], origins: Annotated[NDArray[numpy.int32], dict(shape=(None,), order='C', device='cpu', writable=False)] | None = None, skip_fixed_pairs: bool = False, window: tuple[int, int, int, int] | None = None) -> list:
     """
     Design-rule check of a set of shapes against the technology of `db`.
