@@ -43,12 +43,10 @@ nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
 }
 
 nb::dict netResultDict(const RegionNetResult& r) {
-  int64_t wl = 0;
-  for (const RouteWire& w : r.added.wires) wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
   nb::dict d;
   d["net"] = r.net;
   d["routed"] = r.routed;
-  d["wirelength_dbu"] = wl;
+  d["wirelength_dbu"] = r.added.wirelength();
   d["vias"] = r.added.vias.size();
   d["unreached"] = r.unreached;
   return d;
@@ -253,8 +251,7 @@ void bindRegionResults(RegionClass& cls) {
               if (!r.routed) continue;
               ++routed;
               unreached += r.unreached;
-              for (const RouteWire& w : r.added.wires)
-                wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
+              wl += r.added.wirelength();
               vias += static_cast<int64_t>(r.added.vias.size());
             }
             std::vector<Marker> markers;
