@@ -87,7 +87,8 @@ class PythonPolicy final : public NetOrderPolicy {
     RegionHandle* lent = nullptr;
     if (router != nullptr) {
       lent = new RegionHandle();
-      lent->router = router;
+      lent->region = std::make_unique<SessionRegion>();
+      lent->region->router = router;
       lent->box = region.box;
       lent->lent = true;
       info["engine_region"] = nb::cast(lent, nb::rv_policy::take_ownership);
@@ -95,7 +96,7 @@ class PythonPolicy final : public NetOrderPolicy {
     struct Expire {  // the lent region is gone once the call returns (or raises)
       RegionHandle* h;
       ~Expire() {
-        if (h) h->router = nullptr;
+        if (h) h->region->router = nullptr;
       }
     } expire{lent};
     return convert(fn(info, features));
