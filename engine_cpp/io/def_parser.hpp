@@ -44,6 +44,8 @@ class DefParser {
   // def_pins.cpp
   void readPins();
   void readPin();
+  IoPinShape readPinRect();     // after + LAYER
+  IoPinShape readPinPolygon();  // after + POLYGON: its bounding box
   void resolveIoPinNets();  // after NETS: each IO pin's net by its + NET name
 
   // def_vias.cpp

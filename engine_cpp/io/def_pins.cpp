@@ -24,6 +24,30 @@ struct PinPort {
   Point location;
   Orient orient = Orient::N;
 };
+
+// The ports' shapes into `pin`: with one placement for all ports the pin keeps
+// it; otherwise the shapes are made absolute and false is returned.
+bool placePorts(IoPin& pin, std::vector<PinPort>& ports) {
+  bool samePlacement = true;
+  for (const PinPort& p : ports) {
+    samePlacement = samePlacement && p.status == ports[0].status && p.location == ports[0].location &&
+                    p.orient == ports[0].orient;
+  }
+  if (samePlacement) {
+    pin.status = ports[0].status;
+    pin.location = ports[0].location;
+    pin.orient = ports[0].orient;
+    for (PinPort& p : ports) pin.shapes.insert(pin.shapes.end(), p.shapes.begin(), p.shapes.end());
+    return true;
+  }
+  pin.status = PlaceStatus::Unplaced;
+  for (PinPort& p : ports) {
+    if (p.status != PlaceStatus::Unplaced && pin.status == PlaceStatus::Unplaced) pin.status = p.status;
+    const Transform t{p.location, p.orient, 0, 0};
+    for (const IoPinShape& s : p.shapes) pin.shapes.push_back({s.layer, t.apply(s.rect)});
+  }
+  return false;
+}
 }  // namespace
 
 void DefParser::readPin() {
@@ -52,37 +76,9 @@ void DefParser::readPin() {
       if (explicitPorts) ports.emplace_back();
       explicitPorts = true;
     } else if (k == "LAYER") {
-      const LayerId layer = layerAt(lex_.next());
-      while (!peekIs("(")) {
-        const Token opt = lex_.next();
-        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
-          lex_.integer();
-          countSkip("PINS.LAYER." + std::string(opt.text));
-        } else {
-          unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
-        }
-      }
-      const Point a = readPoint();
-      const Point b = readPoint();
-      ports.back().shapes.push_back({layer, Rect::fromCorners(a, b)});
+      ports.back().shapes.push_back(readPinRect());
     } else if (k == "POLYGON") {
-      const LayerId layer = layerAt(lex_.next());
-      while (!peekIs("(")) {
-        const Token opt = lex_.next();
-        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
-          lex_.integer();
-        } else {
-          unexpected(opt, "'('");
-        }
-      }
-      std::vector<Point> pts;
-      while (peekIs("(")) pts.push_back(readPoint());
-      if (pts.size() < 3) lex_.fail(lex_.line(), "POLYGON needs at least 3 points");
-      Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
-      for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
-      ports.back().shapes.push_back({layer, box});
-      countSkip("PINS.POLYGON");
-      ++design_.warningCount;
+      ports.back().shapes.push_back(readPinPolygon());
     } else if (k == "VIA") {
       const Token viaTok = lex_.next();
       const ViaRef ref = findVia(viaTok.text);
@@ -102,28 +98,49 @@ void DefParser::readPin() {
       countSkip("PINS." + std::string(k));
     }
   }
-  // One placement for all ports: keep it; otherwise make the shapes absolute.
-  bool samePlacement = true;
-  for (const PinPort& p : ports) {
-    samePlacement = samePlacement && p.status == ports[0].status && p.location == ports[0].location &&
-                    p.orient == ports[0].orient;
-  }
-  if (samePlacement) {
-    pin.status = ports[0].status;
-    pin.location = ports[0].location;
-    pin.orient = ports[0].orient;
-    for (PinPort& p : ports) pin.shapes.insert(pin.shapes.end(), p.shapes.begin(), p.shapes.end());
-  } else {
-    pin.status = PlaceStatus::Unplaced;
-    for (PinPort& p : ports) {
-      if (p.status != PlaceStatus::Unplaced && pin.status == PlaceStatus::Unplaced) pin.status = p.status;
-      const Transform t{p.location, p.orient, 0, 0};
-      for (const IoPinShape& s : p.shapes) pin.shapes.push_back({s.layer, t.apply(s.rect)});
-    }
+  if (!placePorts(pin, ports)) {
     countSkip("PINS.PORT.PLACEMENT");
     ++design_.warningCount;
   }
   design_.ioPins.push_back(std::move(pin));
+}
+
+// "+ LAYER name [options] pt pt" after LAYER: the rect.
+IoPinShape DefParser::readPinRect() {
+  const LayerId layer = layerAt(lex_.next());
+  while (!peekIs("(")) {
+    const Token opt = lex_.next();
+    if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
+      lex_.integer();
+      countSkip("PINS.LAYER." + std::string(opt.text));
+    } else {
+      unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
+    }
+  }
+  const Point a = readPoint();
+  const Point b = readPoint();
+  return {layer, Rect::fromCorners(a, b)};
+}
+
+// "+ POLYGON name [options] pt pt pt ..." after POLYGON: kept as its bounding box (counted, warned).
+IoPinShape DefParser::readPinPolygon() {
+  const LayerId layer = layerAt(lex_.next());
+  while (!peekIs("(")) {
+    const Token opt = lex_.next();
+    if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
+      lex_.integer();
+    } else {
+      unexpected(opt, "'('");
+    }
+  }
+  std::vector<Point> pts;
+  while (peekIs("(")) pts.push_back(readPoint());
+  if (pts.size() < 3) lex_.fail(lex_.line(), "POLYGON needs at least 3 points");
+  Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
+  for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  countSkip("PINS.POLYGON");
+  ++design_.warningCount;
+  return {layer, box};
 }
 
 void DefParser::resolveIoPinNets() {
