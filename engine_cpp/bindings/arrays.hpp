@@ -32,8 +32,8 @@ inline IntArray ownedInt32(std::vector<int32_t>&& values, size_t cols) {
   auto* heap = new std::vector<int32_t>(std::move(values));
   nanobind::capsule owner(heap, [](void* p) noexcept { delete static_cast<std::vector<int32_t>*>(p); });
   const size_t rows = cols ? heap->size() / cols : 0;
-  static int32_t kEmpty[1] = {0};
-  int32_t* data = heap->empty() ? kEmpty : heap->data();
+  if (heap->capacity() == 0) heap->reserve(1);  // a real (owned, unshared) address even when empty
+  int32_t* data = heap->data();
   if (cols == 1) {
     const size_t shape[1] = {rows};
     return IntArray(data, 1, shape, owner);

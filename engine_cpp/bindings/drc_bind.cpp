@@ -39,6 +39,9 @@ DrcOptions makeOptions(bool skipFixed, const std::optional<std::tuple<int, int, 
 using namespace xroute;
 
 void bindDrc(nb::module_& m) {
+  nb::list markerTypes;
+  for (int t = 0; t < kMarkerTypes; ++t) markerTypes.append(std::string(markerTypeName(static_cast<MarkerType>(t))));
+  m.attr("MARKER_TYPES") = nb::tuple(markerTypes);
   m.def(
       "check_shapes",
       [](const Database& db, ShapeArray shapes, std::optional<OriginArray> origins, bool skip_fixed_pairs,

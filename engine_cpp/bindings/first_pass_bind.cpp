@@ -26,8 +26,7 @@ struct FirstPassHandle {
 
   void restore(int colour) const {
     nb::gil_scoped_release release;
-    pass->restore(session->ctx->design, colour);
-    session->ctx->rebuildRoutedIndex();
+    session->restoreFirstPass(*pass, colour);
   }
 };
 
@@ -49,8 +48,7 @@ void initFirstPass(FirstPassHandle* self, RoutingSession& s, int regionSize, con
   std::unique_ptr<FirstPass> pass;
   {
     nb::gil_scoped_release release;
-    pass = std::make_unique<FirstPass>(s.db->tech, s.db->design, settings, *p);
-    s.ctx->rebuildRoutedIndex();
+    pass = s.routeFirstPass(settings, *p);
   }
   new (self) FirstPassHandle{&s, std::move(pass)};
 }
@@ -60,19 +58,11 @@ RegionHandle* openInContext(FirstPassHandle& fp, int32_t i) {
   if (i < 0 || i >= fp.pass->size()) {
     throw nb::index_error(("region index out of range 0.." + std::to_string(fp.pass->size() - 1)).c_str());
   }
-  RoutingSession& s = *fp.session;
   auto h = std::make_unique<RegionHandle>();
-  h->session = &s;
+  h->session = fp.session;
   nb::gil_scoped_release release;
-  const RegionTask& task = fp.pass->task(i);
-  fp.pass->restore(s.ctx->design, task.region.color);
-  s.ctx->rebuildRoutedIndex();
-  h->task = task;
-  h->plan = fp.pass->plan(task.region.color);
-  h->owned = std::make_unique<RegionRouter>(*s.ctx, h->task, &h->plan);
-  h->router = h->owned.get();
-  h->box = task.region.box;
-  h->router->prepare();
+  h->region = fp.session->openFirstPassRegion(*fp.pass, i);
+  h->box = h->region->task.region.box;
   return h.release();
 }
 
@@ -113,6 +103,6 @@ void bindFirstPass(nb::module_& m) {
           "Puts the design's routing back to what it was before the regions of `colour` (0..3) were routed; 4: "
           "after the whole pass.")
       .def_prop_ro(
-          "report", [](const FirstPassHandle& fp) { return reportDict(fp.pass->report(), fp.session->db->design.dbuPerMicron); },
+          "report", [](const FirstPassHandle& fp) { return reportDict(fp.pass->report(), fp.session->database().design.dbuPerMicron); },
           "Iteration 0's report (as route()'s): wirelength, vias and violations of the whole design after the pass.");
 }

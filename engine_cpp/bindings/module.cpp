@@ -11,6 +11,7 @@ namespace nb = nanobind;
 void bindDatabase(nb::module_& m);
 void bindDrc(nb::module_& m);
 void bindVerify(nb::module_& m);
+void bindSettings(nb::module_& m);
 void bindRouter(nb::module_& m);
 void bindPinAccess(nb::module_& m);
 void bindRegion(nb::module_& m);
@@ -40,6 +41,7 @@ NB_MODULE(_engine, m) {
   bindDatabase(m);
   bindDrc(m);
   bindVerify(m);
+  bindSettings(m);
   bindRouter(m);
   bindPinAccess(m);
   bindRegion(m);

@@ -1,7 +1,8 @@
 // Python view of one routing region, steppable net by net: what a learning
-// environment drives. A RoutingSession holds what every region of a design
-// shares (tracks, pin access, fixed shapes); a Region routes the nets of one
-// box in the order the caller chooses and can be committed to the design.
+// environment drives. A RoutingSession (flow/session.hpp) holds what every
+// region of a design shares (tracks, pin access, fixed shapes); a Region
+// routes the nets of one box in the order the caller chooses and can be
+// committed to the design.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
@@ -18,10 +19,9 @@
 #include "flow/search_policy.hpp"
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
-#include "flow/route_context.hpp"
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
-#include "flow/standalone.hpp"
+#include "flow/session.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -43,12 +43,10 @@ nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
 }
 
 nb::dict netResultDict(const RegionNetResult& r) {
-  int64_t wl = 0;
-  for (const RouteWire& w : r.added.wires) wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
   nb::dict d;
   d["net"] = r.net;
   d["routed"] = r.routed;
-  d["wirelength_dbu"] = wl;
+  d["wirelength_dbu"] = r.added.wirelength();
   d["vias"] = r.added.vias.size();
   d["unreached"] = r.unreached;
   return d;
@@ -66,23 +64,21 @@ void bindRoutingSession(nb::module_& m) {
       .def(
           "__init__",
           [](RoutingSession* self, Database& db, int threads) {
-            new (self) RoutingSession();
-            self->db = &db;
             nb::gil_scoped_release release;
-            self->ctx = std::make_unique<RouteContext>(db.tech, db.design, std::max(1, threads));
+            new (self) RoutingSession(db, threads);
           },
           "db"_a, "threads"_a = 1, nb::keep_alive<1, 2>(),
           "Prepares routing of a loaded Database (pin access is computed here, once).")
       .def_prop_ro(
           "gcell_lines",
-          [](const RoutingSession& s) { return nb::make_tuple(s.ctx->gcells.xs, s.ctx->gcells.ys); },
+          [](const RoutingSession& s) { return nb::make_tuple(s.gcells().xs, s.gcells().ys); },
           "The GCell grid lines (xs, ys) in DBU that regions align to.")
       .def(
           "regions",
           [](const RoutingSession& s, int size, int offset) {
             if (size < 1) throw nb::value_error("size must be >= 1");
             nb::list out;
-            for (const Region& r : partitionRegions(s.ctx->gcells, size, offset)) {
+            for (const Region& r : s.regions(size, offset)) {
               out.append(nb::make_tuple(nb::make_tuple(r.gx0, r.gy0),
                                         nb::make_tuple(r.box.xlo, r.box.ylo, r.box.xhi, r.box.yhi)));
             }
@@ -94,18 +90,15 @@ void bindRoutingSession(nb::module_& m) {
       .def(
           "open_region",
           [](RoutingSession& s, std::tuple<Dbu, Dbu, Dbu, Dbu> box, int iteration) {
-            auto* h = new RegionHandle();
+            auto h = std::make_unique<RegionHandle>();
             h->session = &s;
             const Rect r = Rect::fromCorners({std::get<0>(box), std::get<1>(box)}, {std::get<2>(box), std::get<3>(box)});
             {
               nb::gil_scoped_release release;
-              h->task = makeStandaloneTask(*s.ctx, r, s.regions++, iteration, s.costs, h->plan);
-              h->owned = std::make_unique<RegionRouter>(*s.ctx, h->task, &h->plan);
-              h->router = h->owned.get();
+              h->region = s.openRegion(r, iteration);
               h->box = r;
-              h->router->prepare();
             }
-            return h;
+            return h.release();
           },
           "box"_a, "iteration"_a = 0, nb::rv_policy::take_ownership, nb::keep_alive<0, 1>(),
           "Opens the region box (xlo, ylo, xhi, yhi) in DBU: nets with pins or routing inside, or whose guides "
@@ -162,7 +155,7 @@ void bindRegionRouting(RegionClass& cls) {
             if (h.get().isRouted(i)) throw nb::value_error(("candidate " + std::to_string(i) + " is already routed").c_str());
             {
               nb::gil_scoped_release release;
-              h.get().routeNet(i, h.ws);
+              h.get().routeNet(i, h.region->ws);
             }
             return netResultDict(h.get().result(i));
           },
@@ -232,7 +225,7 @@ void bindRegionRouting(RegionClass& cls) {
               throw nb::value_error(e.what());
             }
             nb::gil_scoped_release release;
-            h.get().routeAll(*p, h.ws);
+            h.get().routeAll(*p, h.region->ws);
           },
           "policy"_a = "heuristic", "seed"_a = 1, "search_budget"_a = SearchSettings{}.budget,
           "search_width"_a = SearchSettings{}.width,
@@ -253,8 +246,7 @@ void bindRegionResults(RegionClass& cls) {
               if (!r.routed) continue;
               ++routed;
               unreached += r.unreached;
-              for (const RouteWire& w : r.added.wires)
-                wl += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
+              wl += r.added.wirelength();
               vias += static_cast<int64_t>(r.added.vias.size());
             }
             std::vector<Marker> markers;
@@ -339,12 +331,8 @@ void bindRegionGrid(RegionClass& cls) {
           [](RegionHandle& h) {
             h.checkOpen();
             if (h.lent) throw std::runtime_error("a region lent to a policy is committed by the router, not by the policy");
-            RegionResult res = h.get().finish();
             nb::gil_scoped_release release;
-            RouteContext& ctx = *h.session->ctx;
-            commitRegion(ctx.tech, ctx.design, h.task.region.box, res);
-            ctx.rebuildRoutedIndex();
-            h.committed = true;
+            h.session->commit(*h.region);
           },
           "Writes the region's new routing into the design (other open regions of the session become stale).");
 }

@@ -9,40 +9,27 @@
 #include <stdexcept>
 #include <string>
 
-#include "db/database.hpp"
-#include "flow/crossings.hpp"
 #include "flow/region_router.hpp"
-#include "flow/route_context.hpp"
+#include "flow/session.hpp"
 
 namespace xroute {
 
-struct RoutingSession {
-  Database* db = nullptr;
-  std::unique_ptr<RouteContext> ctx;
-  MazeCosts costs;
-  int32_t regions = 0;
-};
-
+// The engine's region (flow/session.hpp) and what Python may do with it.
 struct RegionHandle {
   RoutingSession* session = nullptr;      // null for a lent region
-  RegionTask task;                        // an opened region's task
-  CrossingPlan plan;                      // its free crossings
-  std::unique_ptr<RegionRouter> owned;    // an opened region's router
-  RegionRouter* router = nullptr;         // owned.get() or the lent router; null once a lent region is returned
+  std::unique_ptr<SessionRegion> region;  // its router is null once a lent region is returned
   Rect box;                               // DBU
-  MazeWorkspace ws;
-  bool committed = false;
   bool lent = false;                      // lent by the router to a policy: no commit
 
   RegionRouter& get() const {
-    if (router == nullptr) {
+    if (region->router == nullptr) {
       throw std::runtime_error("this region was lent to a policy for one call and is gone (the router moved on)");
     }
-    return *router;
+    return *region->router;
   }
   void checkOpen() const {
     get();
-    if (committed) throw std::runtime_error("this region was committed; open a new one");
+    if (region->committed) throw std::runtime_error("this region was committed; open a new one");
   }
   int32_t candidate(int32_t i) const {
     const int32_t n = static_cast<int32_t>(get().candidates().size());

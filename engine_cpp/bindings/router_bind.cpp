@@ -87,7 +87,8 @@ class PythonPolicy final : public NetOrderPolicy {
     RegionHandle* lent = nullptr;
     if (router != nullptr) {
       lent = new RegionHandle();
-      lent->router = router;
+      lent->region = std::make_unique<SessionRegion>();
+      lent->region->router = router;
       lent->box = region.box;
       lent->lent = true;
       info["engine_region"] = nb::cast(lent, nb::rv_policy::take_ownership);
@@ -95,7 +96,7 @@ class PythonPolicy final : public NetOrderPolicy {
     struct Expire {  // the lent region is gone once the call returns (or raises)
       RegionHandle* h;
       ~Expire() {
-        if (h) h->router = nullptr;
+        if (h) h->region->router = nullptr;
       }
     } expire{lent};
     return convert(fn(info, features));
@@ -108,6 +109,86 @@ class PythonPolicy final : public NetOrderPolicy {
   std::mutex mutex_;
 };
 
+// The run's settings: `base` (or the defaults) with the keywords given, checked.
+RouterSettings runSettings(const RouterSettings* base, std::optional<int> regionSize, std::optional<int> iterations,
+                           std::optional<int> threads) {
+  RouterSettings s = base ? *base : RouterSettings{};
+  if (regionSize) s.regionSize = *regionSize;
+  if (iterations) s.iterations = *iterations;
+  if (threads) s.threads = *threads;
+  if (s.regionSize < 1 || s.regionSize > kMaxRegionSize) {
+    throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
+  }
+  if (s.iterations < 1 || s.iterations > kMaxIterations) {
+    throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
+  }
+  if (s.threads < 1 || s.threads > kMaxThreads) {
+    throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
+  }
+  return s;
+}
+
+// A Python policy when policy_fn or policy_next is given, else the built-in named `policy`.
+std::unique_ptr<NetOrderPolicy> routePolicy(const std::string& policy, uint64_t seed, nb::object policyFn,
+                                            bool needsRegion, nb::object policyNext, int searchBudget,
+                                            int searchWidth) {
+  if (!policyFn.is_none() || !policyNext.is_none()) {
+    return std::make_unique<PythonPolicy>(policyFn, needsRegion, policyNext);
+  }
+  SearchSettings search;
+  search.budget = searchBudget;
+  search.width = searchWidth;
+  search.seed = seed;
+  try {
+    return makeBuiltinPolicy(policy, search);
+  } catch (const std::invalid_argument& e) {
+    throw nb::value_error(e.what());
+  }
+}
+
+// The schedule's steps checked into `s`; the repair rounds clamped to 0..kMaxRepairRounds.
+void finishSettings(RouterSettings& s, const std::optional<std::vector<std::pair<int, int>>>& schedule) {
+  if (schedule) {
+    for (const auto& [size, offset] : *schedule) {
+      if (size < 1) throw nb::value_error("schedule: region size must be >= 1");
+      if (offset < 0 || offset >= size) throw nb::value_error("schedule: offset must be in 0..region_size-1");
+      s.schedule.push_back(ScheduleStep{size, offset});
+    }
+  }
+  s.repairRounds = std::clamp(s.repairRounds, 0, kMaxRepairRounds);
+  s.firstRepairRounds = std::clamp(s.firstRepairRounds, 0, kMaxRepairRounds);
+}
+
+nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> iterations, std::optional<int> threads,
+               const std::string& policy, uint64_t seed, nb::object policyFn, bool needsRegion, nb::object progress,
+               const RouterSettings* settings, const std::optional<std::vector<std::pair<int, int>>>& schedule,
+               int searchBudget, int searchWidth, nb::object policyNext) {
+  RouterSettings s = runSettings(settings, regionSize, iterations, threads);
+  std::unique_ptr<NetOrderPolicy> p =
+      routePolicy(policy, seed, policyFn, needsRegion, policyNext, searchBudget, searchWidth);
+  finishSettings(s, schedule);
+  const int dbu = db.design.dbuPerMicron;
+  RouteProgress cb;
+  if (!progress.is_none()) {
+    cb = [&progress, dbu](const IterationReport& r, int done, int total) {
+      nb::gil_scoped_acquire gil;
+      progress(reportDict(r, dbu), done, total);
+    };
+  }
+  RouteOutcome out;
+  {
+    nb::gil_scoped_release release;
+    out = routeDesign(db.tech, db.design, s, *p, cb);
+  }
+  p.reset();
+  nb::list its;
+  for (const IterationReport& r : out.iterations) its.append(reportDict(r, dbu));
+  nb::dict result;
+  result["iterations"] = its;
+  result["policy"] = policyFn.is_none() && policyNext.is_none() ? policy : std::string("python");
+  return result;
+}
+
 }  // namespace
 
 void bindRouter(nb::module_& m) {
@@ -115,88 +196,10 @@ void bindRouter(nb::module_& m) {
   for (const char* c : kFeatureColumns) columns.append(c);
   m.attr("POLICY_FEATURES") = nb::tuple(columns);
   m.def(
-      "route",
-      [](Database& db, int region_size, int iterations, int threads, const std::string& policy, uint64_t seed,
-         nb::object policy_fn, bool policy_needs_region, nb::object progress, nb::dict costs,
-         const std::optional<std::vector<std::pair<int, int>>>& schedule, int search_budget, int search_width,
-         nb::object policy_next) {
-        if (region_size < 1 || region_size > kMaxRegionSize) {
-          throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
-        }
-        if (iterations < 1 || iterations > kMaxIterations) {
-          throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
-        }
-        if (threads < 1 || threads > kMaxThreads) {
-          throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
-        }
-        std::unique_ptr<NetOrderPolicy> p;
-        if (!policy_fn.is_none() || !policy_next.is_none()) {
-          p = std::make_unique<PythonPolicy>(policy_fn, policy_needs_region, policy_next);
-        } else {
-          SearchSettings search;
-          search.budget = search_budget;
-          search.width = search_width;
-          search.seed = seed;
-          try {
-            p = makeBuiltinPolicy(policy, search);
-          } catch (const std::invalid_argument& e) {
-            throw nb::value_error(e.what());
-          }
-        }
-        RouterSettings s;
-        s.regionSize = region_size;
-        s.iterations = iterations;
-        s.threads = threads;
-        if (schedule) {
-          for (const auto& [size, offset] : *schedule) {
-            if (size < 1) throw nb::value_error("schedule: region size must be >= 1");
-            if (offset < 0 || offset >= size) throw nb::value_error("schedule: offset must be in 0..region_size-1");
-            s.schedule.push_back(ScheduleStep{size, offset});
-          }
-        }
-        for (auto [k, v] : costs) {
-          const std::string key = nb::cast<std::string>(k);
-          const int64_t val = nb::cast<int64_t>(v);
-          if (key == "via_cost") s.costs.viaCost = val;
-          else if (key == "wrong_way_factor") s.costs.wrongWayFactor = val;
-          else if (key == "out_of_guide_factor") s.costs.outOfGuideFactor = val;
-          else if (key == "fixed_penalty") s.costs.fixedPenalty = val;
-          else if (key == "use_penalty") s.costs.usePenalty = val;
-          else if (key == "bottom_layer_factor") s.costs.bottomLayerFactor = val;
-          else if (key == "reserve_penalty") s.costs.reservePenalty = val;
-          else if (key == "crossing_pull") s.costs.crossingPull = val;
-          else if (key == "use_penalty_step") s.usePenaltyStep = val;
-          else if (key == "marker_penalty") s.markerPenalty = val;
-          else if (key == "history_penalty") s.historyPenalty = val;
-          else if (key == "repair_rounds") s.repairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, kMaxRepairRounds));
-          else if (key == "repair_penalty") s.repairPenalty = val;
-          else if (key == "first_repair_rounds") s.firstRepairRounds = static_cast<int>(std::clamp<int64_t>(val, 0, kMaxRepairRounds));
-          else throw nb::value_error(("unknown cost setting '" + key + "'").c_str());
-        }
-        const int dbu = db.design.dbuPerMicron;
-        RouteProgress cb;
-        if (!progress.is_none()) {
-          cb = [&progress, dbu](const IterationReport& r, int done, int total) {
-            nb::gil_scoped_acquire gil;
-            progress(reportDict(r, dbu), done, total);
-          };
-        }
-        RouteOutcome out;
-        {
-          nb::gil_scoped_release release;
-          out = routeDesign(db.tech, db.design, s, *p, cb);
-        }
-        p.reset();
-        nb::list its;
-        for (const IterationReport& r : out.iterations) its.append(reportDict(r, dbu));
-        nb::dict result;
-        result["iterations"] = its;
-        result["policy"] = policy_fn.is_none() && policy_next.is_none() ? policy : std::string("python");
-        return result;
-      },
-      "db"_a, "region_size"_a = RouterSettings{}.regionSize, "iterations"_a = RouterSettings{}.iterations, "threads"_a = 1, "policy"_a = "heuristic", "seed"_a = 1,
-      "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(), "costs"_a = nb::dict(),
-      "schedule"_a = nb::none(), "search_budget"_a = SearchSettings{}.budget, "search_width"_a = SearchSettings{}.width,
+      "route", &route, "db"_a, "region_size"_a = nb::none(), "iterations"_a = nb::none(), "threads"_a = nb::none(),
+      "policy"_a = "heuristic", "seed"_a = 1, "policy_fn"_a = nb::none(), "policy_needs_region"_a = false,
+      "progress"_a = nb::none(), "settings"_a = nb::none(), "schedule"_a = nb::none(),
+      "search_budget"_a = SearchSettings{}.budget, "search_width"_a = SearchSettings{}.width,
       "policy_next"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' "
       "(seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), "
@@ -207,9 +210,9 @@ void bindRouter(nb::module_& m) {
       "candidates' rows as they are then. With "
       "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
       "route nets with it; the order applies to the rest). progress(report, "
-      "regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name "
-      "(via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, "
-      "reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration "
+      "regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, "
+      "penalties, repair rounds; None: the defaults); region_size, iterations and threads, when given, replace its "
+      "fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration "
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
       "Returns {'iterations': [report, ...]}.");
 }

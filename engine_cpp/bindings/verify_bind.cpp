@@ -183,7 +183,7 @@ void bindDrcReport(DatabaseClass& cls) {
   cls.def(
       "write_drc_report",
       [](const Database& db, const std::string& path, bool skip_fixed_pairs) {
-        std::array<int64_t, kMarkerTypeCount> counts;
+        std::array<int64_t, kMarkerTypes> counts;
         {
           nb::gil_scoped_release release;
           std::vector<std::string> names;
@@ -195,7 +195,7 @@ void bindDrcReport(DatabaseClass& cls) {
           counts = countMarkers(markers);
         }
         nb::dict d;
-        for (int t = 0; t < kMarkerTypeCount; ++t) d[nb::str(std::string(markerTypeName(MarkerType(t))).c_str())] = counts[t];
+        for (int t = 0; t < kMarkerTypes; ++t) d[nb::str(std::string(markerTypeName(MarkerType(t))).c_str())] = counts[t];
         return d;
       },
       "path"_a, "skip_fixed_pairs"_a = true,

@@ -18,8 +18,4 @@ struct Database {
   std::string guidePath;  // empty when no guide was read
 };
 
-// Reads LEF files in order, then the DEF, then the guide file if given.
-Database loadDatabase(const std::vector<std::string>& lefPaths, const std::string& defPath,
-                      const std::string& guidePath);
-
 }  // namespace xroute

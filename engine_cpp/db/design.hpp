@@ -3,6 +3,8 @@
 // guides are flat arrays with start offsets (net i owns [start[i], start[i+1])).
 #pragma once
 
+#include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -112,6 +114,10 @@ struct RouteWire {
   Dbu width = 0;    // DBU; 0 = the layer's default width
   Dbu extFrom = -1; // DBU; -1 = default (half width)
   Dbu extTo = -1;   // DBU
+
+  // DBU along the centre line, end to end (extensions not counted): the one
+  // definition of wirelength that reports, metrics and region costs sum.
+  int64_t length() const { return std::abs(int64_t(to.x) - from.x) + std::abs(int64_t(to.y) - from.y); }
 };
 
 struct RouteVia {
@@ -130,6 +136,12 @@ struct NetRouting {
   std::vector<RouteVia> vias;
   std::vector<RoutePatch> patches;
   bool empty() const { return wires.empty() && vias.empty() && patches.empty(); }
+  // DBU: the wires' summed RouteWire::length.
+  int64_t wirelength() const {
+    int64_t sum = 0;
+    for (const RouteWire& w : wires) sum += w.length();
+    return sum;
+  }
 };
 
 struct Net {

@@ -8,20 +8,6 @@
 
 namespace xroute {
 
-std::string_view markerTypeName(MarkerType type) {
-  switch (type) {
-    case MarkerType::Short: return "Short";
-    case MarkerType::MetalSpacing: return "MetalSpacing";
-    case MarkerType::EndOfLine: return "EndOfLine";
-    case MarkerType::CutShort: return "CutShort";
-    case MarkerType::CutSpacing: return "CutSpacing";
-    case MarkerType::AdjacentCuts: return "AdjacentCuts";
-    case MarkerType::MinArea: return "MinArea";
-    case MarkerType::CornerSpacing: return "CornerSpacing";
-  }
-  return "Unknown";
-}
-
 namespace drc {
 
 void addPairMarker(MarkerSink& out, const LayerShapes& ls, MarkerType type, const Rect& box, int32_t a, int32_t b) {

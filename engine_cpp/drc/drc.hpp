@@ -53,7 +53,28 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
 std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design,
                                           std::vector<std::string>* netNames = nullptr);
 
-std::string_view markerTypeName(MarkerType type);
+// The marker type's name as reports write it; "Unknown" for a value outside the enum.
+constexpr std::string_view markerTypeName(MarkerType type) {
+  switch (type) {
+    case MarkerType::Short: return "Short";
+    case MarkerType::MetalSpacing: return "MetalSpacing";
+    case MarkerType::EndOfLine: return "EndOfLine";
+    case MarkerType::CutShort: return "CutShort";
+    case MarkerType::CutSpacing: return "CutSpacing";
+    case MarkerType::AdjacentCuts: return "AdjacentCuts";
+    case MarkerType::MinArea: return "MinArea";
+    case MarkerType::CornerSpacing: return "CornerSpacing";
+  }
+  return "Unknown";
+}
+
+// The number of marker types: the enum's values are 0..kMarkerTypes-1. A new
+// type is appended to the enum; markerTypeName's switch must name it (-Wswitch),
+// and then this count must follow, or the static_assert below fails.
+inline constexpr int kMarkerTypes = static_cast<int>(MarkerType::CornerSpacing) + 1;
+static_assert(markerTypeName(static_cast<MarkerType>(kMarkerTypes - 1)) != "Unknown" &&
+                  markerTypeName(static_cast<MarkerType>(kMarkerTypes)) == "Unknown",
+              "kMarkerTypes must be the number of MarkerType values");
 
 // Spacing a routing layer requires between shapes of widths w1 and w2 with a
 // parallel run length prl (DBU): the PRL table (row: last WIDTH strictly

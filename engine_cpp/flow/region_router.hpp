@@ -12,19 +12,13 @@
 #include "flow/clip.hpp"
 #include "flow/crossings.hpp"
 #include "flow/policy.hpp"
+#include "flow/region_marks.hpp"
 #include "flow/regions.hpp"
 #include "flow/route_context.hpp"
 #include "grid/region_grid.hpp"
 #include "route/maze.hpp"
 
 namespace xroute {
-
-// A DRC marker from an earlier pass, as a cost on the nodes around it.
-struct MarkerCost {
-  LayerId layer;
-  Rect box;         // DBU
-  int64_t cost = 0; // cost units added to each node near the box
-};
 
 // What one net does in a region.
 struct RegionNetTask {

@@ -15,7 +15,7 @@
 #include "grid/footprint.hpp"
 #include "grid/tracks.hpp"
 #include "pa/pin_access.hpp"
-#include "route/via_set.hpp"
+#include "grid/via_set.hpp"
 
 namespace xroute {
 

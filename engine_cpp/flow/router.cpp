@@ -18,9 +18,7 @@ void routingTotals(const Design& design, int64_t& wirelength, int64_t& vias) {
   wirelength = 0;
   vias = 0;
   for (const Net& n : design.nets) {
-    for (const RouteWire& w : n.routing.wires) {
-      wirelength += std::abs(int64_t(w.to.x) - w.from.x) + std::abs(int64_t(w.to.y) - w.from.y);
-    }
+    wirelength += n.routing.wirelength();
     vias += static_cast<int64_t>(n.routing.vias.size());
   }
 }

@@ -50,8 +50,6 @@ struct RouterSettings {
   int64_t repairPenalty = 3000;    // cost units per node near a region marker, times the repair round
 };
 
-inline constexpr int kMarkerTypes = 8;
-
 struct IterationReport {
   int iteration = 0;
   int regionSize = 0;              // GCells per region side in this iteration

@@ -21,7 +21,7 @@ double regionCost(const RegionRouter& router, const RegionCostWeights& w, const 
   for (int32_t i = 0; i < static_cast<int32_t>(router.candidates().size()); ++i) {
     const RegionNetResult& r = router.result(i);
     if (!r.routed) continue;
-    for (const RouteWire& x : r.added.wires) wl += std::abs(int64_t(x.to.x) - x.from.x) + std::abs(int64_t(x.to.y) - x.from.y);
+    wl += r.added.wirelength();
     vias += static_cast<int64_t>(r.added.vias.size());
   }
   const double dbu = std::max(1, router.context().design.dbuPerMicron);

@@ -11,7 +11,7 @@
 
 #include "db/tech.hpp"
 #include "grid/region_grid.hpp"
-#include "route/via_set.hpp"
+#include "grid/via_set.hpp"
 
 namespace xroute {
 

@@ -1,6 +1,6 @@
 // Internal to the DEF reader: the parser state shared by its files
-// (def_reader.cpp: header statements, COMPONENTS, PINS, BLOCKAGES;
-// def_vias.cpp: VIAS; def_nets.cpp: NETS, SPECIALNETS and routing paths).
+// (def_reader.cpp: header statements, COMPONENTS, BLOCKAGES; def_pins.cpp:
+// PINS; def_vias.cpp: VIAS; def_nets.cpp: NETS, SPECIALNETS and routing paths).
 #pragma once
 
 #include <algorithm>
@@ -37,11 +37,16 @@ class DefParser {
   void readGCellGrid();
   void readComponents();
   void readComponent();
-  void readPins();
-  void readPin();
   void readBlockages();
   void readBlockage();
   void skipSection(std::string_view keyword);
+
+  // def_pins.cpp
+  void readPins();
+  void readPin();
+  IoPinShape readPinRect();     // after + LAYER
+  IoPinShape readPinPolygon();  // after + POLYGON: its bounding box
+  void resolveIoPinNets();  // after NETS: each IO pin's net by its + NET name
 
   // def_vias.cpp
   void readVias();
@@ -58,7 +63,6 @@ class DefParser {
   // including) the next net-level '+' or ';'.
   void readRegularWiring(Net& net);
   void readSpecialWiring(SpecialNet& net);
-  void resolveIoPinNets();
   // A via name in a routing path (after its point), with an optional
   // orientation (only N is kept; others are counted under <section>.VIA.ORIENT).
   ViaRef readPathVia(const Token& viaTok, bool havePoint, std::string_view section);

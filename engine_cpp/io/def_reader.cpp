@@ -1,6 +1,6 @@
 // DEF reader: header statements, DIEAREA, ROW, TRACKS, GCELLGRID,
-// COMPONENTS, PINS, BLOCKAGES, and the sections we skip. VIAS are in
-// def_vias.cpp, NETS and SPECIALNETS in def_nets.cpp.
+// COMPONENTS, BLOCKAGES, and the sections we skip. PINS are in
+// def_pins.cpp, VIAS in def_vias.cpp, NETS and SPECIALNETS in def_nets.cpp.
 //
 // Coordinates are DEF integers (DBU) as written. Anything legal that we do
 // not keep is skipped and counted in Design::skippedStatements under
@@ -413,129 +413,6 @@ void DefParser::readComponent() {
       countSkip("COMPONENTS." + std::string(kw.text));
     }
   }
-}
-
-// ---------------------------------------------------------------------------
-// PINS
-
-void DefParser::readPins() {
-  const int declared = readSectionCount();
-  design_.ioPins.reserve(design_.ioPins.size() + saneReserve(declared));
-  readEntries("PINS", declared, [&] { readPin(); });
-}
-
-namespace {
-// One + PORT of a pin (the part before the first + PORT counts as a port).
-struct PinPort {
-  std::vector<IoPinShape> shapes;
-  PlaceStatus status = PlaceStatus::Unplaced;
-  Point location;
-  Orient orient = Orient::N;
-};
-}  // namespace
-
-void DefParser::readPin() {
-  const Token nameTok = entryName("a pin name");
-  const IoPinId id(static_cast<int32_t>(design_.ioPins.size()));
-  if (!design_.ioPinIndex.emplace(std::string(nameTok.text), id).second) {
-    lex_.failAt(nameTok, "duplicate pin " + quoteToken(nameTok.text));
-  }
-  IoPin pin;
-  pin.name = std::string(nameTok.text);
-  std::vector<PinPort> ports(1);
-  bool explicitPorts = false;
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    const std::string_view k = kw.quoted ? std::string_view() : kw.text;
-    if (k == "NET") {
-      pin.netName = plainWord("a net name");
-    } else if (k == "DIRECTION") {
-      pin.direction = plainWord("a direction");
-    } else if (k == "USE") {
-      pin.use = plainWord("a pin use");
-    } else if (k == "PORT") {
-      if (explicitPorts) ports.emplace_back();
-      explicitPorts = true;
-    } else if (k == "LAYER") {
-      const LayerId layer = layerAt(lex_.next());
-      while (!peekIs("(")) {
-        const Token opt = lex_.next();
-        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
-          lex_.integer();
-          countSkip("PINS.LAYER." + std::string(opt.text));
-        } else {
-          unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
-        }
-      }
-      const Point a = readPoint();
-      const Point b = readPoint();
-      ports.back().shapes.push_back({layer, Rect::fromCorners(a, b)});
-    } else if (k == "POLYGON") {
-      const LayerId layer = layerAt(lex_.next());
-      while (!peekIs("(")) {
-        const Token opt = lex_.next();
-        if (is(opt, "MASK") || is(opt, "SPACING") || is(opt, "DESIGNRULEWIDTH")) {
-          lex_.integer();
-        } else {
-          unexpected(opt, "'('");
-        }
-      }
-      std::vector<Point> pts;
-      while (peekIs("(")) pts.push_back(readPoint());
-      if (pts.size() < 3) lex_.fail(lex_.line(), "POLYGON needs at least 3 points");
-      Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
-      for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
-      ports.back().shapes.push_back({layer, box});
-      countSkip("PINS.POLYGON");
-      ++design_.warningCount;
-    } else if (k == "VIA") {
-      const Token viaTok = lex_.next();
-      const ViaRef ref = findVia(viaTok.text);
-      if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
-      if (lex_.accept("MASK")) lex_.integer();
-      const Point at = readPoint();
-      for (const ViaShape& s : design_.via(tech_, ref).shapes) {
-        ports.back().shapes.push_back({s.layer, s.rect.translated(at)});
-      }
-    } else if (k == "PLACED" || k == "FIXED" || k == "COVER") {
-      PinPort& p = ports.back();
-      p.status = readPlacement(kw, p.location, p.orient);
-    } else if (k.empty() || k == ";") {
-      unexpected(kw, "a pin option");
-    } else {
-      skipToOptionEnd();
-      countSkip("PINS." + std::string(k));
-    }
-  }
-  // One placement for all ports: keep it; otherwise make the shapes absolute.
-  bool samePlacement = true;
-  for (const PinPort& p : ports) {
-    samePlacement = samePlacement && p.status == ports[0].status && p.location == ports[0].location &&
-                    p.orient == ports[0].orient;
-  }
-  if (samePlacement) {
-    pin.status = ports[0].status;
-    pin.location = ports[0].location;
-    pin.orient = ports[0].orient;
-    for (PinPort& p : ports) pin.shapes.insert(pin.shapes.end(), p.shapes.begin(), p.shapes.end());
-  } else {
-    pin.status = PlaceStatus::Unplaced;
-    for (PinPort& p : ports) {
-      if (p.status != PlaceStatus::Unplaced && pin.status == PlaceStatus::Unplaced) pin.status = p.status;
-      const Transform t{p.location, p.orient, 0, 0};
-      for (const IoPinShape& s : p.shapes) pin.shapes.push_back({s.layer, t.apply(s.rect)});
-    }
-    countSkip("PINS.PORT.PLACEMENT");
-    ++design_.warningCount;
-  }
-  design_.ioPins.push_back(std::move(pin));
-}
-
-void DefParser::resolveIoPinNets() {
-  for (IoPin& p : design_.ioPins) p.net = design_.findNet(p.netName);
 }
 
 // ---------------------------------------------------------------------------

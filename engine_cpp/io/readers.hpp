@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "db/database.hpp"
 #include "db/design.hpp"
 #include "db/tech.hpp"
 #include "io/input_error.hpp"
@@ -23,6 +24,11 @@ void readDefText(const std::string& name, std::string text, const Tech& tech, De
 // Fills Design::guideStart/guideRects/guideLayers.
 void readGuides(const std::string& path, const Tech& tech, Design& design);
 void readGuidesText(const std::string& name, std::string text, const Tech& tech, Design& design);
+
+// A Database: LEF files in order (then the technology checked), the DEF
+// (then the design checked), then the guide file if given.
+Database loadDatabase(const std::vector<std::string>& lefPaths, const std::string& defPath,
+                      const std::string& guidePath);
 
 // DEF out: the whole design, nets with their routing as ROUTED/NEW paths.
 std::string writeDefText(const Tech& tech, const Design& design);

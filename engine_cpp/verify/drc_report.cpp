@@ -15,8 +15,8 @@ void appendNet(std::string& out, int32_t net, const std::vector<std::string>& na
 
 }  // namespace
 
-std::array<int64_t, kMarkerTypeCount> countMarkers(const std::vector<Marker>& markers) {
-  std::array<int64_t, kMarkerTypeCount> counts{};
+std::array<int64_t, kMarkerTypes> countMarkers(const std::vector<Marker>& markers) {
+  std::array<int64_t, kMarkerTypes> counts{};
   for (const Marker& m : markers) ++counts[int(m.type)];
   return counts;
 }
@@ -25,7 +25,7 @@ std::string drcReportText(const Tech& tech, const std::vector<Marker>& markers,
                           const std::vector<std::string>& netNames) {
   std::string out = "# markers " + std::to_string(markers.size());
   const auto counts = countMarkers(markers);
-  for (int t = 0; t < kMarkerTypeCount; ++t) {
+  for (int t = 0; t < kMarkerTypes; ++t) {
     out += ' ';
     out += markerTypeName(MarkerType(t));
     out += ' ' + std::to_string(counts[t]);

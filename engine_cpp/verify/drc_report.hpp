@@ -18,10 +18,8 @@
 
 namespace xroute {
 
-inline constexpr int kMarkerTypeCount = int(MarkerType::CornerSpacing) + 1;
-
 // Markers by type, indexed by int(MarkerType).
-std::array<int64_t, kMarkerTypeCount> countMarkers(const std::vector<Marker>& markers);
+std::array<int64_t, kMarkerTypes> countMarkers(const std::vector<Marker>& markers);
 
 // netNames: by net id, as collectDesignShapes(..., &netNames) gives them; a
 // negative id (obstruction, or no second net) is written "-", an id without

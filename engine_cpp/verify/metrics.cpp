@@ -12,7 +12,7 @@ RoutingMetrics computeMetrics(const Tech& tech, const Design& design) {
     const NetRouting& r = net.routing;
     if (!r.empty()) ++m.netsRouted;
     for (const RouteWire& w : r.wires) {
-      const int64_t length = std::llabs(int64_t(w.to.x) - w.from.x) + std::llabs(int64_t(w.to.y) - w.from.y);
+      const int64_t length = w.length();
       m.wirelength += length;
       if (w.layer.valid() && size_t(*w.layer) < m.layerWirelength.size()) m.layerWirelength[*w.layer] += length;
     }

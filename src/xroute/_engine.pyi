@@ -252,6 +252,8 @@ def load_lef(lef_paths: Sequence[str]) -> Database:
     Reads LEF files only (the design part stays empty). Raises InputError on bad input.
     """
 
+MARKER_TYPES: tuple = ...
+
 def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shape=(None, None), order='C', device='cpu', writable=False)], origins: Annotated[NDArray[numpy.int32], dict(shape=(None,), order='C', device='cpu', writable=False)] | None = None, skip_fixed_pairs: bool = False, window: tuple[int, int, int, int] | None = None) -> list:
     """
     Design-rule check of a set of shapes against the technology of `db`.
@@ -263,11 +265,176 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
     Returns markers sorted, as dicts {type, layer, box: (xlo, ylo, xhi, yhi), nets: (n1, n2)}.
     """
 
+class MazeCosts:
+    """The maze's costs (cost units: DBU of wire), as in route/maze.hpp."""
+
+    def __init__(self, via_cost: int = 1200, wrong_way_factor: int = 4, out_of_guide_factor: int = 2, fixed_penalty: int = 400000, use_penalty: int = 8000, marker_unit: int = 1, bottom_layer_factor: int = 1, reserve_penalty: int = 20000, crossing_pull: int = 2) -> None:
+        """The costs; each defaults to the engine's."""
+
+    @property
+    def via_cost(self) -> int:
+        """Cost units per via."""
+
+    @via_cost.setter
+    def via_cost(self, arg: int, /) -> None: ...
+
+    @property
+    def wrong_way_factor(self) -> int:
+        """Wrong-way wire length multiplier."""
+
+    @wrong_way_factor.setter
+    def wrong_way_factor(self, arg: int, /) -> None: ...
+
+    @property
+    def out_of_guide_factor(self) -> int:
+        """Wire length / via multiplier outside the net's guides."""
+
+    @out_of_guide_factor.setter
+    def out_of_guide_factor(self, arg: int, /) -> None: ...
+
+    @property
+    def fixed_penalty(self) -> int:
+        """Entering a node a fixed shape of another net forbids."""
+
+    @fixed_penalty.setter
+    def fixed_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def use_penalty(self) -> int:
+        """
+        Per routed shape of another net a wire or via there would violate (iteration 0).
+        """
+
+    @use_penalty.setter
+    def use_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def marker_unit(self) -> int:
+        """Multiplier of the grid's marker costs."""
+
+    @marker_unit.setter
+    def marker_unit(self, arg: int, /) -> None: ...
+
+    @property
+    def bottom_layer_factor(self) -> int:
+        """Wire length multiplier on routing layer 0."""
+
+    @bottom_layer_factor.setter
+    def bottom_layer_factor(self, arg: int, /) -> None: ...
+
+    @property
+    def reserve_penalty(self) -> int:
+        """Entering another net's access point or boundary terminal."""
+
+    @reserve_penalty.setter
+    def reserve_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def crossing_pull(self) -> int:
+        """Per DBU a free crossing lies off the range of the pins beyond it."""
+
+    @crossing_pull.setter
+    def crossing_pull(self, arg: int, /) -> None: ...
+
+class RouterSettings:
+    """
+    The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).
+    """
+
+    def __init__(self, region_size: int = 10, iterations: int = 10, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
+        """The settings; each defaults to the engine's."""
+
+    @property
+    def region_size(self) -> int:
+        """GCells per region side."""
+
+    @region_size.setter
+    def region_size(self, arg: int, /) -> None: ...
+
+    @property
+    def iterations(self) -> int:
+        """Iterations at most (1..max_iterations)."""
+
+    @iterations.setter
+    def iterations(self, arg: int, /) -> None: ...
+
+    @property
+    def threads(self) -> int:
+        """Worker threads for the regions of one colour."""
+
+    @threads.setter
+    def threads(self, arg: int, /) -> None: ...
+
+    @property
+    def costs(self) -> MazeCosts:
+        """Maze costs of iteration 0."""
+
+    @costs.setter
+    def costs(self, arg: MazeCosts, /) -> None: ...
+
+    @property
+    def use_penalty_step(self) -> int:
+        """Added to costs.use_penalty at each later iteration."""
+
+    @use_penalty_step.setter
+    def use_penalty_step(self, arg: int, /) -> None: ...
+
+    @property
+    def access_points_per_pin(self) -> int:
+        """Access points kept per pin."""
+
+    @access_points_per_pin.setter
+    def access_points_per_pin(self, arg: int, /) -> None: ...
+
+    @property
+    def marker_penalty(self) -> int:
+        """Cost units per node near a marker of the last iteration."""
+
+    @marker_penalty.setter
+    def marker_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def history_penalty(self) -> int:
+        """Cost units per node near any earlier marker."""
+
+    @history_penalty.setter
+    def history_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def stop_at_zero(self) -> bool:
+        """Stop when an iteration ends without markers."""
+
+    @stop_at_zero.setter
+    def stop_at_zero(self, arg: bool, /) -> None: ...
+
+    @property
+    def repair_rounds(self) -> int:
+        """
+        Check-and-reroute rounds inside each region in iterations after the first (route() clamps to 0..max_repair_rounds).
+        """
+
+    @repair_rounds.setter
+    def repair_rounds(self, arg: int, /) -> None: ...
+
+    @property
+    def first_repair_rounds(self) -> int:
+        """The same in iteration 0 (clamped likewise)."""
+
+    @first_repair_rounds.setter
+    def first_repair_rounds(self, arg: int, /) -> None: ...
+
+    @property
+    def repair_penalty(self) -> int:
+        """Cost units per node near a region marker, times the repair round."""
+
+    @repair_penalty.setter
+    def repair_penalty(self, arg: int, /) -> None: ...
+
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int = 10, iterations: int = 10, threads: int = 1, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, costs: dict = {}, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None) -> dict:
+def route(db: Database, region_size: int | None = None, iterations: int | None = None, threads: int | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, settings: RouterSettings | None = None, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. costs: overrides of the maze costs by name (via_cost, wrong_way_factor, out_of_guide_factor, fixed_penalty, use_penalty, bottom_layer_factor, reserve_penalty, crossing_pull, use_penalty_step, marker_penalty, history_penalty, repair_rounds, first_repair_rounds, repair_penalty). schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, penalties, repair rounds; None: the defaults); region_size, iterations and threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). Returns {'iterations': [report, ...]}.
     """
 
 ACCESS_UP: int = 1

@@ -357,7 +357,7 @@ def route_design(
             iterations=settings.iterations,
             threads=settings.threads,
             schedule=list(settings.schedule) if settings.schedule is not None else None,
-            costs={"repair_rounds": settings.repair_rounds},
+            settings=_engine().RouterSettings(repair_rounds=settings.repair_rounds),
             **kwargs,
         )
     finally:

@@ -1,6 +1,6 @@
-#include "db/database.hpp"
-
+// loadDatabase: the readers and checks in order (io/readers.hpp).
 #include "io/readers.hpp"
+
 #include "io/validate.hpp"
 
 namespace xroute {

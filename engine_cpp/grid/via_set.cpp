@@ -1,4 +1,4 @@
-#include "route/via_set.hpp"
+#include "grid/via_set.hpp"
 
 #include <algorithm>
 #include <tuple>

@@ -1,0 +1,92 @@
+// The router's settings structs as Python classes: MazeCosts (route/maze.hpp)
+// and RouterSettings (flow/router.hpp), field by field, with the C++ defaults.
+#include <nanobind/nanobind.h>
+
+#include "flow/router.hpp"
+#include "route/maze.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+using namespace xroute;
+
+namespace {
+
+void bindMazeCosts(nb::module_& m) {
+  const MazeCosts d;
+  nb::class_<MazeCosts>(m, "MazeCosts", "The maze's costs (cost units: DBU of wire), as in route/maze.hpp.")
+      .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t>(),
+           "via_cost"_a = d.viaCost, "wrong_way_factor"_a = d.wrongWayFactor,
+           "out_of_guide_factor"_a = d.outOfGuideFactor, "fixed_penalty"_a = d.fixedPenalty,
+           "use_penalty"_a = d.usePenalty, "marker_unit"_a = d.markerUnit,
+           "bottom_layer_factor"_a = d.bottomLayerFactor, "reserve_penalty"_a = d.reservePenalty,
+           "crossing_pull"_a = d.crossingPull, "The costs; each defaults to the engine's.")
+      .def_rw("via_cost", &MazeCosts::viaCost, "Cost units per via.")
+      .def_rw("wrong_way_factor", &MazeCosts::wrongWayFactor, "Wrong-way wire length multiplier.")
+      .def_rw("out_of_guide_factor", &MazeCosts::outOfGuideFactor,
+              "Wire length / via multiplier outside the net's guides.")
+      .def_rw("fixed_penalty", &MazeCosts::fixedPenalty, "Entering a node a fixed shape of another net forbids.")
+      .def_rw("use_penalty", &MazeCosts::usePenalty,
+              "Per routed shape of another net a wire or via there would violate (iteration 0).")
+      .def_rw("marker_unit", &MazeCosts::markerUnit, "Multiplier of the grid's marker costs.")
+      .def_rw("bottom_layer_factor", &MazeCosts::bottomLayerFactor, "Wire length multiplier on routing layer 0.")
+      .def_rw("reserve_penalty", &MazeCosts::reservePenalty,
+              "Entering another net's access point or boundary terminal.")
+      .def_rw("crossing_pull", &MazeCosts::crossingPull,
+              "Per DBU a free crossing lies off the range of the pins beyond it.");
+}
+
+void initRouterSettings(RouterSettings* self, int regionSize, int iterations, int threads, const MazeCosts& costs,
+                        int64_t usePenaltyStep, int accessPointsPerPin, int64_t markerPenalty,
+                        int64_t historyPenalty, bool stopAtZero, int repairRounds, int firstRepairRounds,
+                        int64_t repairPenalty) {
+  auto* s = new (self) RouterSettings();
+  s->regionSize = regionSize;
+  s->iterations = iterations;
+  s->threads = threads;
+  s->costs = costs;
+  s->usePenaltyStep = usePenaltyStep;
+  s->accessPointsPerPin = accessPointsPerPin;
+  s->markerPenalty = markerPenalty;
+  s->historyPenalty = historyPenalty;
+  s->stopAtZero = stopAtZero;
+  s->repairRounds = repairRounds;
+  s->firstRepairRounds = firstRepairRounds;
+  s->repairPenalty = repairPenalty;
+}
+
+void bindRouterSettings(nb::module_& m) {
+  const RouterSettings d;
+  nb::class_<RouterSettings>(m, "RouterSettings",
+                             "The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).")
+      .def("__init__", &initRouterSettings, "region_size"_a = d.regionSize, "iterations"_a = d.iterations,
+           "threads"_a = d.threads, "costs"_a = d.costs, "use_penalty_step"_a = d.usePenaltyStep,
+           "access_points_per_pin"_a = d.accessPointsPerPin, "marker_penalty"_a = d.markerPenalty,
+           "history_penalty"_a = d.historyPenalty, "stop_at_zero"_a = d.stopAtZero,
+           "repair_rounds"_a = d.repairRounds, "first_repair_rounds"_a = d.firstRepairRounds,
+           "repair_penalty"_a = d.repairPenalty, "The settings; each defaults to the engine's.")
+      .def_rw("region_size", &RouterSettings::regionSize, "GCells per region side.")
+      .def_rw("iterations", &RouterSettings::iterations, "Iterations at most (1..max_iterations).")
+      .def_rw("threads", &RouterSettings::threads, "Worker threads for the regions of one colour.")
+      .def_rw("costs", &RouterSettings::costs, "Maze costs of iteration 0.")
+      .def_rw("use_penalty_step", &RouterSettings::usePenaltyStep,
+              "Added to costs.use_penalty at each later iteration.")
+      .def_rw("access_points_per_pin", &RouterSettings::accessPointsPerPin, "Access points kept per pin.")
+      .def_rw("marker_penalty", &RouterSettings::markerPenalty,
+              "Cost units per node near a marker of the last iteration.")
+      .def_rw("history_penalty", &RouterSettings::historyPenalty, "Cost units per node near any earlier marker.")
+      .def_rw("stop_at_zero", &RouterSettings::stopAtZero, "Stop when an iteration ends without markers.")
+      .def_rw("repair_rounds", &RouterSettings::repairRounds,
+              "Check-and-reroute rounds inside each region in iterations after the first (route() clamps "
+              "to 0..max_repair_rounds).")
+      .def_rw("first_repair_rounds", &RouterSettings::firstRepairRounds,
+              "The same in iteration 0 (clamped likewise).")
+      .def_rw("repair_penalty", &RouterSettings::repairPenalty,
+              "Cost units per node near a region marker, times the repair round.");
+}
+
+}  // namespace
+
+void bindSettings(nb::module_& m) {
+  bindMazeCosts(m);
+  bindRouterSettings(m);
+}

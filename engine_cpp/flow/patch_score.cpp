@@ -1,0 +1,73 @@
+#include "flow/patch_score.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "drc/pair_rules.hpp"
+
+namespace xroute {
+
+namespace {
+
+constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
+
+// True when another rect of the same net continues the edge of metal[i]
+// that faces `r` (the merged edge is longer than the rect's side there), so
+// that edge is no line end.
+bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i, const Rect& r) {
+  const auto& [o, net] = metal[i];
+  for (size_t j = 0; j < metal.size(); ++j) {
+    const Rect& q = metal[j].first;
+    if (j == i || metal[j].second != net || !q.overlaps(o)) continue;
+    const bool sideways = q.xlo < o.xlo || q.xhi > o.xhi, upways = q.ylo < o.ylo || q.yhi > o.yhi;
+    if (r.ylo >= o.yhi && q.yhi == o.yhi && sideways) return true;
+    if (r.yhi <= o.ylo && q.ylo == o.ylo && sideways) return true;
+    if (r.xlo >= o.xhi && q.xhi == o.xhi && upways) return true;
+    if (r.xhi <= o.xlo && q.xlo == o.xlo && upways) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+// Fixed shapes and routed metal are judged by the spacing table with the run
+// length (a patch runs along them, so a wide one, a power rail, may need its
+// wide-metal row), and by the end-of-line spacing where a line end of either
+// faces the other.
+int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& routedMetal, int32_t net, int z,
+                   const Rect& r) {
+  const Layer& layer = *ctx.rules.layers[z];
+  const Dbu pw = std::min(r.width(), r.height());
+  const Dbu s = std::max(layer.minSpacing(), ctx.rules.eolSpace[z]);
+  const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
+                                                std::numeric_limits<Dbu>::max() / 4));
+  const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
+  const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
+  int64_t bad = 0;
+  // `lineEnd`: whether o's edge facing the patch may be a line end.
+  auto judge = [&](const Rect& o, bool lineEnd) {
+    if (drc::rectGap(o, r) < drc::metalNeed(layer, r, o, true, lineEnd)) bad += kPatchConflict;
+    else if (o.overlaps(grown)) bad += 10;
+  };
+  ctx.fixedIndex.query(far, [&](int32_t id) {
+    const DrcShape& sh = ctx.fixedShapes[id];
+    if (sh.net != net && ctx.tech.layer(sh.layer).routingIndex == z) judge(sh.rect, true);
+  });
+  const auto& metal = routedMetal[z];
+  for (size_t i = 0; i < metal.size(); ++i) {
+    if (metal[i].second != net && metal[i].first.overlaps(far)) judge(metal[i].first, !edgeContinues(metal, i, r));
+  }
+  int x0, x1, y0, y1;
+  g.xRangeOpen(grown.xlo, grown.xhi, x0, x1);
+  g.yRangeOpen(grown.ylo, grown.yhi, y0, y1);
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const int32_t v = g.index(x, y, z);
+      if (g.accessNet[v] >= 0 && g.accessNet[v] != net) bad += 5;  // keep clear of others' pin access
+    }
+  return bad;
+}
+
+}  // namespace xroute

@@ -1,0 +1,92 @@
+// Internal to RegionRouter (region_router.cpp: the public steps and the
+// region's check; region_prepare.cpp: terminals, grid, marks, candidates;
+// region_paths.cpp: routing a net, by the maze or along given paths).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "flow/region_marks.hpp"
+#include "flow/region_router.hpp"
+
+namespace xroute {
+
+// One terminal of a candidate: a pin's access points in the box, a boundary
+// terminal (both layers of a cut via), a chosen crossing, or a free crossing.
+struct TermSpec {
+  std::vector<Point> points;  // DBU
+  std::vector<int> zs;        // routing index per point
+  std::vector<int64_t> exitCost;  // free crossings: per point, distance from where the far side wants it
+  bool joined = true;
+  int32_t pinRef = -1;        // pin terminals
+  int32_t crossing = -1;      // free crossing terminals (iteration 0)
+};
+
+struct NetState {
+  RegionNetTask task;
+  std::vector<TermSpec> terms;
+  NetRouting kept;  // rip-up: routing outside the box
+  bool routed = false;
+  RegionNetResult result;
+  std::vector<std::vector<int32_t>> paths;  // the node paths its routing was made of
+  std::vector<uint8_t> guide;               // guideMask, built on first use by moves()
+};
+
+struct RegionRouter::Impl {
+  const RouteContext& ctx;
+  const RegionTask& task;
+  const CrossingPlan* plan;
+  const RegionRepairSeed* seed;
+  std::unique_ptr<RegionGrid> grid;
+  std::vector<NetState> nets;
+  std::vector<NetCandidate> candidates;
+  std::unordered_map<int32_t, ViaId> apVia;  // access node -> via the pin access chose
+  std::vector<CrossingChoice> choices;
+  int64_t rounds = 0;
+  std::vector<int32_t> order;
+  RoutedMetal routedMetal;
+
+  Impl(const RouteContext& c, const RegionTask& t, const CrossingPlan* p, const RegionRepairSeed* s)
+      : ctx(c), task(t), plan(p), seed(s) {}
+
+  // region_prepare.cpp
+  void prepare();
+  // routedNearby of each candidate: nodes in its terminal box that new routing uses.
+  void refreshNearby(std::vector<NetCandidate>& cands) const;
+
+  // region_paths.cpp
+  // The maze's view of a net: its terminals (joined ones first, so the tree
+  // starts on metal) as grid nodes; termOfSpec maps them back to ns.terms.
+  MazeNet mazeNet(const NetState& ns, std::vector<int32_t>& termOfSpec) const;
+  void routeNet(int32_t index, MazeWorkspace& ws);
+  void routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths);
+  void moves(int32_t index, int32_t node, std::array<MazeMove, kMoveCount>& out);
+
+ private:
+  bool kept(size_t i) const { return seed && i < seed->keep.size() && seed->keep[i]; }
+  const Rect& box() const { return task.region.box; }
+  int routingIndex(LayerId l) const { return ctx.tech.layer(l).routingIndex; }
+  int32_t nodeAt(Point p, int z) const;
+
+  // region_prepare.cpp
+  void gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>& ys);
+  void takeSeed();
+  void freeCrossingNodes(const Crossing& c, TermSpec& spec);
+  void markRouted();
+  void markMarkers();
+  void markTerminals(NetState& ns);
+  NetCandidate makeCandidate(const NetState& ns) const;
+  Rect guideSpan(int32_t net) const;
+
+  // region_paths.cpp
+  std::vector<uint8_t> guideMask(int32_t net) const;
+  void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
+  void markNewRouting(int32_t net, const NetRouting& added);
+  void applyPaths(NetState& ns, const MazeNet& mn, const std::vector<int32_t>& termOfSpec,
+                  std::vector<std::vector<int32_t>> paths);
+};
+
+}  // namespace xroute

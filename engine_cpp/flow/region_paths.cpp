@@ -1,0 +1,232 @@
+// Routing one candidate of a region: by the maze, or along a caller's node
+// paths; either way applyPaths turns the paths into wires and vias, records
+// the free crossings reached, repairs minimum area and marks the new metal.
+#include "flow/region_impl.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "flow/patch_score.hpp"
+#include "route/min_area_fix.hpp"
+
+namespace xroute {
+
+int32_t RegionRouter::Impl::nodeAt(Point p, int z) const {
+  const int x = grid->xIndex(p.x), y = grid->yIndex(p.y);
+  if (x < 0 || y < 0 || z < 0 || z >= grid->nz()) return -1;
+  return grid->index(x, y, z);
+}
+
+std::vector<uint8_t> RegionRouter::Impl::guideMask(int32_t net) const {
+  const RegionGrid& g = *grid;
+  const Design& d = ctx.design;
+  std::vector<uint8_t> mask(g.size(), 0);
+  if (!d.hasGuides() || d.guideStart[net] == d.guideStart[net + 1]) {
+    std::fill(mask.begin(), mask.end(), 1);
+    return mask;
+  }
+  for (int32_t gi = d.guideStart[net]; gi < d.guideStart[net + 1]; ++gi) {
+    const Rect& r = d.guideRects[gi];
+    if (!r.overlaps(box())) continue;
+    const int z = routingIndex(d.guideLayers[gi]);
+    if (z < 0) continue;
+    int x0, x1, y0, y1;
+    closedRange(g.xs(), r.xlo, r.xhi, x0, x1);
+    closedRange(g.ys(), r.ylo, r.yhi, y0, y1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) mask[g.index(x, y, z)] = 1;
+  }
+  return mask;
+}
+
+void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out) {
+  const RegionGrid& g = *grid;
+  size_t i = 0;
+  while (i + 1 < path.size()) {
+    const int32_t u = path[i], v = path[i + 1];
+    const int zu = g.zOf(u), zv = g.zOf(v);
+    if (zu != zv) {
+      const int zl = std::min(zu, zv);
+      const int32_t lower = zu < zv ? u : v;
+      ViaId via = ctx.vias.cuts[zl].via;
+      auto it = apVia.find(lower);
+      if (it != apVia.end() && g.accessNet[lower] == net) via = it->second;
+      out.vias.push_back({ViaRef{*via, false}, g.point(u)});
+      ++i;
+      continue;
+    }
+    // A straight run on one layer.
+    const Point a = g.point(u);
+    const bool alongX = g.point(v).y == a.y;
+    size_t j = i + 1;
+    while (j + 1 < path.size() && g.zOf(path[j + 1]) == zu && (g.point(path[j + 1]).y == a.y) == alongX &&
+           (alongX ? g.point(path[j + 1]).y == a.y : g.point(path[j + 1]).x == a.x)) {
+      ++j;
+    }
+    RouteWire w;
+    w.layer = ctx.tracks.layers[zu].layer;
+    w.from = a;
+    w.to = g.point(path[j]);
+    out.wires.push_back(w);
+    i = j;
+  }
+}
+
+void RegionRouter::Impl::markNewRouting(int32_t net, const NetRouting& added) {
+  std::vector<NetShape> shapes;
+  netRoutingShapes(ctx.tech, ctx.design, added, shapes);
+  markShapes(ctx, net, shapes, grownBox(box(), ctx.halo), *grid, routedMetal);
+}
+
+MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& termOfSpec) const {
+  const RegionGrid& g = *grid;
+  MazeNet mn;
+  mn.net = ns.task.net;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t t = 0; t < ns.terms.size(); ++t) {
+      const TermSpec& s = ns.terms[t];
+      if (s.joined != (pass == 0)) continue;
+      MazeTerminal mt;
+      mt.joined = s.joined;
+      std::vector<std::pair<int32_t, int64_t>> nodes;
+      for (size_t k = 0; k < s.points.size(); ++k) {
+        const int32_t v = nodeAt(s.points[k], s.zs[k]);
+        if (v >= 0 && g.exists(v)) nodes.push_back({v, k < s.exitCost.size() ? s.exitCost[k] : 0});
+      }
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end(),
+                              [](const auto& a, const auto& b) { return a.first == b.first; }),
+                  nodes.end());
+      for (const auto& [v, cost] : nodes) {
+        mt.nodes.push_back(v);
+        mt.exitCost.push_back(cost);
+      }
+      mn.terminals.push_back(std::move(mt));
+      termOfSpec.push_back(static_cast<int32_t>(t));
+    }
+  }
+  return mn;
+}
+
+void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
+  NetState& ns = nets[index];
+  if (ns.routed) return;
+  ns.routed = true;
+  order.push_back(index);
+  ns.result.routed = true;
+  std::vector<int32_t> termOfSpec;
+  MazeNet mn = mazeNet(ns, termOfSpec);
+  if (mn.terminals.size() < 2) return;
+  const std::vector<uint8_t> mask = guideMask(ns.task.net);
+  mn.inGuide = &mask;
+  std::vector<std::vector<int32_t>> paths;
+  ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
+  rounds += static_cast<int64_t>(paths.size());
+  applyPaths(ns, mn, termOfSpec, std::move(paths));
+}
+
+// Turns a net's node paths into its routing: wires and vias, the free
+// crossings they reach, the min-area fix, and the marks on the grid. The
+// one way routing enters a region (the maze's and a caller's paths alike).
+void RegionRouter::Impl::applyPaths(NetState& ns, const MazeNet& mn, const std::vector<int32_t>& termOfSpec,
+                                     std::vector<std::vector<int32_t>> paths) {
+  RegionGrid& g = *grid;
+  for (const auto& p : paths) {
+    addPathGeometry(ns.task.net, p, ns.result.added);
+    for (int32_t v : p) g.routedNet[v] = ns.task.net;
+  }
+  // Record where the free crossings were reached.
+  for (size_t k = 0; k < mn.terminals.size(); ++k) {
+    const TermSpec& s = ns.terms[termOfSpec[k]];
+    if (s.crossing < 0) continue;
+    const auto& nodes = mn.terminals[k].nodes;
+    bool done = false;
+    for (const auto& p : paths) {
+      for (int32_t v : p) {
+        if (std::binary_search(nodes.begin(), nodes.end(), v)) {
+          choices.push_back({s.crossing, g.point(v), g.zOf(v)});
+          done = true;
+          break;
+        }
+      }
+      if (done) break;
+    }
+  }
+  std::vector<MetalAnchor> anchors;
+  std::vector<PinMetal> pinMetal;
+  for (const TermSpec& s : ns.terms) {
+    if (s.crossing >= 0) continue;  // a free crossing is no metal
+    if (s.pinRef >= 0) continue;    // pins count by their shapes below
+    for (size_t k = 0; k < s.points.size(); ++k) anchors.push_back({s.points[k], s.zs[k]});
+  }
+  for (const PlacedShape& ps : netPinShapes(ctx.tech, ctx.design, NetId(ns.task.net))) {
+    const int z = routingIndex(ps.layer);
+    if (z >= 0 && ps.rect.overlaps(box())) pinMetal.push_back({z, ps.rect});
+  }
+  for (const CrossingChoice& c : choices) {
+    if (plan && plan->crossings[c.crossing].net == ns.task.net) anchors.push_back({c.at, c.z});
+  }
+  const int32_t net = ns.task.net;
+  auto score = [&](int z, const Rect& r) { return patchScore(ctx, *grid, routedMetal, net, z, r); };
+  fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
+  markNewRouting(ns.task.net, ns.result.added);
+  ns.paths = std::move(paths);
+}
+
+// A caller's node paths for net `index` (each step one maze edge), routed
+// through applyPaths; unreached = terminals after the first (where the tree
+// starts, as in the maze) that no path touches.
+void RegionRouter::Impl::routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths) {
+  NetState& ns = nets[index];
+  if (ns.routed) throw std::invalid_argument("candidate " + std::to_string(index) + " is already routed");
+  std::vector<int32_t> termOfSpec;
+  const MazeNet mn = mazeNet(ns, termOfSpec);
+  for (const auto& p : paths) {
+    for (size_t k = 0; k < p.size(); ++k) {
+      if (p[k] < 0 || static_cast<size_t>(p[k]) >= grid->size() || !grid->exists(p[k]))
+        throw std::invalid_argument("path node " + std::to_string(p[k]) + " is not a node of the region grid");
+      if (k == 0) continue;
+      std::array<MazeMove, kMoveCount> mv;
+      mazeMoves(*grid, task.costs, mn, p[k - 1], mv);
+      bool edge = false;
+      for (const MazeMove& m : mv) edge = edge || m.node == p[k];
+      if (!edge)
+        throw std::invalid_argument("path step " + std::to_string(p[k - 1]) + " -> " + std::to_string(p[k]) +
+                                    " is not an edge of the region grid");
+    }
+  }
+  ns.routed = true;
+  order.push_back(index);
+  ns.result.routed = true;
+  int unreached = 0;
+  bool first = true;  // as in the maze, the tree starts on the first terminal with nodes
+  for (const MazeTerminal& t : mn.terminals) {
+    if (t.nodes.empty()) continue;
+    if (first) {
+      first = false;
+      continue;
+    }
+    bool hit = false;
+    for (const auto& p : paths)
+      for (int32_t v : p) hit = hit || std::binary_search(t.nodes.begin(), t.nodes.end(), v);
+    if (!hit) ++unreached;
+  }
+  ns.result.unreached = mn.terminals.size() < 2 ? 0 : unreached;
+  if (paths.empty() || mn.terminals.size() < 2) return;
+  rounds += static_cast<int64_t>(paths.size());
+  applyPaths(ns, mn, termOfSpec, std::move(paths));
+}
+
+void RegionRouter::Impl::moves(int32_t index, int32_t node, std::array<MazeMove, kMoveCount>& out) {
+  NetState& ns = nets[index];
+  if (node < 0 || static_cast<size_t>(node) >= grid->size() || !grid->exists(node))
+    throw std::invalid_argument("node " + std::to_string(node) + " is not a node of the region grid");
+  if (ns.guide.empty()) ns.guide = guideMask(ns.task.net);
+  std::vector<int32_t> termOfSpec;
+  MazeNet mn = mazeNet(ns, termOfSpec);
+  mn.inGuide = &ns.guide;
+  mazeMoves(*grid, task.costs, mn, node, out);
+}
+
+}  // namespace xroute

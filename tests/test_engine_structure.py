@@ -1,0 +1,46 @@
+"""The engine's structure as Python sees it: the marker types follow the C++ enum (one count,
+held by a static_assert) and match the library's list and the reports' keys; the router's
+settings are bound struct fields with the engine's defaults, not string keys."""
+
+from __future__ import annotations
+
+import pytest
+
+from xroute import _engine
+from xroute.design import load_design
+from xroute.router import VIOLATION_TYPES
+from xroute.testcases import DEMO
+
+
+def test_marker_types_are_the_enum_in_order() -> None:
+    types = _engine.MARKER_TYPES
+    assert len(types) == len(set(types)) == 8
+    assert types == VIOLATION_TYPES
+
+
+def test_reports_count_every_marker_type() -> None:
+    out = _engine.route(load_design(DEMO).engine, iterations=1)
+    assert tuple(out["iterations"][0]["violations_by_type"]) == _engine.MARKER_TYPES
+
+
+def test_router_settings_defaults_are_the_engines() -> None:
+    s = _engine.RouterSettings()
+    d = _engine.DEFAULTS
+    assert (s.region_size, s.iterations, s.threads) == (d["region_size"], d["iterations"], d["threads"])
+    assert (s.repair_rounds, s.marker_penalty, s.history_penalty) == (
+        d["repair_rounds"], d["marker_penalty"], d["history_penalty"])
+    assert isinstance(s.costs, _engine.MazeCosts)
+    assert _engine.RouterSettings(repair_rounds=2, costs=_engine.MazeCosts(via_cost=7)).costs.via_cost == 7
+
+
+def test_router_settings_reject_unknown_fields() -> None:
+    with pytest.raises(TypeError):
+        _engine.RouterSettings(no_such_setting=1)  # type: ignore[call-arg]
+
+
+def test_route_checks_the_settings_fields() -> None:
+    db = load_design(DEMO).engine
+    with pytest.raises(ValueError, match="region_size must be in 1"):
+        _engine.route(db, settings=_engine.RouterSettings(region_size=0))
+    with pytest.raises(ValueError, match="iterations must be in 1"):
+        _engine.route(db, iterations=0, settings=_engine.RouterSettings(iterations=3))
