@@ -27,6 +27,7 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   d["violations_by_type"] = byType;
   d["violations"] = r.markers;
   d["seconds"] = r.seconds;
+  d["done"] = r.done;
   return d;
 }
 

@@ -65,6 +65,7 @@ class Flow {
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
       rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      rep.done = true;
       out.iterations.push_back(rep);
       if (progress_) progress_(rep, rep.regions, rep.regions);
       for (const Marker& m : markers_) history_.push_back({m.layer, m.box, s_.historyPenalty});

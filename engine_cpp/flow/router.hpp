@@ -62,6 +62,7 @@ struct IterationReport {
   std::array<int, kMarkerTypes> markersByType{};  // indexed by MarkerType
   int markers = 0;
   double seconds = 0;              // wall time of the iteration (routing + check)
+  bool done = false;               // the check has run: markers, totals and seconds are final
 };
 
 struct RouteOutcome {

@@ -45,7 +45,7 @@ struct SearchSettings {
   // Trial routings per region: each routes the region's unrouted nets to the end in one order
   // and checks it (rollout, victims: at most this many; best-of-K: K). 1 = the heuristic alone.
   // Default 4: rollout's first pass (2 threads, loaded machine) took 3.6x the heuristic's time on
-  // ispd18_test1 and 4.8x on ispd19_test1 (policies/models/MODEL_CARD.md).
+  // ispd18_test1 and 4.8x on ispd19_test1 (experiments/net_order/LOG.md).
   int budget = 4;
   // Rollout: candidates tried as the next net at each step, the first by heuristic rank
   // (0 = all of them); a smaller width spreads the budget over more steps.

@@ -19,7 +19,7 @@ namespace {
 // Creates a fresh temporary file beside `path`, exclusively (O_CREAT|O_EXCL: an
 // existing file or a planted symlink of that name is never opened, let alone
 // followed). Its name, ".<name>.<pid>.<hex>.tmp" in the folder of `path`, has the
-// form xroute_cli.outputs.clean_stale_temporaries removes after a killed run.
+// form xroute.outputs.clean_stale_temporaries removes after a killed run.
 int createTemporary(const std::string& path, std::string& tmp) {
   static std::atomic<unsigned> counter{0};
   const size_t slash = path.rfind('/');

@@ -341,9 +341,8 @@ def route_design(
     if progress is not None:
 
         def on_progress(report: dict[str, Any], done: int, total: int) -> None:
-            # The engine's end-of-iteration call is the only one with the iteration's time set.
             rep = IterationReport.from_engine(report)
-            progress(RouteProgress(rep, int(done), int(total), rep.seconds > 0, settings.iterations))
+            progress(RouteProgress(rep, int(done), int(total), bool(report["done"]), settings.iterations))
 
         kwargs["progress"] = on_progress
 
