@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "bindings/arrays.hpp"
+#include "bindings/plan_dict.hpp"
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
 #include "db/database.hpp"
@@ -162,7 +163,7 @@ void finishSettings(RouterSettings& s, const std::optional<std::vector<std::pair
 nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> iterations, std::optional<int> threads,
                const std::string& policy, uint64_t seed, nb::object policyFn, bool needsRegion, nb::object progress,
                const RouterSettings* settings, const std::optional<std::vector<std::pair<int, int>>>& schedule,
-               int searchBudget, int searchWidth, nb::object policyNext) {
+               int searchBudget, int searchWidth, nb::object policyNext, nb::object planner) {
   RouterSettings s = runSettings(settings, regionSize, iterations, threads);
   std::unique_ptr<NetOrderPolicy> p =
       routePolicy(policy, seed, policyFn, needsRegion, policyNext, searchBudget, searchWidth);
@@ -175,10 +176,19 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
       progress(reportDict(r, dbu), done, total);
     };
   }
+  IterationPlanner plan;
+  if (!planner.is_none()) {
+    plan = [&planner, dbu](const std::vector<IterationReport>& done, const IterationPlan& rule) {
+      nb::gil_scoped_acquire gil;
+      nb::list history;
+      for (const IterationReport& r : done) history.append(reportDict(r, dbu));
+      return planFromDict(planner(history, planDict(rule)), rule);
+    };
+  }
   RouteOutcome out;
   {
     nb::gil_scoped_release release;
-    out = routeDesign(db.tech, db.design, s, *p, cb);
+    out = routeDesign(db.tech, db.design, s, *p, cb, {}, plan);
   }
   p.reset();
   nb::list its;
@@ -200,7 +210,7 @@ void bindRouter(nb::module_& m) {
       "policy"_a = "heuristic", "seed"_a = 1, "policy_fn"_a = nb::none(), "policy_needs_region"_a = false,
       "progress"_a = nb::none(), "settings"_a = nb::none(), "schedule"_a = nb::none(),
       "search_budget"_a = SearchSettings{}.budget, "search_width"_a = SearchSettings{}.width,
-      "policy_next"_a = nb::none(),
+      "policy_next"_a = nb::none(), "planner"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' "
       "(seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), "
       "'victims' (at most search_budget trial routings per region: the victims of the markers so far first), "
@@ -214,5 +224,9 @@ void bindRouter(nb::module_& m) {
       "penalties, repair rounds; None: the defaults); region_size, iterations and threads, when given, replace its "
       "fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration "
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
+      "planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the "
+      "iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, "
+      "history_penalty, use_penalty, stop); the iteration runs the plan it returns (keys left out: the rule's; "
+      "stop: end the run, from iteration 1 on). "
       "Returns {'iterations': [report, ...]}.");
 }

@@ -40,12 +40,24 @@ ScheduleStep stepFor(const RouterSettings& s, int iteration) {
   return ScheduleStep{c, ((iteration % 3) * c) / 3};
 }
 
+// A plan within the engine's limits: region size 1..kMaxRegionSize, offset in 0..size-1, repair
+// rounds 0..kMaxRepairRounds, penalties >= 0.
+IterationPlan clampedPlan(IterationPlan p) {
+  p.regionSize = std::clamp(p.regionSize, 1, kMaxRegionSize);
+  p.offset = ((p.offset % p.regionSize) + p.regionSize) % p.regionSize;
+  p.repairRounds = std::clamp(p.repairRounds, 0, kMaxRepairRounds);
+  p.markerPenalty = std::max<int64_t>(0, p.markerPenalty);
+  p.historyPenalty = std::max<int64_t>(0, p.historyPenalty);
+  p.costs.usePenalty = std::max<int64_t>(0, p.costs.usePenalty);
+  return p;
+}
+
 class Flow {
  public:
   Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress,
-       const ColourHook& beforeColour)
+       const ColourHook& beforeColour, const IterationPlanner& planner)
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
-        ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
+        planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
 
   RouteOutcome run() {
     for (Net& n : design_.nets) n.routing = NetRouting{};
@@ -53,12 +65,14 @@ class Flow {
     RouteOutcome out;
     const int iterations = std::clamp(s_.iterations, 1, kMaxIterations);
     for (int it = 0; it < iterations; ++it) {
+      const IterationPlan rule = rulePlan(s_, it);
+      plan_ = planner_ ? clampedPlan(planner_(out.iterations, rule)) : rule;
+      if (plan_.stop && it > 0) break;  // iteration 0 always runs: it routes every net
       const auto t0 = Clock::now();
       IterationReport rep;
       rep.iteration = it;
-      const ScheduleStep step = stepFor(s_, it);
-      rep.regionSize = step.regionSize;
-      rep.offset = step.offset;
+      rep.regionSize = plan_.regionSize;
+      rep.offset = plan_.offset;
       runIteration(it, rep);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), drcOptions());
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
@@ -68,7 +82,7 @@ class Flow {
       rep.done = true;
       out.iterations.push_back(rep);
       if (progress_) progress_(rep, rep.regions, rep.regions);
-      for (const Marker& m : markers_) history_.push_back({m.layer, m.box, s_.historyPenalty});
+      for (const Marker& m : markers_) history_.push_back({m.layer, m.box, plan_.historyPenalty});
       if (markers_.empty() && s_.stopAtZero) break;
     }
     out.markers = markers_;
@@ -82,17 +96,11 @@ class Flow {
     return o;
   }
 
-  MazeCosts costsFor(int it) const {
-    MazeCosts c = s_.costs;
-    c.usePenalty += s_.usePenaltyStep * it;
-    return c;
-  }
-
   std::vector<MarkerCost> markersNear(const Rect& box) const {
     std::vector<MarkerCost> out;
     const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};
     for (const Marker& m : markers_) {
-      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, s_.markerPenalty});
+      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty});
     }
     for (const MarkerCost& h : history_) {
       if (h.box.overlaps(win)) out.push_back(h);
@@ -105,8 +113,8 @@ class Flow {
     RegionTask t;
     t.region = r;
     t.iteration = it;
-    t.costs = costsFor(it);
-    t.repairRounds = it == 0 ? s_.firstRepairRounds : s_.repairRounds;
+    t.costs = plan_.costs;
+    t.repairRounds = plan_.repairRounds;
     t.repairPenalty = s_.repairPenalty;
     for (const NetPart& part : plan.regionParts[r.id]) {
       RegionNetTask nt;
@@ -123,8 +131,8 @@ class Flow {
     RegionTask t;
     t.region = r;
     t.iteration = it;
-    t.costs = costsFor(it);
-    t.repairRounds = it == 0 ? s_.firstRepairRounds : s_.repairRounds;
+    t.costs = plan_.costs;
+    t.repairRounds = plan_.repairRounds;
     t.repairPenalty = s_.repairPenalty;
     std::vector<int32_t> dirty;
     const int32_t nNets = static_cast<int32_t>(design_.nets.size());
@@ -248,6 +256,8 @@ class Flow {
   NetOrderPolicy& policy_;
   const RouteProgress& progress_;
   const ColourHook& beforeColour_;
+  const IterationPlanner& planner_;
+  IterationPlan plan_;  // the running iteration's
   RouteContext ctx_;
   std::vector<Marker> markers_;
   std::vector<MarkerCost> history_;
@@ -255,9 +265,23 @@ class Flow {
 
 }  // namespace
 
+IterationPlan rulePlan(const RouterSettings& s, int iteration) {
+  const ScheduleStep step = stepFor(s, iteration);
+  IterationPlan p;
+  p.regionSize = step.regionSize;
+  p.offset = step.offset;
+  p.repairRounds = iteration == 0 ? s.firstRepairRounds : s.repairRounds;
+  p.costs = s.costs;
+  p.costs.usePenalty += s.usePenaltyStep * iteration;
+  p.markerPenalty = s.markerPenalty;
+  p.historyPenalty = s.historyPenalty;
+  return p;
+}
+
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
-                         const RouteProgress& progress, const ColourHook& beforeColour) {
-  return Flow(tech, design, settings, policy, progress, beforeColour).run();
+                         const RouteProgress& progress, const ColourHook& beforeColour,
+                         const IterationPlanner& planner) {
+  return Flow(tech, design, settings, policy, progress, beforeColour, planner).run();
 }
 
 }  // namespace xroute

@@ -65,6 +65,22 @@ struct IterationReport {
   bool done = false;               // the check has run: markers, totals and seconds are final
 };
 
+// What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,
+// costs and repair rounds) or by an iteration planner that has seen the reports so far.
+struct IterationPlan {
+  int regionSize = 10;             // GCells per region side (1..kMaxRegionSize)
+  int offset = 0;                  // GCells, 0 <= offset < regionSize
+  int repairRounds = 0;            // check-and-reroute rounds inside each region (0..kMaxRepairRounds)
+  MazeCosts costs;                 // the maze's costs (usePenalty: per shape of another net a step would violate)
+  int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
+  int64_t historyPenalty = 1000;   // what each marker this iteration leaves adds near it from then on
+  bool stop = false;               // end the run instead of running this iteration
+};
+
+// Asked before each iteration with the reports of the iterations done (oldest first) and the rule's
+// plan for the next one; returns the plan to run. Empty: the rule's plan.
+using IterationPlanner = std::function<IterationPlan(const std::vector<IterationReport>&, const IterationPlan&)>;
+
 struct RouteOutcome {
   std::vector<IterationReport> iterations;
   std::vector<Marker> markers;     // of the final state
@@ -80,9 +96,16 @@ struct RegionTask;
 // colours before. What a replay of the first pass keeps (flow/first_pass.hpp).
 using ColourHook = std::function<void(int, const CrossingPlan&, const std::vector<RegionTask>&)>;
 
-// Routes every net of `design` (its Net::routing is replaced).
+// Routes every net of `design` (its Net::routing is replaced). With a planner, each iteration runs
+// the plan it returns (checked and clamped to the limits above) instead of the rule's.
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
-                         const RouteProgress& progress = {}, const ColourHook& beforeColour = {});
+                         const RouteProgress& progress = {}, const ColourHook& beforeColour = {},
+                         const IterationPlanner& planner = {});
+
+// The rule's plan of `iteration`: the settings' schedule step (or the region size shifted by a
+// third of a region each iteration), the iteration-0 costs plus usePenaltyStep per iteration, and
+// the repair rounds of the first or the later iterations.
+IterationPlan rulePlan(const RouterSettings& settings, int iteration);
 
 // Wirelength (DBU, sum of wire lengths) and via count of the regular nets.
 void routingTotals(const Design& design, int64_t& wirelength, int64_t& vias);
