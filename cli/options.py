@@ -67,6 +67,13 @@ SearchBudgetOption = Annotated[
 SeedOption = Annotated[int | None, typer.Option("--seed", help="Seed of the random policy and of the victims and best-of-K searches' random orders. Default: 1.", show_default=False)]
 JsonOption = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout, nothing else.")]
 QuietOption = Annotated[bool, typer.Option("--quiet", "-q", help="Print only the final line.")]
+SchedulePolicyOption = Annotated[
+    str | None,
+    typer.Option("--schedule-policy",
+                 help="Each iteration's plan (region size and offset, repair rounds, marker / history / other-net "
+                      "weights, or stop): rule (the settings' own plans), or a .py file defining "
+                      "plan(history, rule). Default: rule.", show_default=False),
+]
 ScheduleOption = Annotated[
     str | None,
     typer.Option("--schedule", help="Per-iteration region size and offset in GCells, cycled: e.g. '5:0,5:2,7:3' "

@@ -12,7 +12,7 @@ from xroute.net_order import (
     RandomPolicy,
     heuristic_order,
 )
-from xroute.policies.registry import BUILTIN_POLICIES, get_policy, load_policy_file
+from xroute.policies.registry import BUILTIN_POLICIES, get_policy, get_schedule_policy, load_policy_file
 
 __all__ = [
     "BUILTIN_POLICIES",
@@ -23,6 +23,7 @@ __all__ = [
     "PolicyError",
     "RandomPolicy",
     "get_policy",
+    "get_schedule_policy",
     "heuristic_order",
     "load_policy_file",
 ]

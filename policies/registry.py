@@ -1,4 +1,5 @@
-"""Policies by name: ``get_policy(spec, seed)``, spec ``"heuristic"``, ``"random"``, ``"rollout"``,
+"""Policies by name: ``get_policy(spec, seed)`` for the net order, ``get_schedule_policy(spec)`` for
+the iteration plans (``"rule"`` or a ``.py`` file defining ``plan(history, rule)``). Net-order spec ``"heuristic"``, ``"random"``, ``"rollout"``,
 ``"victims"``, ``"best-of-8"`` or ``"path/to/file.py"``.
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
@@ -24,12 +25,11 @@ from xroute.net_order import (
     builtin_policy,
     is_builtin_name,
 )
+from xroute.schedule import CallableSchedule, RuleSchedule, SchedulePolicy
 
 
-def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPolicy:
-    """The policy defined by a Python file's ``next_net(region, features)`` function (sequential:
-    asked after every routed net) or else its ``order(region, features)`` function."""
-    p = Path(path)
+def _load_module(p: Path) -> Any:
+    """A policy file run as a module of its own (PolicyError, one line, when it cannot be)."""
     if not p.is_file():
         raise PolicyError(f"policy file not found: {p}")
     # A module name unique per file, so two policy files with the same stem do not collide.
@@ -49,6 +49,14 @@ def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPol
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
         where = f"{p}:{line}: " if line else ""
         raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+    return module
+
+
+def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPolicy:
+    """The policy defined by a Python file's ``next_net(region, features)`` function (sequential:
+    asked after every routed net) or else its ``order(region, features)`` function."""
+    p = Path(path)
+    module = _load_module(p)
     name = getattr(module, "NAME", None) or p.stem
     step: Any = getattr(module, "next_net", None)
     if callable(step):
@@ -78,3 +86,19 @@ def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> Ne
         f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)}, best-of-K, a .py file defining order(region, features) "
         "or a .onnx net-order model"
     )
+
+
+def get_schedule_policy(spec: str | None) -> SchedulePolicy:
+    """The schedule policy ``spec``: None or ``"rule"`` (the router's own plans), or the path of a
+    Python file defining ``plan(history, rule)`` (:mod:`xroute.schedule`; ``NAME`` optional)."""
+    if spec is None or spec == RuleSchedule.name:
+        return RuleSchedule()
+    p = Path(spec)
+    if p.suffix != ".py":
+        raise PolicyError(f"unknown schedule policy '{spec}': use 'rule' or the path of a .py file defining "
+                          "plan(history, rule)")
+    module = _load_module(p)
+    fn: Any = getattr(module, "plan", None)
+    if not callable(fn):
+        raise PolicyError(f"schedule policy file {p} defines no function plan(history, rule)")
+    return CallableSchedule(fn, name=str(getattr(module, "NAME", None) or p.stem))

@@ -89,7 +89,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
     assert data["settings"] == {"region_size": 10, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
-                                "repair_rounds": 0, "policy": "heuristic"}
+                                "repair_rounds": 0, "policy": "heuristic", "schedule_policy": "rule"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
         assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
@@ -382,7 +382,7 @@ def test_route_settings_fields_are_route_design_keywords() -> None:
 
     from xroute.router import RouteSettings
 
-    keywords = set(inspect.signature(route_design).parameters) - {"design", "policy", "progress"}
+    keywords = set(inspect.signature(route_design).parameters) - {"design", "policy", "progress", "schedule_policy"}
     assert keywords == set(RouteSettings().keywords())
 
 

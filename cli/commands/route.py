@@ -35,6 +35,7 @@ from xroute.cli.options import (
     RepairRoundsOption,
     RegionSizeOption,
     ScheduleOption,
+    SchedulePolicyOption,
     SearchBudgetOption,
     SeedOption,
     ThreadsOption,
@@ -124,6 +125,7 @@ def route(
     search_budget: SearchBudgetOption = None,
     seed: SeedOption = None,
     schedule: ScheduleOption = None,
+    schedule_policy: SchedulePolicyOption = None,
     net_router: NetRouterOption = None,
     as_json: JsonOption = False,
     quiet: QuietOption = False,
@@ -157,15 +159,16 @@ def route(
     started = time.perf_counter()
 
     from xroute import pipeline
-    from xroute.policies import get_policy
+    from xroute.policies import get_policy, get_schedule_policy
     from xroute.safe_paths import safe_stem
 
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
                       repair_rounds=repair_rounds, search_budget=search_budget,
-                      schedule=steps)
+                      schedule=steps, schedule_policy=schedule_policy)
     settings = rs.route_settings()  # fail before loading
     pol = get_policy(rs.policy, rs.seed, rs.search_budget)
+    planner = get_schedule_policy(rs.schedule_policy)
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
     design = load_design_args(testcase, lef, def_, guide, prepare=True)
@@ -185,7 +188,8 @@ def route(
                    f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
     with ProgressDisplay(console, mode, rs.iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
-        outputs = pipeline.route_to_outputs(design, out_dir, settings, pol, progress=display, started=started)
+        outputs = pipeline.route_to_outputs(design, out_dir, settings, pol, progress=display, started=started,
+                                            schedule_policy=planner)
 
     if net_router is not None and mode in ("rich", "lines"):
         st = pol.stats

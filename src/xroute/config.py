@@ -89,6 +89,21 @@ def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     return str(path), None
 
 
+def check_schedule_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
+    """``rule`` stays as it is; anything else is a schedule policy file (.py, relative to the config
+    file's folder) that must be readable. Its ``plan`` function is checked when it is loaded."""
+    if value == "rule":
+        return value, None
+    path = ctx.resolve(value)
+    if path.suffix != ".py":
+        return value, f"unknown schedule policy '{value}': use rule or the path of a .py file defining plan(history, rule)"
+    if not path.is_file():
+        return value, f"schedule policy file not found: {path}"
+    if not os.access(path, os.R_OK):
+        return value, f"schedule policy file is not readable: {path}"
+    return str(path), None
+
+
 def check_input_file(value: str, ctx: Context) -> tuple[Any, str | None]:
     path = ctx.resolve(value)
     if not path.is_file():
@@ -98,7 +113,8 @@ def check_input_file(value: str, ctx: Context) -> tuple[Any, str | None]:
     return str(path), None
 
 
-CHECKS = {"testcase": check_testcase, "policy": check_policy, "input_file": check_input_file}
+CHECKS = {"testcase": check_testcase, "policy": check_policy, "schedule_policy": check_schedule_policy,
+          "input_file": check_input_file}
 
 
 # -- sections ----------------------------------------------------------------------------------------
@@ -146,6 +162,8 @@ class RouterSection:
                                  help="check-and-reroute rounds inside each region (iterations after the first)")
     net_loop: int = setting(1, min=1, help="orderings of each region's nets per visit (training environments)")
     iteration_schedule: tuple[ScheduleEntry, ...] = ()  # empty: region_size with the default offsets
+    schedule_policy: str | None = setting(None, check="schedule_policy",
+                                          help="each iteration's plan: rule, or a .py file defining plan(history, rule)")
 
 
 @dataclass(frozen=True)
@@ -223,6 +241,7 @@ class RunSettings:
     policy_timeout: float | None = None  # seconds per policy call (None: the default)
     repair_rounds: int = REPAIR_ROUNDS  # check-and-reroute rounds inside each region
     search_budget: int = SEARCH_BUDGET  # trial routings per region (rollout, victims; bestof's K)
+    schedule_policy: str | None = None  # "rule", a schedule policy file, or None (the rule)
 
     def route_settings(self) -> RouteSettings:
         """The detailed router's settings (validated: RouteArgumentError when invalid)."""
@@ -236,13 +255,15 @@ class RunSettings:
     def to_dict(self) -> dict[str, Any]:
         return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
                 "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in self.schedule],
-                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds, "search_budget": self.search_budget}
+                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds, "search_budget": self.search_budget,
+                "schedule_policy": self.schedule_policy}
 
 
 def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iterations: int | None = None,
                  threads: int | None = None, policy: str | None = None, seed: int | None = None,
                  schedule: tuple[tuple[int, int], ...] | None = None,
-                 repair_rounds: int | None = None, search_budget: int | None = None) -> RunSettings:
+                 repair_rounds: int | None = None, search_budget: int | None = None,
+                 schedule_policy: str | None = None) -> RunSettings:
     """The run's settings: each flag that was given (not None) overrides the config value."""
     if schedule is None:
         schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
@@ -257,5 +278,6 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
         policy_timeout=cfg.policy.call_timeout,
         repair_rounds=repair_rounds if repair_rounds is not None else cfg.router.repair_rounds,
         search_budget=search_budget if search_budget is not None else cfg.policy.search_budget,
+        schedule_policy=schedule_policy if schedule_policy is not None else cfg.router.schedule_policy,
     )
 

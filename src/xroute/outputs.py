@@ -172,6 +172,7 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
             "repair_rounds": result.settings.repair_rounds,
             "schedule": [list(step) for step in result.settings.schedule] if result.settings.schedule else None,
             "policy": result.policy,
+            "schedule_policy": result.schedule_policy,
         },
         "policy": result.policy,
         "iterations": [r.to_dict() for r in result.iterations],

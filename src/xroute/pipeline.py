@@ -23,6 +23,7 @@ from xroute.router import RouteProgress, RouteResult, RouteSettings
 
 if TYPE_CHECKING:
     from xroute.net_order import NetOrderPolicy
+    from xroute.schedule import SchedulePolicy
 
 PathLike = str | os.PathLike[str]
 
@@ -48,10 +49,13 @@ def route(
     settings: RouteSettings,
     policy: str | NetOrderPolicy = "heuristic",
     progress: Callable[[RouteProgress], None] | None = None,
+    schedule_policy: SchedulePolicy | None = None,
 ) -> RouteResult:
-    """Detailed-routes a prepared design in place with ``settings`` and ``policy``."""
+    """Detailed-routes a prepared design in place with ``settings``, ``policy`` (each region's net
+    order) and ``schedule_policy`` (each iteration's plan; None: the settings' rule)."""
     # looked up on the module: tests may replace it
-    return router.route_design(design, policy=policy, progress=progress, **settings.keywords())
+    kwargs = {} if schedule_policy is None else {"schedule_policy": schedule_policy}
+    return router.route_design(design, policy=policy, progress=progress, **kwargs, **settings.keywords())
 
 
 def route_to_outputs(
@@ -61,6 +65,7 @@ def route_to_outputs(
     policy: str | NetOrderPolicy = "heuristic",
     progress: Callable[[RouteProgress], None] | None = None,
     started: float | None = None,
+    schedule_policy: SchedulePolicy | None = None,
 ) -> RouteOutputs:
     """Routes a prepared design and writes the routed DEF, metrics JSON and DRC report into
     ``out_dir`` (created if needed; leftovers of a killed run cleaned first), checked on the
@@ -69,7 +74,7 @@ def route_to_outputs(
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     clean_stale_temporaries(out)
-    result = route(design, settings, policy, progress)
+    result = route(design, settings, policy, progress, schedule_policy)
     return write_route_outputs(design, result, out, started=started)
 
 

@@ -13,8 +13,8 @@ regions and at the end of each iteration.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
+from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
@@ -26,6 +26,7 @@ from xroute.net_order import (
 )
 from xroute import defaults
 from xroute.errors import PolicyError, RouteArgumentError
+from xroute.schedule import IterationReport, SchedulePolicy, engine_planner, is_default
 
 if TYPE_CHECKING:
     from xroute.design import Design
@@ -111,57 +112,6 @@ class RouteSettings:
 
 
 @dataclass(frozen=True)
-class IterationReport:
-    """What one iteration did and the state after it (lengths in DBU unless named _um)."""
-
-    iteration: int
-    region_size: int  # region side of this iteration, GCells
-    offset: int  # region offset of this iteration, GCells
-    regions: int  # regions with work
-    net_routes: int  # (net, region) pairs routed
-    unreached: int  # terminals the maze could not reach
-    wirelength_dbu: int  # all wires after the iteration
-    wirelength_um: float
-    vias: int
-    violations_by_type: dict[str, int] = field(default_factory=dict)  # marker type -> count
-    violations: int = 0  # all markers after the iteration
-    seconds: float = 0.0  # wall time of the iteration (routing + check)
-
-    @classmethod
-    def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
-        return cls(
-            iteration=int(d["iteration"]),
-            region_size=int(d["region_size"]),
-            offset=int(d["offset"]),
-            regions=int(d["regions"]),
-            net_routes=int(d["net_routes"]),
-            unreached=int(d["unreached"]),
-            wirelength_dbu=int(d["wirelength_dbu"]),
-            wirelength_um=float(d["wirelength_um"]),
-            vias=int(d["vias"]),
-            violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
-            violations=int(d["violations"]),
-            seconds=float(d["seconds"]),
-        )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "iteration": self.iteration,
-            "region_size": self.region_size,
-            "offset": self.offset,
-            "regions": self.regions,
-            "net_routes": self.net_routes,
-            "unreached": self.unreached,
-            "wirelength_dbu": self.wirelength_dbu,
-            "wirelength_um": self.wirelength_um,
-            "vias": self.vias,
-            "violations": self.violations,
-            "violations_by_type": dict(self.violations_by_type),
-            "seconds": self.seconds,
-        }
-
-
-@dataclass(frozen=True)
 class RouteProgress:
     """One progress event: ``report`` is the iteration so far (its wirelength, vias and violations
     are final only when ``iteration_done``)."""
@@ -184,6 +134,7 @@ class RouteResult:
     violations_by_type: dict[str, int]  # after the last iteration
     policy_seconds: float | None = None  # wall time inside a Python policy's order(); None for built-ins (C++)
     policy_calls: int = 0  # calls of a Python policy's order() (one per region with candidates)
+    schedule_policy: str = "rule"  # the schedule policy's name (xroute.schedule)
 
     @property
     def final(self) -> IterationReport:
@@ -307,6 +258,7 @@ def route_design(
     progress: Callable[[RouteProgress], None] | None = None,
     policy_timeout: float | None = None,
     repair_rounds: int = defaults.REPAIR_ROUNDS,
+    schedule_policy: SchedulePolicy | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
 
@@ -326,6 +278,10 @@ def route_design(
     ``schedule``: per-iteration ``(region_size, offset)`` pairs in GCells, cycled over the
     iterations (iteration ``i`` uses step ``i % len(schedule)``); it overrides ``region_size``.
     Default: ``region_size`` in every iteration, the offset shifted by a third of a region.
+
+    ``schedule_policy``: asked before each iteration for its plan (:mod:`xroute.schedule`: region
+    size and offset, repair rounds, marker / history / other-net weights, or stop), seeing the
+    reports so far and the plan the settings above give; None or the rule: those plans.
     """
     settings = RouteSettings(
         region_size=region_size,
@@ -345,6 +301,8 @@ def route_design(
             progress(RouteProgress(rep, int(done), int(total), bool(report["done"]), settings.iterations))
 
         kwargs["progress"] = on_progress
+    if not is_default(schedule_policy):
+        kwargs["planner"] = engine_planner(schedule_policy)
 
     start = time.perf_counter()
     # The engine raises PolicyError (not a permutation: the Python wrapper checks first) and
@@ -372,4 +330,5 @@ def route_design(
         violations_by_type=dict(reports[-1].violations_by_type) if reports else {},
         policy_seconds=callback.seconds if callback is not None else None,
         policy_calls=callback.calls if callback is not None else 0,
+        schedule_policy=schedule_policy.name if schedule_policy is not None else "rule",
     )

@@ -1,0 +1,178 @@
+"""The iteration seam (xroute.schedule): a schedule policy chooses each iteration's plan.
+
+Routed on ispd19_sample4 (or its generated stand-in) at region size 1, where the flow runs several
+iterations with markers left, so that a plan that changes anything changes the routing.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from conftest import pick, require_testcase
+from xroute.errors import PolicyError
+from xroute.policies import get_schedule_policy
+from xroute.router import route_design
+from xroute.schedule import CallableSchedule, IterationPlan, IterationReport, RuleSchedule
+
+SAMPLE4 = pick("ispd19_sample4")
+SIZE = 1  # GCells: several iterations with markers on the sample
+
+
+def routed(size: int = SIZE, **kw: Any) -> tuple[str, Any]:
+    """(DEF text, RouteResult) of the sample routed at region size ``size`` with ``kw``."""
+    require_testcase(SAMPLE4)
+    from xroute.design import load_design
+
+    design = load_design(SAMPLE4)
+    result = route_design(design, region_size=size, **kw)
+    return design.def_text(), result
+
+
+def figures(reports: Any) -> list[dict[str, Any]]:
+    """The reports without their wall times (which differ from run to run)."""
+    return [{k: v for k, v in r.to_dict().items() if k != "seconds"} for r in reports]
+
+
+@pytest.fixture(scope="module")
+def default() -> tuple[str, Any]:
+    text, result = routed()
+    assert len(result.iterations) >= 3, "the test needs a routing of three iterations or more"
+    return text, result
+
+
+def test_the_rule_and_a_policy_that_keeps_it_route_as_without_one(default: tuple[str, Any]) -> None:
+    """RuleSchedule is not even called (the engine runs its rule); a Python policy returning the rule,
+    or None, is called before every iteration and routes the same DEF byte for byte."""
+    seen: list[tuple[int, IterationPlan]] = []
+
+    def keep(history: list[IterationReport], rule: IterationPlan) -> None:
+        seen.append((len(history), rule))
+
+    assert routed(schedule_policy=RuleSchedule())[0] == default[0]
+    text, result = routed(schedule_policy=CallableSchedule(keep, name="keep"))
+    assert text == default[0]
+    assert [n for n, _ in seen] == list(range(len(default[1].iterations)))
+    assert result.schedule_policy == "keep"
+
+
+def test_the_policy_sees_the_reports_so_far_and_the_rules_plan(default: tuple[str, Any]) -> None:
+    """history: the reports of the iterations done, as the result reports them; rule: the region
+    size, the offset shifted by a third of a region, and the other-net weight growing by its step."""
+    calls: list[tuple[list[IterationReport], IterationPlan]] = []
+    routed(schedule_policy=CallableSchedule(lambda h, r: calls.append((list(h), r)), name="spy"))
+    reports = default[1].iterations
+    for i, (history, rule) in enumerate(calls):
+        assert figures(history) == figures(reports[:i])
+        assert (rule.region_size, rule.offset, rule.stop) == (SIZE, 0, False)
+        assert rule.use_penalty == calls[0][1].use_penalty + i * (calls[1][1].use_penalty - calls[0][1].use_penalty)
+    assert calls[1][1].use_penalty > calls[0][1].use_penalty
+
+
+def test_a_plan_of_region_sizes_routes_as_the_same_static_schedule() -> None:
+    """A policy that asks for size 3 after the first iteration routes exactly as --schedule with the
+    same steps: the plan's partition reaches the engine."""
+    steps = [(SIZE, 0), (3, 1), (3, 2), (3, 0), (3, 1), (3, 2), (3, 0), (3, 1), (3, 2), (3, 0)]
+    text, result = routed(schedule_policy=CallableSchedule(
+        lambda h, r: {"region_size": steps[len(h)][0], "offset": steps[len(h)][1]}, name="steps"))
+    static, _ = routed(schedule=steps)
+    assert text == static
+    assert [(it.region_size, it.offset) for it in result.iterations] == steps[: len(result.iterations)]
+
+
+def test_weights_and_repair_rounds_reach_the_engine(default: tuple[str, Any]) -> None:
+    """Each of the plan's weights changes the routing when it changes: at region size 1 the marker and
+    history weights from the second iteration on; at size 2 the other-net weight from the second
+    iteration on and two repair rounds in every iteration (the sample's later regions at size 1
+    have no other-net conflict or region marker for them to act on)."""
+    for change in ({"marker_penalty": 0}, {"history_penalty": 10**7}):
+        policy = CallableSchedule(lambda h, r, change=change: change if h else None, name="weights")
+        assert routed(schedule_policy=policy)[0] != default[0], change
+    at_two = routed(size=2)[0]
+    no_use = CallableSchedule(lambda h, r: {"use_penalty": 0} if h else None, name="no-use")
+    repair = CallableSchedule(lambda h, r: {"repair_rounds": 2}, name="repair")
+    assert routed(size=2, schedule_policy=no_use)[0] != at_two
+    assert routed(size=2, schedule_policy=repair)[0] != at_two
+
+
+def test_stop_ends_the_run_before_the_iteration(default: tuple[str, Any]) -> None:
+    text, result = routed(schedule_policy=CallableSchedule(lambda h, r: {"stop": len(h) == 2}, name="two"))
+    assert len(result.iterations) == 2
+    assert figures(result.iterations) == figures(default[1].iterations[:2])
+
+
+@pytest.mark.parametrize("answer, message", [
+    ({"region_size": 0}, "region_size must be in 1.."),
+    ({"offset": 5}, "offset must be in 0..0"),
+    ({"repair_rounds": -1}, "repair_rounds must be in 0.."),
+    ({"use_penalty": 2.5}, "use_penalty must be an integer"),
+    ({"colour": 1}, "unknown key(s) colour"),
+    ([1, 2], "must return an IterationPlan, a dict or None, got list"),
+    ({"stop": True}, "the first iteration cannot stop the run"),
+])
+def test_bad_plans_are_one_error_naming_the_policy(answer: Any, message: str) -> None:
+    with pytest.raises(PolicyError, match="schedule policy 'bad'") as info:
+        routed(schedule_policy=CallableSchedule(lambda h, r: answer, name="bad"))
+    assert message in str(info.value)
+
+
+def test_get_schedule_policy_loads_a_file_and_refuses_others(tmp_path: Path) -> None:
+    assert isinstance(get_schedule_policy(None), RuleSchedule) and isinstance(get_schedule_policy("rule"), RuleSchedule)
+    good = tmp_path / "coarse_fine.py"
+    good.write_text("NAME = 'coarse-fine'\n\ndef plan(history, rule):\n    return {'region_size': 3} if history else None\n")
+    policy = get_schedule_policy(str(good))
+    assert policy.name == "coarse-fine"
+    with pytest.raises(PolicyError, match="unknown schedule policy 'fast'"):
+        get_schedule_policy("fast")
+    empty = tmp_path / "empty.py"
+    empty.write_text("X = 1\n")
+    with pytest.raises(PolicyError, match="defines no function plan"):
+        get_schedule_policy(str(empty))
+
+
+def test_cli_routes_with_a_policy_file_and_records_it(runner, tmp_path: Path) -> None:
+    """`xroute route --schedule-policy FILE` (and the config's router.schedule_policy, relative to the
+    config file): the metrics name the policy and its plans; a policy that raises is one error line
+    with its file and line, exit 2, and no outputs."""
+    from xroute.cli.app import app
+
+    require_testcase(SAMPLE4)
+    policy = tmp_path / "fine.py"
+    policy.write_text("NAME = 'fine'\n\ndef plan(history, rule):\n    return {'region_size': 2} if history else None\n")
+    out = tmp_path / "run"
+    res = runner.invoke(app, ["route", SAMPLE4, "--region-size", "1", "--schedule-policy", str(policy),
+                              "--out", str(out), "--quiet"])
+    assert res.exit_code == 0, res.output
+    metrics = json.loads(next(out.glob("*.metrics.json")).read_text())
+    assert metrics["settings"]["schedule_policy"] == "fine"
+    assert [it["region_size"] for it in metrics["iterations"]][:2] == [1, 2]
+
+    cfg = tmp_path / "cfg.yaml"
+    cfg.write_text("router:\n  schedule_policy: fine.py\n")
+    out2 = tmp_path / "run2"
+    res = runner.invoke(app, ["route", SAMPLE4, "--region-size", "1", "--config", str(cfg), "--out", str(out2),
+                              "--quiet"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(next(out2.glob("*.metrics.json")).read_text())["settings"]["schedule_policy"] == "fine"
+
+    broken = tmp_path / "broken.py"
+    broken.write_text("def plan(history, rule):\n    if history:\n        raise RuntimeError('no plan')\n")
+    out3 = tmp_path / "run3"
+    res = runner.invoke(app, ["route", SAMPLE4, "--region-size", "1", "--schedule-policy", str(broken),
+                              "--out", str(out3), "--quiet"])
+    assert res.exit_code == 2
+    lines = [line for line in res.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and f"{broken}:3" in lines[0] and "RuntimeError: no plan" in lines[0], res.output
+    assert not list(out3.glob("*.routed.def"))
+
+
+def test_config_refuses_a_missing_schedule_policy_file(tmp_path: Path) -> None:
+    from xroute.config import ConfigError, load_config
+
+    cfg = tmp_path / "cfg.yaml"
+    cfg.write_text("router:\n  schedule_policy: nowhere.py\n")
+    with pytest.raises(ConfigError, match=r"cfg.yaml:2: .*schedule_policy: schedule policy file not found"):
+        load_config(cfg)
