@@ -7,9 +7,11 @@
 * ``xroute/StaticRegion-v0`` (:mod:`.static_region`, :func:`static_region_env`): one region
   written by ``xroute make-region`` (or :func:`generate_static_region`);
 * ``xroute/NetRouting-v0`` (:mod:`.net_routing`, :func:`net_routing_env`): the paper's second task,
-  one net of a region routed step by step from its head.
+  one net of a region routed step by step from its head;
+* ``xroute/ScheduleIteration-v0`` (:mod:`.schedule_iteration`, :func:`schedule_iteration_env`):
+  each iteration's plan of a whole routing run (region size, repair rounds, weights, stop).
 
-Importing this package registers the four IDs with gymnasium (nothing else is loaded until an
+Importing this package registers the five IDs with gymnasium (nothing else is loaded until an
 environment is made), so ``import xroute.envs; gymnasium.make("xroute/NetOrdering-v0")`` works, and
 so does ``gymnasium.make("xroute.envs:xroute/NetOrdering-v0")`` without the import.
 """
@@ -25,6 +27,7 @@ ENV_IDS: dict[str, str] = {
     "xroute/NetOrderingEval-v0": "xroute.envs.ordering_evaluation:NetOrderingEvaluationEnv",
     "xroute/StaticRegion-v0": "xroute.envs.static_region:StaticRegionEnv",
     "xroute/NetRouting-v0": "xroute.envs.net_routing:NetRoutingEnv",
+    "xroute/ScheduleIteration-v0": "xroute.envs.schedule_iteration:ScheduleIterationEnv",
 }
 
 _FACTORIES = {
@@ -33,6 +36,7 @@ _FACTORIES = {
     "static_region_env": "xroute.envs.static_region",
     "generate_static_region": "xroute.envs.static_region",
     "net_routing_env": "xroute.envs.net_routing",
+    "schedule_iteration_env": "xroute.envs.schedule_iteration",
 }
 
 
@@ -54,4 +58,5 @@ def __getattr__(name: str) -> Any:
 
 register_envs()
 
-__all__ = ["ENV_IDS", "generate_static_region", "net_routing_env", "ordering_evaluation_env", "ordering_training_env", "register_envs", "static_region_env"]
+__all__ = ["ENV_IDS", "generate_static_region", "net_routing_env", "ordering_evaluation_env", "ordering_training_env",
+           "register_envs", "schedule_iteration_env", "static_region_env"]

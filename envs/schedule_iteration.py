@@ -1,0 +1,237 @@
+"""``xroute/ScheduleIteration-v0``: the iteration schedule as a decision. One episode routes a design.
+
+``reset()`` loads ``testcase_name`` afresh and starts the router's flow (as ``xroute route``) in a
+background thread with a schedule policy (:mod:`xroute.schedule`) that hands every decision to this
+env: before each iteration the agent picks one entry of ``menu`` - a change to the rule's plan for
+that iteration (the rule itself, another region size, repair rounds, other weights, or stopping the
+run) - and the iteration runs with it. The episode ends when the flow ends (the iteration limit,
+zero violations, or a stop).
+
+Spaces:
+
+* action: ``Discrete(len(menu))``; ``info["action_mask"]`` masks ``stop`` before the first
+  iteration (it routes every net) and any entry whose region size the design cannot take;
+* observation: ``Box(float32, (8 + number of violation types,), 0..1e9)``: the share of the iteration
+  limit done, log1p of the last iteration's violations and of each type's, the last iteration's
+  violation ratio to the one before (1 before two iterations), its region size / 10, its wire
+  and via totals relative to the first iteration's, the net routes it made per net, and whether
+  its violations fell.
+
+Reward after each iteration: the drop of the paper's cost (0.5 per µm + 4 per via + 500 per
+violation; from 0 before the first iteration) divided by 1,000, minus ``work_weight`` times the
+iteration's net routes per net of the design (a deterministic stand-in for its time); an episode's
+return is so minus the final cost / 1,000 minus the weighted work. Stopping earns 0 and ends the
+episode. The flow is deterministic, so same actions, same episode; ``reset(seed=)`` only
+seeds ``self.np_random`` (the env draws nothing from it).
+"""
+
+from __future__ import annotations
+
+import math
+import queue
+import threading
+from typing import Any, Sequence
+
+import gymnasium as gym
+import numpy as np
+
+# Each entry: (name, change to the rule's plan). A size without an offset takes the rule's offsets for
+# that size (0, C/3, 2C/3 by iteration), as --region-size does.
+DEFAULT_MENU: tuple[tuple[str, dict[str, Any]], ...] = (
+    ("rule", {}),
+    ("size 5", {"region_size": 5}),
+    ("size 7", {"region_size": 7}),
+    ("repair 1", {"repair_rounds": 1}),
+    ("double weights", {"marker_penalty": 6000, "history_penalty": 2000}),
+    ("stop", {"stop": True}),
+)
+
+
+OBS_HIGH = 1e9  # no observation entry comes near it (log counts, ratios, shares)
+
+
+class _Aborted(Exception):
+    """Raised inside the router's plan call when the env drops an unfinished episode."""
+
+
+class _AgentSchedule:
+    """The router's schedule policy during an episode: asks the env for each iteration's plan."""
+
+    name = "rl-agent"
+
+    def __init__(self, events: queue.Queue, resume: queue.Queue) -> None:
+        self.events = events
+        self.resume = resume
+
+    def plan(self, history: Sequence[Any], rule: Any) -> Any:
+        self.events.put(("ask", list(history), rule))
+        answer = self.resume.get()
+        if answer is None:
+            raise _Aborted()
+        return answer
+
+
+class ScheduleIterationEnv(gym.Env):
+    """The agent chooses each iteration's plan of a whole routing run (see the module docstring)."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, testcase_name: str = "ispd19_sample4", region_size: int = 10, iteration_count: int = 10,
+                 *, menu: Sequence[tuple[str, dict[str, Any]]] = DEFAULT_MENU, work_weight: float = 1.0,
+                 threads: int = 1, render_mode: str | None = None) -> None:
+        from xroute.config import CostSection
+        from xroute.router import VIOLATION_TYPES, RouteSettings
+
+        RouteSettings(region_size=region_size, iterations=iteration_count, threads=threads)  # validates them
+        if not menu or not all(isinstance(change, dict) for _, change in menu):
+            raise ValueError("menu: a non-empty sequence of (name, plan change) pairs")
+        self.testcase_name = testcase_name
+        self.region_size = region_size
+        self.iteration_count = iteration_count
+        self.threads = threads
+        self.menu = tuple((str(name), dict(change)) for name, change in menu)
+        self.work_weight = float(work_weight)
+        self.cost = CostSection()
+        self.types = tuple(VIOLATION_TYPES)
+        self.render_mode = render_mode
+        self.action_space = gym.spaces.Discrete(len(self.menu))
+        self.observation_space = gym.spaces.Box(0.0, OBS_HIGH, shape=(8 + len(self.types),), dtype=np.float32)
+        self.design: Any = None
+        self._thread: threading.Thread | None = None
+        self._events: queue.Queue = queue.Queue()
+        self._resume: queue.Queue = queue.Queue()
+        self._history: list[Any] = []
+        self._rule: Any = None
+        self._finished = True
+
+    # -- the routing thread -------------------------------------------------
+    def _start(self) -> None:
+        from xroute.pipeline import prepare_design
+        from xroute.router import route_design
+
+        self.design = prepare_design(self.testcase_name)
+        self._events, self._resume = queue.Queue(), queue.Queue()
+        policy = _AgentSchedule(self._events, self._resume)
+        design, events = self.design, self._events
+
+        def run() -> None:
+            try:
+                result = route_design(design, region_size=self.region_size, iterations=self.iteration_count,
+                                      threads=self.threads, schedule_policy=policy)
+                events.put(("done", result, None))
+            except BaseException as exc:  # noqa: BLE001 - handed to the env's thread
+                events.put(("error", exc, None))
+
+        self._thread = threading.Thread(target=run, name="xroute-schedule-env", daemon=True)
+        self._thread.start()
+        self._finished = False
+
+    def _stop(self) -> None:
+        """Aborts an unfinished episode and waits for the routing thread to end."""
+        if self._thread is None:
+            return
+        if not self._finished:
+            self._resume.put(None)
+            while self._events.get()[0] not in ("done", "error"):
+                self._resume.put(None)
+        self._thread.join()
+        self._thread = None
+        self._finished = True
+
+    def _next_event(self) -> Any:
+        """Waits for the router's next question (returns None) or its end (returns the RouteResult)."""
+        kind, payload, rule = self._events.get()
+        if kind == "ask":
+            self._history, self._rule = payload, rule
+            return None
+        self._finished = True
+        self._thread.join()
+        self._thread = None
+        if kind == "error":
+            raise payload
+        self._history = list(payload.iterations)
+        return payload
+
+    # -- observation, mask, reward --------------------------------------------
+    def _cost(self, report: Any) -> float:
+        return self.cost.cost(report.wirelength_um, report.vias, report.violations)
+
+    def _observation(self) -> np.ndarray:
+        obs = np.zeros(self.observation_space.shape, dtype=np.float32)
+        obs[0] = len(self._history) / self.iteration_count
+        if not self._history:
+            return obs
+        last, first = self._history[-1], self._history[0]
+        obs[1] = math.log1p(last.violations)
+        before = self._history[-2].violations if len(self._history) > 1 else last.violations
+        obs[2] = last.violations / before if before else 1.0
+        obs[3] = last.region_size / 10.0
+        obs[4] = last.wirelength_dbu / first.wirelength_dbu if first.wirelength_dbu else 1.0
+        obs[5] = last.vias / first.vias if first.vias else 1.0
+        obs[6] = last.net_routes / self._nets
+        obs[7] = float(len(self._history) > 1 and last.violations < self._history[-2].violations)
+        for i, name in enumerate(self.types):
+            obs[8 + i] = math.log1p(last.violations_by_type.get(name, 0))
+        return obs
+
+    def _mask(self) -> np.ndarray:
+        from xroute.defaults import MAX_REGION_SIZE
+
+        mask = np.ones(len(self.menu), dtype=bool)
+        for i, (_, change) in enumerate(self.menu):
+            if change.get("stop") and not self._history:
+                mask[i] = False
+            if not 1 <= int(change.get("region_size", 1)) <= MAX_REGION_SIZE:
+                mask[i] = False
+        return mask
+
+    def _info(self, **extra: Any) -> dict[str, Any]:
+        # The reports' figures without their wall times, so that same actions give the same info.
+        history = [{k: v for k, v in r.to_dict().items() if k != "seconds"} for r in self._history]
+        return {"action_mask": self._mask(), "iteration": len(self._history), "history": history,
+                "menu": [name for name, _ in self.menu], **extra}
+
+    def _plan(self, action: int) -> Any:
+        from dataclasses import replace
+
+        change = dict(self.menu[action][1])
+        if "region_size" in change and "offset" not in change:
+            size = int(change["region_size"])
+            change["offset"] = ((len(self._history) % 3) * size) // 3
+        return replace(self._rule, **change)
+
+    # -- gymnasium API --------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        self._stop()
+        self._start()
+        self._nets = max(1, self.design.counts()["nets"])
+        final = self._next_event()
+        return self._observation(), self._info(**({"result": final} if final is not None else {}))
+
+    def step(self, action: int):
+        if self._finished:
+            raise RuntimeError("step() after the episode ended: call reset()")
+        action = int(action)
+        if not 0 <= action < len(self.menu) or not self._mask()[action]:
+            raise ValueError(f"action {action} is not allowed now (see info['action_mask'])")
+        done_before = len(self._history)
+        before = self._cost(self._history[-1]) if self._history else 0.0
+        self._resume.put(self._plan(action))
+        final = self._next_event()
+        reward = 0.0
+        if len(self._history) > done_before:  # the iteration ran (a stop ends the run without it)
+            report = self._history[done_before]
+            reward = (before - self._cost(report)) / 1000.0 - self.work_weight * report.net_routes / self._nets
+        terminated = final is not None
+        info = self._info(**({"result": final} if final is not None else {}))
+        return self._observation(), float(reward), terminated, False, info
+
+    def close(self) -> None:
+        self._stop()
+
+
+def schedule_iteration_env(testcase_name: str = "ispd19_sample4", region_size: int = 10, iteration_count: int = 10,
+                           **kwargs: Any) -> ScheduleIterationEnv:
+    """The iteration-schedule env (see :class:`ScheduleIterationEnv`)."""
+    return ScheduleIterationEnv(testcase_name, region_size, iteration_count, **kwargs)
