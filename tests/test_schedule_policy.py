@@ -176,3 +176,27 @@ def test_config_refuses_a_missing_schedule_policy_file(tmp_path: Path) -> None:
     cfg.write_text("router:\n  schedule_policy: nowhere.py\n")
     with pytest.raises(ConfigError, match=r"cfg.yaml:2: .*schedule_policy: schedule policy file not found"):
         load_config(cfg)
+
+
+def test_the_metrics_log_every_iterations_plan_as_transitions(tmp_path: Path) -> None:
+    """A run's metrics JSON records each iteration's plan; logged_transitions gives, per iteration,
+    the reports before it, the plan it ran (the policy's, here size 2 after the first) and its report."""
+    from xroute.design import load_design
+    from xroute.outputs import write_route_outputs
+    from xroute.schedule import logged_transitions
+
+    require_testcase(SAMPLE4)
+    design = load_design(SAMPLE4)
+    policy = CallableSchedule(lambda h, r: {"region_size": 2, "offset": 0} if h else None, name="two")
+    result = route_design(design, region_size=SIZE, schedule_policy=policy)
+    outputs = write_route_outputs(design, result, tmp_path)
+    metrics = json.loads(outputs.metrics_path.read_text())
+    steps = logged_transitions(metrics)
+    assert len(steps) == len(result.iterations) >= 2
+    assert [(t.plan.region_size, t.plan.offset) for t in steps] == [(SIZE, 0)] + [(2, 0)] * (len(steps) - 1)
+    for i, t in enumerate(steps):
+        assert figures(t.history) == figures(result.iterations[:i])
+        assert t.report.violations == result.iterations[i].violations and t.design == design.name
+    old = dict(metrics, iterations=[{k: v for k, v in it.items() if k != "plan"} for it in metrics["iterations"]])
+    with pytest.raises(ValueError, match="do not record their plans"):
+        logged_transitions(old)

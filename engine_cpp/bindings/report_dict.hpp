@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "bindings/plan_dict.hpp"
 #include "flow/router.hpp"
 
 namespace xroute {
@@ -28,6 +29,7 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   d["violations"] = r.markers;
   d["seconds"] = r.seconds;
   d["done"] = r.done;
+  if (r.done) d["plan"] = planDict(r.plan);  // the plan the iteration ran
   return d;
 }
 

@@ -80,6 +80,7 @@ class Flow {
       routingTotals(design_, rep.wirelength, rep.vias);
       rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       rep.done = true;
+      rep.plan = plan_;
       out.iterations.push_back(rep);
       if (progress_) progress_(rep, rep.regions, rep.regions);
       for (const Marker& m : markers_) history_.push_back({m.layer, m.box, plan_.historyPenalty});

@@ -50,6 +50,18 @@ struct RouterSettings {
   int64_t repairPenalty = 3000;    // cost units per node near a region marker, times the repair round
 };
 
+// What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,
+// costs and repair rounds) or by an iteration planner that has seen the reports so far.
+struct IterationPlan {
+  int regionSize = 10;             // GCells per region side (1..kMaxRegionSize)
+  int offset = 0;                  // GCells, 0 <= offset < regionSize
+  int repairRounds = 0;            // check-and-reroute rounds inside each region (0..kMaxRepairRounds)
+  MazeCosts costs;                 // the maze's costs (usePenalty: per shape of another net a step would violate)
+  int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
+  int64_t historyPenalty = 1000;   // what each marker this iteration leaves adds near it from then on
+  bool stop = false;               // end the run instead of running this iteration
+};
+
 struct IterationReport {
   int iteration = 0;
   int regionSize = 0;              // GCells per region side in this iteration
@@ -63,18 +75,7 @@ struct IterationReport {
   int markers = 0;
   double seconds = 0;              // wall time of the iteration (routing + check)
   bool done = false;               // the check has run: markers, totals and seconds are final
-};
-
-// What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,
-// costs and repair rounds) or by an iteration planner that has seen the reports so far.
-struct IterationPlan {
-  int regionSize = 10;             // GCells per region side (1..kMaxRegionSize)
-  int offset = 0;                  // GCells, 0 <= offset < regionSize
-  int repairRounds = 0;            // check-and-reroute rounds inside each region (0..kMaxRepairRounds)
-  MazeCosts costs;                 // the maze's costs (usePenalty: per shape of another net a step would violate)
-  int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
-  int64_t historyPenalty = 1000;   // what each marker this iteration leaves adds near it from then on
-  bool stop = false;               // end the run instead of running this iteration
+  IterationPlan plan;              // what the iteration ran with (set with done)
 };
 
 // Asked before each iteration with the reports of the iterations done (oldest first) and the rule's

@@ -13,6 +13,10 @@ plan may also stop the run (from the second iteration on: the first routes every
   (a dict changes the keys it names; None keeps the rule), e.g. from a policy file's ``plan``
   (:func:`xroute.policies.get_schedule_policy`).
 
+Every iteration's report carries the plan it ran (``IterationReport.plan``), so a run's metrics JSON
+is a logged run: :func:`logged_transitions` turns it into (history, plan, report) transitions for
+offline learning.
+
 Plans are checked here (:meth:`IterationPlan.checked`): a value out of range, a key the plan does
 not have or a return of another type is a :class:`~xroute.net_order.PolicyError` naming the
 policy; an exception raised inside ``plan`` propagates, tagged with the policy's file and line
@@ -28,57 +32,6 @@ from xroute.net_order import PolicyError
 from xroute.policy_guard import tag_failure
 
 MAX_PENALTY = 10**12  # cost units: far above any weight that steers the maze (its defaults are 1,000-8,000)
-
-
-@dataclass(frozen=True)
-class IterationReport:
-    """What one iteration did and the state after it (lengths in DBU unless named _um)."""
-
-    iteration: int
-    region_size: int  # region side of this iteration, GCells
-    offset: int  # region offset of this iteration, GCells
-    regions: int  # regions with work
-    net_routes: int  # (net, region) pairs routed
-    unreached: int  # terminals the maze could not reach
-    wirelength_dbu: int  # all wires after the iteration
-    wirelength_um: float
-    vias: int
-    violations_by_type: dict[str, int] = field(default_factory=dict)  # marker type -> count
-    violations: int = 0  # all markers after the iteration
-    seconds: float = 0.0  # wall time of the iteration (routing + check)
-
-    @classmethod
-    def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
-        return cls(
-            iteration=int(d["iteration"]),
-            region_size=int(d["region_size"]),
-            offset=int(d["offset"]),
-            regions=int(d["regions"]),
-            net_routes=int(d["net_routes"]),
-            unreached=int(d["unreached"]),
-            wirelength_dbu=int(d["wirelength_dbu"]),
-            wirelength_um=float(d["wirelength_um"]),
-            vias=int(d["vias"]),
-            violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
-            violations=int(d["violations"]),
-            seconds=float(d["seconds"]),
-        )
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "iteration": self.iteration,
-            "region_size": self.region_size,
-            "offset": self.offset,
-            "regions": self.regions,
-            "net_routes": self.net_routes,
-            "unreached": self.unreached,
-            "wirelength_dbu": self.wirelength_dbu,
-            "wirelength_um": self.wirelength_um,
-            "vias": self.vias,
-            "violations": self.violations,
-            "violations_by_type": dict(self.violations_by_type),
-            "seconds": self.seconds,
-        }
 
 
 @dataclass(frozen=True)
@@ -117,6 +70,60 @@ class IterationPlan:
         if not isinstance(self.stop, bool):
             raise ValueError(f"stop must be true or false, got {self.stop!r}")
         return self
+
+
+@dataclass(frozen=True)
+class IterationReport:
+    """What one iteration did and the state after it (lengths in DBU unless named _um)."""
+
+    iteration: int
+    region_size: int  # region side of this iteration, GCells
+    offset: int  # region offset of this iteration, GCells
+    regions: int  # regions with work
+    net_routes: int  # (net, region) pairs routed
+    unreached: int  # terminals the maze could not reach
+    wirelength_dbu: int  # all wires after the iteration
+    wirelength_um: float
+    vias: int
+    violations_by_type: dict[str, int] = field(default_factory=dict)  # marker type -> count
+    violations: int = 0  # all markers after the iteration
+    seconds: float = 0.0  # wall time of the iteration (routing + check)
+    plan: IterationPlan | None = None  # what the iteration ran with (None while it runs)
+
+    @classmethod
+    def from_engine(cls, d: Mapping[str, Any]) -> IterationReport:
+        return cls(
+            iteration=int(d["iteration"]),
+            region_size=int(d["region_size"]),
+            offset=int(d["offset"]),
+            regions=int(d["regions"]),
+            net_routes=int(d["net_routes"]),
+            unreached=int(d["unreached"]),
+            wirelength_dbu=int(d["wirelength_dbu"]),
+            wirelength_um=float(d["wirelength_um"]),
+            vias=int(d["vias"]),
+            violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
+            violations=int(d["violations"]),
+            seconds=float(d["seconds"]),
+            plan=IterationPlan.from_engine(d["plan"]) if d.get("plan") else None,
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "iteration": self.iteration,
+            "region_size": self.region_size,
+            "offset": self.offset,
+            "regions": self.regions,
+            "net_routes": self.net_routes,
+            "unreached": self.unreached,
+            "wirelength_dbu": self.wirelength_dbu,
+            "wirelength_um": self.wirelength_um,
+            "vias": self.vias,
+            "violations": self.violations,
+            "violations_by_type": dict(self.violations_by_type),
+            "seconds": self.seconds,
+            "plan": self.plan.to_engine() if self.plan is not None else None,
+        }
 
 
 @runtime_checkable
@@ -194,3 +201,24 @@ def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], dict[str, Any
 def is_default(policy: SchedulePolicy | None) -> bool:
     """Whether routing with ``policy`` is routing without one (the rule, run in C++)."""
     return policy is None or isinstance(policy, RuleSchedule)
+
+
+@dataclass(frozen=True)
+class Transition:
+    """One iteration of a logged run, as offline learning reads it: what the policy saw, what ran, what came of it."""
+
+    design: str
+    history: tuple[IterationReport, ...]  # the reports of the iterations before (the policy's view)
+    plan: IterationPlan  # what the iteration ran with
+    report: IterationReport  # the iteration's outcome
+
+
+def logged_transitions(metrics: Mapping[str, Any]) -> list[Transition]:
+    """The transitions of a routed run from its metrics JSON (``xroute route``'s ``<design>.metrics.json``,
+    read with ``json.load``): the logged-runs format is a folder of such files, one per run, whatever
+    schedule policy made them. ValueError for a file whose iterations do not record their plans."""
+    reports = [IterationReport.from_engine(it) for it in metrics["iterations"]]
+    if any(r.plan is None for r in reports):
+        raise ValueError("the run's iterations do not record their plans (routed before xroute logged them)")
+    design = str(metrics.get("design", ""))
+    return [Transition(design, tuple(reports[:i]), r.plan, r) for i, r in enumerate(reports)]  # type: ignore[arg-type]
