@@ -22,6 +22,11 @@ if TYPE_CHECKING:
 PIPE_WIDTH = 160
 
 
+def counted(n: int, noun: str) -> str:
+    """``n`` and the noun in the right number: "1 violation", "2 violations", "1,024 vias"."""
+    return f"{n:,} {noun}" + ("" if n == 1 else "s")
+
+
 def stdout_console() -> Console:
     """A Rich console on stdout; wider than Rich's default of 80 when piped."""
     console = Console()

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 
 import typer
 from rich.markup import escape
+
+from xroute.cli.console import counted
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 
 if TYPE_CHECKING:
@@ -52,8 +54,8 @@ def iteration_line(progress: RouteProgress) -> str:
     """One plain line for a finished iteration."""
     r = progress.report
     return (
-        f"iteration {r.iteration}: {r.regions} regions, {r.net_routes} net routes, "
-        f"WL {r.wirelength_um:,.1f} um, {r.vias:,} vias, {r.violations} violations "
+        f"iteration {r.iteration}: {counted(r.regions, 'region')}, {counted(r.net_routes, 'net route')}, "
+        f"WL {r.wirelength_um:,.1f} um, {counted(r.vias, 'via')}, {counted(r.violations, 'violation')} "
         f"({by_type(r.violations_by_type)}), {r.seconds:.2f} s"
     )
 

@@ -56,3 +56,33 @@ def test_lines_and_off(capsys) -> None:
     with ProgressDisplay(console(False), "quiet", 10) as display:
         display(event(True))
     assert capsys.readouterr().out == ""
+
+
+def test_progress_counts_the_regions_each_iteration_routes() -> None:
+    """Within an iteration every event has the same total, the regions with work (known before the
+    first is routed), the count rises to it and the iteration's last event reaches it; at region size 1
+    the later iterations route far fewer regions than the partition has (the bar once never filled)."""
+    from conftest import pick, require_testcase
+    from xroute.design import load_design
+    from xroute.router import route_design
+
+    name = pick("ispd19_sample4")
+    require_testcase(name)
+    events: list[RouteProgress] = []
+    result = route_design(load_design(name), region_size=1, progress=events.append)
+    for it in result.iterations:
+        mine = [e for e in events if e.report.iteration == it.iteration]
+        assert {e.regions_total for e in mine} == {it.regions}
+        assert [e.regions_done for e in mine] == sorted(e.regions_done for e in mine)
+        assert mine[-1].iteration_done and mine[-1].regions_done == it.regions
+    assert len(result.iterations) >= 2 and result.iterations[1].regions < result.iterations[0].regions
+
+
+def test_lines_say_one_violation_and_two_vias() -> None:
+    from xroute.cli.progress import iteration_line
+
+    report = IterationReport(iteration=1, region_size=5, offset=0, regions=1, net_routes=1, unreached=0,
+                             wirelength_dbu=2000, wirelength_um=1.0, vias=2, violations_by_type={"Short": 1},
+                             violations=1, seconds=0.5)
+    line = iteration_line(RouteProgress(report, 1, 1, True, 10))
+    assert "1 region, 1 net route," in line and "2 vias, 1 violation (" in line

@@ -20,6 +20,7 @@ from xroute.cli.console import (
     LefOption,
     TestcaseArg,
     check_design_args,
+    counted,
     load_design_args,
     print_json,
     stdout_console,
@@ -81,8 +82,8 @@ def final_line(outputs: RouteOutputs, out_dir: Path) -> str:
     f = outputs.final
     status = "routed" if f["open_nets"] == 0 else "OPENS REMAIN"
     return (
-        f"{outputs.metrics['design']}: {status}: {f['nets']} nets, {f['open_nets']} open, "
-        f"{f['violations']} violations, WL {f['wirelength_um']:,.1f} um, {f['vias']:,} vias, "
+        f"{outputs.metrics['design']}: {status}: {counted(f['nets'], 'net')}, {f['open_nets']} open, "
+        f"{counted(f['violations'], 'violation')}, WL {f['wirelength_um']:,.1f} um, {counted(f['vias'], 'via')}, "
         f"{_seconds(f['runtime_seconds'])} s, {f['peak_rss_mb']:.0f} MB -> {out_dir}"
     )
 

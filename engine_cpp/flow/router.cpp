@@ -183,10 +183,30 @@ class Flow {
     return t;
   }
 
+  // Regions that will have work in this iteration, known before any is routed (for progress): in
+  // iteration 0 those with a part of a net, later those a marker with a net touches (repairTask's
+  // rip-up starts from exactly those markers).
+  int regionsWithWork(int it, const std::vector<Region>& regions, const CrossingPlan& plan) const {
+    const int32_t nNets = static_cast<int32_t>(design_.nets.size());
+    auto valid = [nNets](int32_t n) { return n >= 0 && n < nNets; };
+    int count = 0;
+    for (const Region& r : regions) {
+      if (it == 0) {
+        count += !plan.regionParts[r.id].empty();
+        continue;
+      }
+      count += std::any_of(markers_.begin(), markers_.end(), [&](const Marker& m) {
+        return m.box.overlaps(r.box) && (valid(m.net1) || valid(m.net2));
+      });
+    }
+    return count;
+  }
+
   void runIteration(int it, IterationReport& rep) {
     const std::vector<Region> regions = partitionRegions(ctx_.gcells, rep.regionSize, rep.offset);
     CrossingPlan plan;
     if (it == 0) plan = planCrossings(ctx_, regions, rep.regionSize, rep.offset);
+    const int total = progress_ ? regionsWithWork(it, regions, plan) : 0;
     for (int color = 0; color < 4; ++color) {
       std::vector<RegionTask> tasks;
       for (const Region& r : regions) {
@@ -199,7 +219,7 @@ class Flow {
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
       ctx_.rebuildRoutedIndex();
-      if (progress_) progress_(rep, rep.regions, static_cast<int>(regions.size()));
+      if (progress_) progress_(rep, rep.regions, total);
     }
   }
 

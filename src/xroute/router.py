@@ -118,7 +118,7 @@ class RouteProgress:
 
     report: IterationReport
     regions_done: int  # regions routed so far in this iteration
-    regions_total: int  # regions of the iteration (all of them during the batches; those with work at the end)
+    regions_total: int  # regions of the iteration with work (known before the first is routed)
     iteration_done: bool  # the iteration's design-rule check is done and its figures are final
     iterations: int  # the iteration limit of the run
 
