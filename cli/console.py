@@ -22,6 +22,9 @@ if TYPE_CHECKING:
 PIPE_WIDTH = 160
 
 
+MORE_PROBLEMS = 9  # a config file's problems after the first that its error line names
+
+
 def counted(n: int, noun: str) -> str:
     """``n`` and the noun in the right number: "1 violation", "2 violations", "1,024 vias"."""
     return f"{n:,} {noun}" + ("" if n == 1 else "s")
@@ -44,7 +47,13 @@ def error_line(exc: BaseException) -> str:
     """The one line shown for a user error: ``error: <file>:<line>: <message>``."""
     if isinstance(exc, InputError):
         where = f"{exc.path}:{exc.line}" if exc.line > 0 else exc.path
-        text = f"{where}: {exc.message}" if where else exc.message
+        problems = list(getattr(exc, "problems", ()))  # a config file's problems: all named on the one line
+        message = problems[0][1] if len(problems) > 1 else exc.message
+        text = f"{where}: {message}" if where else message
+        if len(problems) > 1:
+            shown = [f"line {line}: {msg}" for line, msg in problems[1:1 + MORE_PROBLEMS]]
+            left = len(problems) - 1 - len(shown)
+            text += "; also " + "; ".join(shown) + (f"; and {left} more" if left else "")
     elif isinstance(exc, OSError) and exc.filename is not None:
         text = f"{exc.filename}: {exc.strerror or exc}"
     else:

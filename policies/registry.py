@@ -25,6 +25,7 @@ from xroute.net_order import (
     builtin_policy,
     is_builtin_name,
 )
+from xroute.errors import did_you_mean
 from xroute.schedule import CallableSchedule, RuleSchedule, SchedulePolicy
 
 
@@ -83,8 +84,8 @@ def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> Ne
     if suffix == ".py":
         return load_policy_file(spec)
     raise PolicyError(
-        f"unknown policy '{spec}': use {', '.join(BUILTIN_POLICIES)}, best-of-K, a .py file defining order(region, features) "
-        "or a .onnx net-order model"
+        f"unknown policy '{spec}'{did_you_mean(spec, BUILTIN_POLICIES)}: use {', '.join(BUILTIN_POLICIES)}, best-of-K, "
+        "a .py file defining order(region, features) or a .onnx net-order model"
     )
 
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from xroute.testcases.known import KNOWN_TESTCASES, KnownTestcase
-from xroute.errors import TestcaseNotFound
+from xroute.errors import TestcaseNotFound, did_you_mean
 
 ENV_VAR = "XROUTE_TESTCASES"
 SHARED_RELATIVE = Path("..") / "shared" / "testcases"  # relative to the project root
@@ -90,8 +90,14 @@ def _match(folder: Path, name: str) -> FoundTestcase | None:
 def not_found_message(name: str, roots: list[Path]) -> str:
     """One line: what was searched and how to add the testcase."""
     searched = ", ".join(str(r) for r in roots) or "(nothing)"
+    names = {k.name for k in KNOWN_TESTCASES}
+    for root in roots:
+        try:
+            names.update(p.name for p in root.iterdir() if p.is_dir())
+        except OSError:
+            pass
     return (
-        f"testcase '{name}' not found; searched {searched}; to add it, put "
+        f"testcase '{name}' not found{did_you_mean(name, names)}; searched {searched}; to add it, put "
         f"{name}/{name}.input.{{lef,def,guide}} under {SHARED_RELATIVE.as_posix()} (beside the project) "
         f"or under a folder listed in {ENV_VAR}; 'xroute testcases' lists the known ones"
     )

@@ -253,3 +253,35 @@ def test_real_process_prints_one_line_without_traceback(tmp_path: Path) -> None:
     assert proc.stdout == ""
     assert proc.stderr.count("\n") == 1
     assert proc.stderr.startswith("error: testcase 'no_such_testcase_xyz' not found")
+
+
+def test_error_line_names_every_problem_of_a_config_file(tmp_path: Path) -> None:
+    """All of a bad config's problems on the one error line, the first with its line, at most 1 + 9."""
+    from xroute.config import ConfigError, load_config
+
+    cfg = tmp_path / "bad.yaml"
+    cfg.write_text("router:\n  iteraton_count: 3\n  thread_count: -1\npolicy:\n  policy: victms\n")
+    with pytest.raises(ConfigError) as info:
+        load_config(cfg)
+    line = error_line(info.value)
+    assert line.startswith(f"error: {cfg}:2: router.iteraton_count: unknown key (did you mean 'iteration_count'?)")
+    assert "; also line 3: router.thread_count: must be between 1 and 1024, found -1; " in line
+    assert "line 5: policy.policy: unknown policy 'victms' (did you mean 'victims'?)" in line
+    assert "more problem" not in line and "\n" not in line
+    many = tmp_path / "many.yaml"
+    many.write_text("".join(f"k{i}: 1\n" for i in range(15)))
+    with pytest.raises(ConfigError) as info:
+        load_config(many)
+    line = error_line(info.value)
+    assert line.count("unknown key") == 10 and line.endswith("; and 5 more")
+
+
+@pytest.mark.parametrize("args, hint", [
+    (["route", "ispd18_sampel"], "testcase 'ispd18_sampel' not found (did you mean 'ispd18_sample'?)"),
+    (["route", "--policy", "victms"], "unknown policy 'victms' (did you mean 'victims'?)"),
+])
+def test_misspelled_names_get_a_suggestion(runner, args: list[str], hint: str, tmp_path: Path) -> None:
+    from xroute.cli.app import app
+
+    res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
+    assert res.exit_code == 2 and hint in res.output

@@ -37,7 +37,8 @@ def test_unknown_key_named_with_file_and_line(tmp_path: Path) -> None:
     p = write(tmp_path, "region:\n  region_size: 3\n  region_sise: 4\n")
     e = problem(p)
     assert (e.path, e.line) == (str(p), 3)
-    assert e.message.startswith("region.region_sise: unknown key (known keys here: region_location, region_loop, region_size)")
+    assert e.message.startswith("region.region_sise: unknown key (did you mean 'region_size'?) "
+                                "(known keys here: region_location, region_loop, region_size)")
 
 
 def test_wrong_type_out_of_range_and_all_problems_collected(tmp_path: Path) -> None:

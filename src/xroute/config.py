@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
-from xroute.errors import XrouteError
+from xroute.errors import XrouteError, did_you_mean
 from xroute.defaults import (MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REGION_COST_WEIGHTS, REPAIR_ROUNDS,
                              SEARCH_BUDGET)
 from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
@@ -67,7 +67,7 @@ def check_testcase(value: str, ctx: Context) -> tuple[Any, str | None]:
 def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     """A built-in policy name stays as it is; anything else is a policy file, which must be
     readable (relative to the config file's folder). Its format is checked when it is loaded."""
-    from xroute.net_order import BUILTIN_POLICIES, is_builtin_name
+    from xroute.net_order import BUILTIN_POLICIES, is_builtin_name  # noqa: F401 - both used below
 
     if is_builtin_name(value):
         if value.startswith("best-of-") and not 1 <= int(value[len("best-of-"):]) <= MAX_SEARCH_BUDGET:
@@ -76,7 +76,8 @@ def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     path = ctx.resolve(value)
     if not path.suffix and os.sep not in value and "/" not in value and not path.exists():
         names = ", ".join(BUILTIN_POLICIES)
-        return value, f"unknown policy '{value}': use {names}, best-of-K, or the path of a policy file (.py, .onnx)"
+        return value, (f"unknown policy '{value}'{did_you_mean(value, BUILTIN_POLICIES)}: use {names}, best-of-K, "
+                       "or the path of a policy file (.py, .onnx)")
     if path.exists() and not path.is_file():
         return value, f"policy file {path} is not a file"
     if not path.is_file():

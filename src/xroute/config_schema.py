@@ -25,7 +25,7 @@ from typing import Any, Callable, Literal, Union
 
 import yaml
 
-from xroute.errors import InputError
+from xroute.errors import InputError, did_you_mean
 
 _NUMBER_TYPES = (int, float)
 
@@ -212,7 +212,7 @@ def build(cls: type, node: yaml.Node | None, key: str, ctx: Context) -> Any:
             f = fields.get(name)
             if f is None:
                 known = ", ".join(sorted(fields)) or "none"
-                ctx.problem(knode, dotted, f"unknown key (known keys here: {known})")
+                ctx.problem(knode, dotted, f"unknown key{did_you_mean(name, fields)} (known keys here: {known})")
                 continue
             values[name] = _convert(hints[name], vnode, dotted, ctx, f.metadata)
     missing = [n for n, f in fields.items() if n not in values and f.default is dataclasses.MISSING

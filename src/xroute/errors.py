@@ -7,6 +7,15 @@ one line and exits with status 2. The compiled engine raises :class:`InputError`
 
 from __future__ import annotations
 
+import difflib
+from typing import Iterable
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """``" (did you mean 'x'?)"`` for the closest of ``choices`` to a misspelled ``word``, else ``""``."""
+    close = difflib.get_close_matches(word, [c for c in choices if c != word], n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
 
 class XrouteError(Exception):
     """Base class of the errors xroute reports to users as one line (exit code 2)."""

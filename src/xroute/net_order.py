@@ -57,7 +57,7 @@ from typing import Any, Callable, Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
-from xroute.errors import PolicyError
+from xroute.errors import PolicyError, did_you_mean
 
 FEATURE_COLUMNS: tuple[str, ...] = (
     "net",
@@ -373,6 +373,6 @@ def builtin_policy(name: str, seed: int = 1, search_budget: int | None = None) -
     if m is not None:
         return BestOfPolicy(int(m.group(1)), seed)
     raise PolicyError(
-        f"unknown policy '{name}': use {', '.join(BUILTIN_POLICIES)}, best-of-K, or load a policy file or model with "
-        "xroute.policies.get_policy"
+        f"unknown policy '{name}'{did_you_mean(name, BUILTIN_POLICIES)}: use {', '.join(BUILTIN_POLICIES)}, best-of-K, "
+        "or load a policy file or model with xroute.policies.get_policy"
     )
