@@ -169,3 +169,11 @@ def describe(box: Box) -> str:
     return f"({box[0]},{box[1]})-({box[2]},{box[3]})"
 
 
+
+
+def picture_format(out: Path) -> str:
+    """'png' or 'svg' from the picture file's suffix."""
+    suffix = out.suffix.lower().lstrip(".")
+    if suffix not in ("png", "svg"):
+        raise XrouteError(f"--out must be a .png or .svg file, got '{out.name}'")
+    return suffix

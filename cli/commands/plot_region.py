@@ -43,7 +43,7 @@ def plot_region(
     """
     from xroute.design import load_design
     from xroute.atomic_files import atomic_write_bytes
-    from xroute.cli.plot_data import describe, gcell_box, parse_ints, read_drc_report, run_dir_inputs
+    from xroute.cli.plot_data import describe, gcell_box, parse_ints, picture_format, read_drc_report, run_dir_inputs
     from xroute.cli.plot_region import region_content, render
 
     fmt = picture_format(out)
@@ -83,10 +83,3 @@ def plot_region(
     atomic_write_bytes(out, picture)
     typer.echo(f"plot-region: {design.name} {describe(region)} -> {out}")
 
-
-def picture_format(out: Path) -> str:
-    """'png' or 'svg' from the output file's suffix."""
-    suffix = out.suffix.lower().lstrip(".")
-    if suffix not in ("png", "svg"):
-        raise XrouteError(f"--out must be a .png or .svg file, got '{out.name}'")
-    return suffix
