@@ -36,6 +36,6 @@ def report(
     runs, training = find_all_runs(run_dirs)
     if out.parent != Path(""):
         out.parent.mkdir(parents=True, exist_ok=True)
-    atomic_write_text(out, render(runs, cfg.cost, title, training))
+    atomic_write_text(out, render(runs, cfg.cost, title, training, out.parent))
     extra = f", {len(training)} training run(s)" if training else ""
     typer.echo(f"report: {len(runs)} run(s){extra} -> {out}")
