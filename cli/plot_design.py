@@ -148,7 +148,7 @@ def render(design: Design, pic: DesignPicture, title: str, fmt: str = "png") -> 
         colour, shape = TYPE_STYLES[k % len(TYPE_STYLES)]
         pts = np.asarray([((m.box[0] + m.box[2]) / 2 / dbu, (m.box[1] + m.box[3]) / 2 / dbu)
                           for m in pic.markers if m.kind == kind])
-        ax.scatter(pts[:, 0], pts[:, 1], s=26, c=colour, marker=shape, edgecolors="black", linewidths=0.4,
+        ax.scatter(pts[:, 0], pts[:, 1], s=40, c=colour, marker=shape, edgecolors="black", linewidths=0.4,
                    zorder=4, label=f"{kind} ({counts[kind]:,})")
     ax.set_xlim(xlo / dbu, xhi / dbu)
     ax.set_ylim(ylo / dbu, yhi / dbu)

@@ -18,7 +18,7 @@ from xroute.cli.plot_data import Box, Marker, layer_colours
 if TYPE_CHECKING:
     from xroute.design import Design
 
-MAX_MARKER_LABELS = 30  # markers labelled in the picture; more are in the legend's count only
+MAX_MARKER_LABELS = 30  # markers numbered in the picture and named in the legend; more are counted only
 MAX_NET_LABELS = 20  # nets named by markers that get a label on their shapes
 
 
@@ -186,20 +186,26 @@ def render(design: Design, box: Box, content: RegionContent, title: str, highlig
 
 
 def _draw_markers(ax, content: RegionContent, handles: list, Rectangle, Patch) -> None:  # noqa: ANN001, N803
-    """Red boxes and crosses; a label (type, layer, nets) beside each of the first MAX_MARKER_LABELS."""
+    """Red boxes and crosses, each of the first MAX_MARKER_LABELS numbered, with its type, layer and nets
+    under that number in the legend (labels in the picture would cover each other where markers crowd)."""
     for k, m in enumerate(content.markers):
         ax.add_patch(Rectangle((m.box[0], m.box[1]), max(m.box[2] - m.box[0], 1), max(m.box[3] - m.box[1], 1),
                                facecolor="none", edgecolor="red", linewidth=1.6, zorder=5))
         cx, cy = _centre(m.box)
         ax.plot([cx], [cy], marker="x", color="red", markersize=8, zorder=5)
         if k < MAX_MARKER_LABELS:
-            ax.annotate(m.label(), (cx, cy), xytext=(8, 8 + 10 * (k % 3)), textcoords="offset points", fontsize=7,
-                        color="#b00020", zorder=6, bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "#b00020",
-                                                         "alpha": 0.85})
+            ax.annotate(str(k + 1), (cx, cy), xytext=(4, 4 + 9 * (k % 2)), textcoords="offset points", fontsize=8,
+                        fontweight="bold", color="#b00020", zorder=6,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "#b00020", "alpha": 0.85})
     if content.markers:
         kinds = sorted({m.kind for m in content.markers})
         handles.append(Patch(facecolor="none", edgecolor="red", linewidth=1.6,
                              label=f"DRC markers ({len(content.markers)}: {', '.join(kinds)})"))
+        for k, m in enumerate(content.markers[:MAX_MARKER_LABELS]):
+            handles.append(Patch(facecolor="none", edgecolor="none", label=f"  {k + 1}: {m.label()}"))
+        if len(content.markers) > MAX_MARKER_LABELS:
+            handles.append(Patch(facecolor="none", edgecolor="none",
+                                 label=f"  ... {len(content.markers) - MAX_MARKER_LABELS} more, not numbered"))
 
 
 def _label_nets(ax, design: Design, content: RegionContent, highlight: int | None,  # noqa: ANN001

@@ -105,7 +105,7 @@ def test_plot_region_net_labels_the_marker_nets(runner: CliRunner, marked: Path,
     assert result.exit_code == 0, result.stderr
     text = svg.read_text()
     assert f"net {first}" in text and f"net {second}" in text  # both nets of the marker labelled on their shapes
-    assert f"{m.kind} {m.layer}: {first} × {second}" in text  # the marker: type, layer, nets
+    assert f": {m.kind} {m.layer}: {first} × {second}" in text  # the marker, numbered: type, layer, nets
     assert f"net {first} (others dimmed)" in text  # the legend names the highlighted net
     assert "x (µm; 2000 DBU per µm)" in text or "x (µm;" in text  # µm axes by default
     png = tmp_path / "n.png"
