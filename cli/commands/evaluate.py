@@ -2,7 +2,7 @@
 
 Like Table 1 of the XRoute paper: per iteration the wirelength (µm), vias, design-rule
 violations (DRVs) and runtime (s) of both runs, then the final figures checked on each written
-DEF and the paper's cost (0.5 WL + 4 vias + 500 DRVs by default; weights from ``--config``).
+DEF and the paper cost (0.5·WL + 4·vias + 500·violations by default; weights from ``--config``; xroute.glossary).
 Writes ``evaluation.json`` and each run's routed DEF, metrics JSON and DRC report in its own
 subfolder of ``--out``. Exit status: 0, or 1 when either written DEF has open nets.
 """
@@ -94,7 +94,7 @@ def evaluate(
 
     Routes TESTCASE with --policy and with --baseline (default heuristic) under the same settings and
     prints, per iteration, wirelength, vias, DRVs and runtime of both side by side, the final figures
-    checked on each written DEF, the paper's cost (0.5 WL + 4 vias + 500 DRVs) and the share of
+    checked on each written DEF, the paper cost (0.5·WL + 4·vias + 500·violations) and the share of
     routing time spent in a Python/ONNX policy. Writes <out>/evaluation.json and each run's outputs
     in <out>/policy-<name>/ and <out>/baseline-<name>/ (default out: ./out/evaluate/<testcase>).
 
