@@ -109,8 +109,9 @@ def _links(r: Run, out_dir: Path) -> str:
 
 def _settings(r: Run) -> str:
     s = r.metrics.get("settings", {})
-    parts = [f"{k.replace('_', ' ')} {s[k]}" for k in ("region_size", "iterations", "threads", "seed", "repair_rounds")
-             if s.get(k) is not None]
+    names = {"region_size": "region", "iterations": "iterations", "threads": "threads", "seed": "seed",
+             "repair_rounds": "repair"}
+    parts = [f"{name}&nbsp;{escape(str(s[k]))}" for k, name in names.items() if s.get(k) is not None]
     return ", ".join(parts)
 
 
@@ -131,7 +132,7 @@ def _runs_table(runs: list[Run], cost: CostSection, out_dir: Path) -> str:
         c = cost.cost(f["wirelength_um"], f["vias"], f["violations"])
         cells = [
             f"<td>{escape(r.name)}</td>", f"<td>{escape(str(r.metrics.get('design', '')))}</td>",
-            f"<td>{escape(str(r.metrics.get('policy', '')))}</td>", f"<td>{escape(_settings(r))}</td>",
+            f"<td>{escape(str(r.metrics.get('policy', '')))}</td>", f"<td>{_settings(r)}</td>",
             f'<td class="n">{f.get("iterations_run", len(r.metrics["iterations"]))}</td>',
             f'<td class="n">{f["wirelength_um"]:,.1f}</td>', f'<td class="n">{f["vias"]:,}</td>',
             f'<td class="n">{f["violations"]:,}</td>',

@@ -100,9 +100,10 @@ def _range_note(values: list[float], unit: str, scale: str) -> str:
     if not values:
         return "no values"
     lo, hi = min(values), max(values)
+    if scale == "symlog":
+        return f"values {_fmt(lo)} to {_fmt(hi)} {unit}; axis log10(1 + v)"
     spread = f" (spread {(hi - lo) / abs(hi) * 100:.3g}% of the largest)" if lo > 0 and lo != hi else ""
-    axis = "; axis log10(1 + value)" if scale == "symlog" else ""
-    return f"values {_fmt(lo)} to {_fmt(hi)} {unit}{spread}{axis}"
+    return f"values {_fmt(lo)} to {_fmt(hi)} {unit}{spread}"
 
 
 def line_chart(title: str, series: list[tuple[str, list[float]]], y_label: str, x_label: str = "iteration",
