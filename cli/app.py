@@ -23,6 +23,7 @@ from xroute.cli.commands import (
     info,
     make_region,
     make_testcase,
+    plot,
     plot_region,
     report,
     route,
@@ -109,6 +110,7 @@ app.command(name="make-testcase")(make_testcase.make_testcase)
 app.command(name="evaluate")(evaluate.evaluate)
 app.command(name="batch")(batch.batch)
 app.command(name="report")(report.report)
+app.command(name="plot")(plot.plot)
 app.command(name="plot-region")(plot_region.plot_region)
 app.command(name="global-route")(global_route.global_route)
 app.command(name="check")(check.check)

@@ -18,6 +18,7 @@ from typing import Any
 from xroute.cli.batch_config import Gates
 from xroute.config_schema import ConfigError
 from xroute.atomic_files import atomic_write_text
+from xroute.glossary import COST_NAME
 
 SUMMARY_FORMAT = 1
 BASELINE_FORMAT = 1
@@ -117,7 +118,9 @@ def markdown_table(doc: dict[str, Any]) -> str:
     lines = [f"# xroute batch: {doc['batch']}", "",
              f"{len(doc['jobs'])} jobs, {doc['counts']['failed']} failed, {doc['counts']['errors']} errors, "
              f"{doc['counts']['resumed']} resumed; wall time {doc['wall_seconds']:.1f} s", "",
-             "| job | testcase | policy | settings | WL (µm) | vias | DRVs | opens | route (s) | cost | gates |",
+             f"{COST_NAME}: the XRoute paper's weighted sum of WL (µm), vias and violations, with the batch "
+             "config's cost weights (0.5, 4, 500 by default); lower is better", "",
+             f"| job | testcase | policy | settings | WL (µm) | vias | DRVs | opens | route (s) | {COST_NAME} | gates |",
              "|---|---|---|---|---:|---:|---:|---:|---:|---:|---|"]
     for r in doc["jobs"]:
         if r["status"] == "done":
@@ -147,7 +150,7 @@ def junit_xml(doc: dict[str, Any]) -> str:
             ET.SubElement(case, "failure", message=r["gate_failures"][0], type="gate").text = "\n".join(r["gate_failures"])
         out = ET.SubElement(case, "system-out")
         out.text = (f"WL {r['wirelength_um']:.1f} um, {r['vias']} vias, {r['violations']} violations, "
-                    f"{r['open_nets']} opens, cost {r['cost']:.1f}, run dir {r['run_dir']}"
+                    f"{r['open_nets']} opens, {COST_NAME} {r['cost']:.1f}, run dir {r['run_dir']}"
                     + (" (resumed)" if r["resumed"] else ""))
     root = ET.Element("testsuites")
     root.append(suite)

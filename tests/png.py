@@ -62,3 +62,14 @@ def distinct_colours(path: Path, limit: int = 1000) -> int:
             if len(seen) >= limit:
                 return limit
     return len(seen)
+
+
+def colour_pixels(path: Path, rgb: tuple[int, int, int], tolerance: int = 12) -> int:
+    """How many pixels are within ``tolerance`` of ``rgb`` in every channel."""
+    _, _, bpp, rows = read_png(path)
+    n = 0
+    for row in rows:
+        for i in range(0, len(row), bpp):
+            if all(abs(row[i + c] - rgb[c]) <= tolerance for c in range(3)):
+                n += 1
+    return n

@@ -119,6 +119,7 @@ def test_ci_smoke_batch_passes_and_writes_junit_and_summaries(smoke, smoke_files
     assert [r["id"] for r in table] == [r["id"] for r in doc["jobs"]] and {r["gates"] for r in table} == {"pass"}
     md = (out / "summary.md").read_text()
     assert all(f"| {j} |" in md for j in SMOKE_JOBS)
+    assert "| route (s) | paper cost | gates |" in md and "paper cost: the XRoute paper's weighted sum" in md
     for job in SMOKE_JOBS:  # each job folder is complete, and names itself (not its temporary folder)
         folder = out / "jobs" / job
         design = job.split("__")[0]

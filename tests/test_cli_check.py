@@ -134,6 +134,12 @@ def test_check_a_testcase_with_our_routed_def(tmp_path: Path) -> None:
     assert (doc["opens"], doc["violations"], doc["vias"]) == (0, final["violations"], final["vias"])
     assert doc["wirelength_um"] == pytest.approx(final["wirelength_um"])
     assert doc["score"] is not None and doc["score"] > 0
+    # the table names the figure as every command does and says what it is (xroute.glossary)
+    shown = runner.invoke(app, ["check", "demo", "--def", str(tmp_path / "r" / "demo.routed.def"),
+                                "--out", str(tmp_path / "c2")])
+    assert shown.exit_code == 0, shown.output
+    assert "contest score = 0.5·WL + 2·vias + 1·out-of-guide WL" in shown.stdout
+    assert shown.stdout.rstrip().endswith(f"contest score {doc['score']:,.1f} -> {tmp_path / 'c2'}")
 
 
 def test_check_needs_a_def_and_one_source_of_lef(tmp_path: Path) -> None:

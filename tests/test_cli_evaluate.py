@@ -40,7 +40,7 @@ def test_evaluate_python_policy_against_heuristic(runner: CliRunner, testcase, t
         assert (out / sub / f"{SAMPLE4}.routed.def").is_file()
         assert (out / sub / f"{SAMPLE4}.metrics.json").is_file()
     # the table: one row per iteration, then final and cost
-    for row in [f"{i} │" for i in range(n)] + ["final │", "cost │"]:
+    for row in [f"{i} │" for i in range(n)] + ["final │", "paper cost │"]:
         assert row in result.stdout
     assert "% )" not in result.stdout and "s in the policy of" in result.stdout
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -12,8 +13,9 @@ import pytest
 from typer.testing import CliRunner
 
 from conftest import pick
-from png import distinct_colours
+from png import colour_pixels, distinct_colours
 from xroute.cli.app import app
+from xroute.cli.svg_chart import line_chart
 
 CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 
@@ -54,11 +56,23 @@ def test_report_html_is_self_contained(runner: CliRunner, two_runs: Path, tmp_pa
     assert html.count('<tr class="run">') == 2
     assert not re.search(r"""(src|href)\s*=\s*["']?(https?:)?//""", html)  # nothing fetched
     assert "<link" not in html and "<script src" not in html and "@import" not in html
-    assert html.count("<svg") == 3  # WL, vias, DRVs for the one design
+    typed = sum(any(any(it["violations_by_type"].values()) for it in json.loads(p.read_text())["iterations"])
+                for p in two_runs.rglob("*.metrics.json"))  # runs with a violations-by-type chart
+    assert html.count("<svg") == 4 + typed  # WL, vias, DRVs, time for the one design; by type per run
     assert f"{SAMPLE4}: trends over iterations" in html
     # the DRV columns by type that are non-zero in a run, and the paper's cost (ispd19_sample4's runs
     # end with 0 violations since the PRL-aware footprint: no column by type; they had CutShort before)
-    assert "<th>cost</th>" in html and "<th>CutShort</th>" not in html
+    assert "<th>paper cost</th>" in html and "<th>CutShort</th>" not in html
+    assert "paper cost = 0.5·WL(µm) + 4·vias + 500·violations" in html and "contest score = 0.5·WL + 2·vias" in html
+    assert re.search(r"made \d{4}-\d\d-\d\d \d\d:\d\d UTC by xroute \S+", html)
+    from xroute import __version__
+
+    written = re.findall(r"<td>\d{4}-\d\d-\d\d \d\d:\d\d UTC; xroute ([^<]+)</td>", html)
+    assert written == [__version__] * 2  # each run: when and by which xroute it was written
+    # relative links to each run's files, which resolve from the report's folder
+    links = re.findall(r'<a href="([^"]+)">(DEF|metrics|DRC)</a>', html)
+    assert len(links) == 6 and all(not h.startswith("/") and (out.parent / h).is_file() for h, _ in links)
+    assert "violations by iteration (exact counts)" in html and html.count('<tr class="drv">') == 2
 
 
 def test_report_renders_in_headless_chromium(runner: CliRunner, two_runs: Path, tmp_path: Path) -> None:
@@ -74,7 +88,7 @@ def test_report_renders_in_headless_chromium(runner: CliRunner, two_runs: Path, 
     rows = re.findall(r'<tr class="run">(.*?)</tr>', dom, flags=re.S)
     assert len(rows) == 2
     assert sorted(re.findall(r"<td>(heuristic|random)</td>", dom)) == ["heuristic"] * 2 + ["random"] * 2  # run, policy
-    assert dom.count("<polyline") == 6  # 3 charts x 2 runs
+    assert dom.count("<polyline") >= 8  # WL, vias, DRVs, time x 2 runs (and the by-type charts)
 
 
 def test_report_of_a_folder_without_runs_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
@@ -124,7 +138,9 @@ def test_report_mixes_routing_and_training_runs(runner: CliRunner, two_runs: Pat
     assert result.exit_code == 0, result.stderr
     html = out.read_text()
     assert html.count('<tr class="run">') == 2 and html.count('<tr class="training">') == 1
-    assert html.count("<svg") == 6  # 3 routing trends + 3 training charts
+    typed = sum(any(any(it["violations_by_type"].values()) for it in json.loads(p.read_text())["iterations"])
+                for p in two_runs.rglob("*.metrics.json"))
+    assert html.count("<svg") == 4 + typed + 3  # routing trends, by type, and 3 training charts
 
 
 def test_report_bad_training_log_is_one_line(runner: CliRunner, tmp_path: Path) -> None:
@@ -136,3 +152,77 @@ def test_report_bad_training_log_is_one_line(runner: CliRunner, tmp_path: Path) 
     assert result.exit_code == 2
     assert result.stderr.startswith(f"error: {log}:4: not a training log line written by xroute train")
     assert result.stderr.count("\n") == 1
+
+
+MARKED = "standin_sample4"  # a generated design whose violations fall 54 -> 26 -> 2 -> 0 at region size 5
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,2400"]
+
+
+@pytest.fixture
+def twin_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:
+    """Two runs of the same settings (same seed): every series of the one equals the other's."""
+    testcase(MARKED)
+    for name in ("first", "second"):
+        result = runner.invoke(app, ["route", MARKED, "--iterations", "4", "--region-size", "5", "--quiet",
+                                     "--out", str(tmp_path / "twins" / name)])
+        assert result.exit_code == 0, result.stderr
+    return tmp_path / "twins"
+
+
+def _chart(dom: str, title: str) -> str:
+    found = re.search(rf'<svg[^>]*aria-label="{re.escape(title)}".*?</svg>', dom, flags=re.S)
+    assert found, title
+    return found.group(0)
+
+
+def test_report_identical_runs_both_visible_in_chromium(runner: CliRunner, twin_runs: Path, tmp_path: Path) -> None:
+    browser = chromium()
+    out = tmp_path / "twins.html"
+    assert runner.invoke(app, ["report", str(twin_runs), "--out", str(out)]).exit_code == 0
+    dom = subprocess.run([browser, *FLAGS, "--dump-dom", out.as_uri()], check=True, capture_output=True, text=True,
+                         timeout=120).stdout
+    drvs = _chart(dom, "Violations by iteration")
+    first = [json.loads(p.read_text())["iterations"] for p in sorted(twin_runs.rglob("*.metrics.json"))]
+    counts = [it["violations"] for it in first[0]]
+    assert counts == [it["violations"] for it in first[1]] and counts[-1] == 0 and max(counts) >= 10
+    # the log axis: the ticks 0, 1 and 10 at three different heights
+    ticks = {label: float(y) for y, label in re.findall(r'y="([\d.]+)" text-anchor="end" class="tick">(\d+)<', drvs)}
+    assert {"0", "1", "10"} <= ticks.keys() and ticks["0"] > ticks["1"] > ticks["10"]
+    # both series drawn, the second with its marks shifted and named identical in the legend
+    groups = re.findall(r'<g class="series" data-series="(\d)">(.*?)</g>', drvs, flags=re.S)
+    assert [g for g, _ in groups] == ["0", "1"]
+    marks = [re.findall(r"<title>([^<]*)</title>", body) for _, body in groups]
+    assert len(marks[0]) == len(marks[1]) == len(counts)
+    assert "identical to first (heuristic): marks shifted 5 px" in drvs
+    shot = tmp_path / "twins.png"
+    subprocess.run([browser, *FLAGS, f"--screenshot={shot}", out.as_uri()], check=True, capture_output=True, timeout=120)
+    assert distinct_colours(shot) > 20
+    # both colours are on the page in the browser: the first series' blue and the second's red
+    assert colour_pixels(shot, (0x1F, 0x77, 0xB4)) > 50 and colour_pixels(shot, (0xD6, 0x27, 0x28)) > 50
+
+
+def test_single_iteration_runs_get_a_table_not_a_trend(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    testcase(MARKED)
+    result = runner.invoke(app, ["route", MARKED, "--iterations", "1", "--quiet", "--out", str(tmp_path / "one" / "a")])
+    assert result.exit_code == 0, result.stderr
+    out = tmp_path / "one.html"
+    assert runner.invoke(app, ["report", str(tmp_path / "one"), "--out", str(out)]).exit_code == 0
+    html = out.read_text()
+    assert f"{MARKED}: one iteration" in html and "trends over iterations" not in html
+    assert "<svg" not in html and html.count('<tr class="single">') == 1
+
+
+def test_line_chart_axes() -> None:
+    # symlog: 10, 1 and 0 are each drawn at their own height, with those tick labels
+    svg = line_chart("drvs", [("a", [10.0, 1.0, 0.0])], "count", scale="symlog")
+    ys = [float(v) for v in re.findall(r'<circle cx="[\d.]+" cy="([\d.]+)"', svg)][:3]  # the legend mark comes last
+    assert ys[0] < ys[1] < ys[2]
+    assert all(f'class="tick">{t}<' in svg for t in ("0", "1", "10"))
+    # a 0.4% change on a linear axis of at least 10% of the top: it is not drawn as the whole height
+    svg = line_chart("wl", [("a", [1000.0, 1004.0])], "µm", min_span=100.4, unit="µm")
+    ticks = [float(t.replace(",", "")) for t in re.findall(r'text-anchor="end" class="tick">([\d,.]+)<', svg)]
+    assert max(ticks) - min(ticks) >= 100
+    assert "values 1,000 to 1,004 µm (spread 0.398% of the largest)" in svg
+    # different dash patterns and marker shapes, not colour alone
+    svg = line_chart("x", [("a", [1.0, 2.0]), ("b", [2.0, 1.0])], "n")
+    assert 'stroke-dasharray="7 3"' in svg and "<rect x=" in svg and "<circle" in svg

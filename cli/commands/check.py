@@ -18,6 +18,7 @@ from rich.table import Table
 
 from xroute.cli.console import print_json, stdout_console
 from xroute.cli.options import JsonOption, QuietOption
+from xroute.glossary import SCORE_NAME, score_line
 
 EXIT_OPENS = 1
 
@@ -52,7 +53,7 @@ def _table(r) -> Table:  # noqa: ANN001 - a CheckResult
         table.add_row("out-of-guide wire (µm)", f"{r.out_of_guide_wirelength_um:,.2f}")
         table.add_row("out-of-guide vias", f"{r.out_of_guide_vias:,}")
     if r.score is not None:
-        table.add_row("contest score before violations", f"{r.score:,.1f}")
+        table.add_row(f"{SCORE_NAME} (before violations)", f"{r.score:,.1f}")
     return table
 
 
@@ -102,9 +103,11 @@ def check(
     else:
         if not quiet:
             stdout_console().print(_table(result))
+            if result.score is not None:
+                typer.echo(score_line())
         typer.echo(f"{result.design}: {result.opens} open, {result.violations} violations, "
                    f"WL {result.wirelength_um:,.1f} um, {result.vias:,} vias"
-                   + (f", score {result.score:,.1f}" if result.score is not None else "")
+                   + (f", {SCORE_NAME} {result.score:,.1f}" if result.score is not None else "")
                    + f" -> {paths['json'].parent}")
     if result.opens:
         for o in result.open_nets[:20]:

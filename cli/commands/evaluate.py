@@ -2,7 +2,7 @@
 
 Like Table 1 of the XRoute paper: per iteration the wirelength (µm), vias, design-rule
 violations (DRVs) and runtime (s) of both runs, then the final figures checked on each written
-DEF and the paper's cost (0.5 WL + 4 vias + 500 DRVs by default; weights from ``--config``).
+DEF and the paper cost (0.5·WL + 4·vias + 500·violations by default; weights from ``--config``; xroute.glossary).
 Writes ``evaluation.json`` and each run's routed DEF, metrics JSON and DRC report in its own
 subfolder of ``--out``. Exit status: 0, or 1 when either written DEF has open nets.
 """
@@ -30,14 +30,19 @@ from xroute.cli.options import (
 )
 from xroute.cli.progress import ProgressDisplay, output_mode
 
+from xroute.config import CostSection
+from xroute.glossary import COST_NAME, cost_line
+
 EVALUATION_FORMAT = 1
 
 
-def comparison_table(testcase: str, runs: dict[str, dict[str, Any]]) -> Table:
-    """Per iteration WL / vias / DRVs / runtime of each run side by side, then final and cost rows."""
+def comparison_table(testcase: str, runs: dict[str, dict[str, Any]], glossary: str = "") -> Table:
+    """Per iteration WL / vias / DRVs / runtime of each run side by side, then final and paper cost rows;
+    ``glossary``: the paper cost's line (xroute.glossary) under the table."""
     labels = list(runs)
     table = Table(title=f"{escape(testcase)}: " + " vs ".join(f"{k} ({escape(v['policy'])})" for k, v in runs.items()),
-                  title_justify="left", caption="final: checked on the written DEF; cost = the paper's weighted sum",
+                  title_justify="left", caption=escape("final: checked on the written DEF" +
+                                                       (f"; {glossary}" if glossary else "")),
                   caption_justify="left")
     table.add_column("iteration", justify="right")
     for label in labels:
@@ -55,7 +60,7 @@ def comparison_table(testcase: str, runs: dict[str, dict[str, Any]]) -> Table:
                 row += ["", "", "", ""]
         table.add_row(*row)
     final = ["final"]
-    cost = ["cost"]
+    cost = [COST_NAME]
     for label in labels:
         f = runs[label]["final"]
         final += [f"{f['wirelength_um']:,.1f}", f"{f['vias']:,}", f"{f['violations']:,}", f"{f['route_seconds']:.2f}"]
@@ -89,7 +94,7 @@ def evaluate(
 
     Routes TESTCASE with --policy and with --baseline (default heuristic) under the same settings and
     prints, per iteration, wirelength, vias, DRVs and runtime of both side by side, the final figures
-    checked on each written DEF, the paper's cost (0.5 WL + 4 vias + 500 DRVs) and the share of
+    checked on each written DEF, the paper cost (0.5·WL + 4·vias + 500·violations) and the share of
     routing time spent in a Python/ONNX policy. Writes <out>/evaluation.json and each run's outputs
     in <out>/policy-<name>/ and <out>/baseline-<name>/ (default out: ./out/evaluate/<testcase>).
 
@@ -170,14 +175,16 @@ def _print_evaluation(console: Any, mode: str, doc: dict[str, Any], policy: str,
     runs = doc["runs"]
     pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
     c = doc["comparison"]
-    verdict = (f"{doc['testcase']}: policy {policy} cost {pf['cost']:,.1f} vs baseline {baseline} {bf['cost']:,.1f} "
+    verdict = (f"{doc['testcase']}: policy {policy} {COST_NAME} {pf['cost']:,.1f} vs baseline {baseline} {bf['cost']:,.1f} "
                f"(delta {c['cost_delta']:+,.1f}; DRVs {pf['violations']} vs {bf['violations']}) -> {path}")
     if mode == "json":
         print_json(doc)
     elif mode == "quiet":
         typer.echo(verdict)
     else:
-        console.print(comparison_table(doc["testcase"], runs))
+        w = doc["cost_weights"]
+        weights = CostSection(wirelength_weight=w["wirelength_um"], via_weight=w["via"], drv_weight=w["violation"])
+        console.print(comparison_table(doc["testcase"], runs, cost_line(weights)))
         for label in runs:
             typer.echo(policy_share_line(label, runs[label]["final"]))
         typer.echo(verdict)

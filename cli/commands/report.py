@@ -20,10 +20,14 @@ def report(
 ) -> None:
     """Write a self-contained HTML report comparing routing runs.
 
-    One page (inline CSS and SVG, nothing fetched) with the summary table of the runs
-    (WL, vias, DRVs by type, opens, runtime, the paper's cost with the weights of --config) and, per
-    design, trend charts of WL / vias / DRVs over the iterations, one line per run. A training run's
-    metrics.jsonl (xroute train) gets the training dashboard: reward, cost and violations per episode.
+    One page (inline CSS and SVG, nothing fetched): when and by which xroute it was made, what the
+    paper cost (weights of --config) and the contest score are, the table of the runs (settings,
+    WL, vias, DRVs by type, opens, runtime, paper cost, relative links to each run's routed DEF,
+    metrics JSON and DRC report) and, per design, WL / vias / time per iteration, violations on a
+    log axis with their exact counts, and violations by type per run; every series in its own
+    colour, dash and marker, identical runs both visible. Runs of one iteration get a table. A
+    training run's metrics.jsonl (xroute train) gets the training dashboard: reward, cost and
+    violations per episode.
 
     Example: xroute report out/evaluate/ispd18_test1 runs/ci-smoke --out report.html
     Example: xroute report runs/train-ppo-ispd18_test1 --out training.html
@@ -36,6 +40,6 @@ def report(
     runs, training = find_all_runs(run_dirs)
     if out.parent != Path(""):
         out.parent.mkdir(parents=True, exist_ok=True)
-    atomic_write_text(out, render(runs, cfg.cost, title, training))
+    atomic_write_text(out, render(runs, cfg.cost, title, training, out.parent))
     extra = f", {len(training)} training run(s)" if training else ""
     typer.echo(f"report: {len(runs)} run(s){extra} -> {out}")

@@ -103,6 +103,12 @@ class RouteOutputs:
         return int(self.final["open_nets"])
 
 
+def _version() -> str:
+    from xroute import __version__
+
+    return __version__
+
+
 def output_paths(out_dir: Path, design_name: str) -> tuple[Path, Path, Path]:
     """(routed DEF, metrics JSON, DRC report) paths for a design in ``out_dir``: the stem is the
     design name made safe (:func:`xroute.safe_paths.safe_stem`), each path checked to lie in ``out_dir``."""
@@ -158,6 +164,8 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
     opens = conn["opens"]
     metrics: dict[str, Any] = {
         "format": METRICS_FORMAT,
+        "xroute_version": _version(),
+        "written_utc": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "design": design.name,
         "testcase": design.testcase,
         "inputs": {"lef": design.lef_paths, "def": design.def_path, "guide": design.guide_path},

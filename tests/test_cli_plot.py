@@ -1,0 +1,68 @@
+"""``xroute plot``: a picture of a whole routed design (markers by type, wire per GCell, out-of-guide wire)."""
+
+from __future__ import annotations
+
+import re
+from collections import Counter
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from png import distinct_colours, read_png
+from test_cli_plot_region import need_matplotlib
+from xroute.cli.app import app
+from xroute.cli.plot_data import read_drc_report
+from xroute.cli.plot_design import _outside_guides, _uncovered
+
+MARKED = "standin_sample4"  # a generated design that ends its second iteration with markers
+
+
+@pytest.fixture
+def marked(runner: CliRunner, testcase, tmp_path: Path) -> Path:
+    testcase(MARKED)
+    out = tmp_path / "marked"
+    assert runner.invoke(app, ["route", MARKED, "--iterations", "2", "--quiet", "--out", str(out)]).exit_code == 0
+    return out
+
+
+def test_plot_shows_the_violations_by_type(runner: CliRunner, marked: Path, tmp_path: Path) -> None:
+    need_matplotlib()
+    counts = Counter(m.kind for m in read_drc_report(marked / f"{MARKED}.drc.rpt"))
+    assert counts, "the stand-in is expected to end its second iteration with markers"
+    svg = tmp_path / "d.svg"
+    result = runner.invoke(app, ["plot", str(marked), "--out", str(svg)])
+    assert result.exit_code == 0, result.stderr
+    total = sum(counts.values())
+    assert result.stdout == f"plot: {MARKED}: {total:,} violations, 0.0 um out of guide -> {svg}\n"
+    text = svg.read_text()
+    assert f"{total:,} violations; out-of-guide wire 0.0 µm" in text
+    for kind, n in counts.items():
+        assert f"{kind} ({n:,})" in text  # the legend of the points
+        assert re.search(rf">\s*{n:,}\s*<", text)  # the count written on its bar
+    # one point per marker: matplotlib writes each scatter point as a <use> of the marker's path
+    assert text.count("<use ") >= total
+    png = tmp_path / "d.png"
+    assert runner.invoke(app, ["plot", str(marked), "--out", str(png)]).exit_code == 0
+    width, height, _, _ = read_png(png)
+    assert width > 1000 and height > 500 and distinct_colours(png) > 50
+
+
+def test_out_of_guide_pieces() -> None:
+    # a horizontal wire at y=5 from x=0 to 100; guides cover 10..40 and 30..60 at that y, and 70..90 at y=50
+    assert _uncovered(0, 100, [(10, 40), (30, 60)]) == [(0, 10), (60, 100)]
+    assert _outside_guides((100, 5, 0, 5), [(10, 0, 40, 10), (30, 0, 60, 10), (70, 45, 90, 55)]) == [
+        (0, 5, 10, 5), (60, 5, 100, 5)]
+    # a vertical wire inside a guide: nothing outside; on the guide's edge counts as inside (closed boxes)
+    assert _outside_guides((10, 0, 10, 50), [(0, 0, 10, 50)]) == []
+    assert _outside_guides((11, 0, 11, 50), [(0, 0, 10, 50)]) == [(11, 0, 11, 50)]
+
+
+def test_plot_errors_are_one_line(runner: CliRunner, marked: Path, tmp_path: Path) -> None:
+    result = runner.invoke(app, ["plot", str(tmp_path / "nowhere"), "--out", str(tmp_path / "a.png")])
+    assert result.exit_code == 2 and result.stderr == f"error: {tmp_path / 'nowhere'}: not a folder: give a route output folder\n"
+    result = runner.invoke(app, ["plot", str(tmp_path), "--out", str(tmp_path / "a.png")])
+    assert result.exit_code == 2 and "no *.metrics.json here" in result.stderr and result.stderr.count("\n") == 1
+    result = runner.invoke(app, ["plot", str(marked), "--out", str(tmp_path / "a.pdf")])
+    assert result.exit_code == 2 and result.stderr == "error: --out must be a .png or .svg file, got 'a.pdf'\n"
+    assert not list(tmp_path.glob("a.*"))
