@@ -2,7 +2,7 @@
 
 The region is ``--size`` x ``--size`` GCells from the GCell ``--location X,Y`` (its lower-left),
 or a ``--box xlo,ylo,xhi,yhi`` in DBU, or one of the XRoute paper's static regions
-(``--paper-region 1``..``3`` on ispd18_test1). The folder (``--out``) gets region.lef, region.def,
+(``--paper-region 1``..``10``). The folder (``--out``) gets region.lef, region.def,
 region.guide and region.yaml (see :mod:`xroute.testcases.regions`), written atomically; the
 ``xroute/StaticRegion-v0`` environment loads it.
 """
