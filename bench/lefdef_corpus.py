@@ -51,6 +51,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 OUTCOMES = ("read", "refused-valid", "refused-invalid", "traceback", "crash", "hang")
@@ -239,7 +240,6 @@ def run_pair(root: Path, pair: Pair, timeout: float) -> Result:
     for lef in pair.lefs:
         cmd += ["--lef", str(root / lef)]
     cmd += ["--def", str(root / pair.def_path)]
-    import time
     start = time.monotonic()
     try:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
