@@ -313,6 +313,10 @@ void DefParser::readDieArea() {
   }
   Rect box = Rect::fromCorners(pts[0], pts[1]);
   for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  if (box == Rect{0, 0, 0, 0}) {  // "( 0 0 ) ( 0 0 )": what OpenROAD writes for an unset die; as if absent
+    warn(line, "DIEAREA ( 0 0 ) ( 0 0 ): read as no DIEAREA");
+    return;
+  }
   if (box.xhi <= box.xlo || box.yhi <= box.ylo) {
     lex_.fail(line, "DIEAREA has zero " + std::string(box.xhi <= box.xlo ? "width" : "height") + " (" +
                         std::to_string(box.xlo) + " " + std::to_string(box.ylo) + " to " + std::to_string(box.xhi) +
