@@ -170,6 +170,27 @@ void DefParser::readSpecialNet() {
   design_.specialNets.push_back(std::move(net));
 }
 
+// A special via at `at`, or "DO nx BY ny STEP dx dy": an array of them from `at`.
+void DefParser::readSpecialViaArray(SpecialNet& net, ViaRef ref, Point at, const std::string& shape) {
+  int numX = 1, numY = 1;
+  Dbu stepX = 0, stepY = 0;
+  if (lex_.accept("DO")) {
+    const Token nt = lex_.peek();
+    const int64_t nx = lex_.integer();
+    lex_.expect("BY");
+    const int64_t ny = lex_.integer();
+    if (nx < 1 || ny < 1 || nx * ny > 1000000) lex_.failAt(nt, "bad via array size");
+    numX = static_cast<int>(nx);
+    numY = static_cast<int>(ny);
+    lex_.expect("STEP");
+    stepX = lex_.dbu();
+    stepY = lex_.dbu();
+  }
+  for (int i = 0; i < numX; ++i) {
+    for (int j = 0; j < numY; ++j) net.vias.push_back({ref, Point{at.x + i * stepX, at.y + j * stepY}, shape});
+  }
+}
+
 void DefParser::readSpecialWiring(SpecialNet& net) {
   if (peekIs("+")) return;  // "+ ROUTED + RECT ...": the shape is a net-level option
   while (true) {
@@ -229,25 +250,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
       } else {
         const Token viaTok = lex_.next();
         const ViaRef ref = readPathVia(viaTok, cur.havePoint, "SPECIALNETS");
-        int numX = 1, numY = 1;
-        Dbu stepX = 0, stepY = 0;
-        if (lex_.accept("DO")) {
-          const Token nt = lex_.peek();
-          const int64_t nx = lex_.integer();
-          lex_.expect("BY");
-          const int64_t ny = lex_.integer();
-          if (nx < 1 || ny < 1 || nx * ny > 1000000) lex_.failAt(nt, "bad via array size");
-          numX = static_cast<int>(nx);
-          numY = static_cast<int>(ny);
-          lex_.expect("STEP");
-          stepX = lex_.dbu();
-          stepY = lex_.dbu();
-        }
-        for (int i = 0; i < numX; ++i) {
-          for (int j = 0; j < numY; ++j) {
-            net.vias.push_back({ref, Point{cur.at.x + i * stepX, cur.at.y + j * stepY}, shape});
-          }
-        }
+        readSpecialViaArray(net, ref, cur.at, shape);
         cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         cur.emitted = true;
       }

@@ -59,7 +59,8 @@ class DefParser {
   void readVias();
   void readVia();
   ViaShape readViaShape(const Token& kw);
-  void readViaLayers(DefVia& v);  // + LAYERS: bottom, cut, top (the cut in any place)
+  void readViaLayers(DefVia& v);
+  std::string readViaPattern();   // + PATTERN, quotes dropped  // + LAYERS: bottom, cut, top (the cut in any place)
   void finishVia(DefVia& v, int ruleLine);
 
   // def_nets.cpp
@@ -71,6 +72,7 @@ class DefParser {
   // including) the next net-level '+' or ';'.
   void readRegularWiring(Net& net);
   void readSpecialWiring(SpecialNet& net);
+  void readSpecialViaArray(SpecialNet& net, ViaRef ref, Point at, const std::string& shape);
   // A via name in a routing path (after its point), with an optional
   // orientation (only N is kept; others are counted under <section>.VIA.ORIENT).
   ViaRef readPathVia(const Token& viaTok, bool havePoint, std::string_view section);

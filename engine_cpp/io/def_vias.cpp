@@ -189,7 +189,7 @@ void DefParser::readVia() {
       v.topOffX = lex_.dbu();
       v.topOffY = lex_.dbu();
     } else if (k == "PATTERN") {
-      v.pattern = plainWord("a cut pattern");
+      v.pattern = readViaPattern();
     } else if (k.empty() || k == ";") {
       unexpected(kw, "a via option");
     } else {
@@ -203,6 +203,16 @@ void DefParser::readVia() {
   }
   finishVia(v, ruleLine);
   design_.vias.push_back(std::move(v));
+}
+
+// "+ PATTERN 2_F0_2_F" as written; some routers quote it ("...", or '...' as one word): the
+// quotes are dropped.
+std::string DefParser::readViaPattern() {
+  const Token t = lex_.next();
+  std::string_view p = t.text;
+  if (!t.quoted && p.size() >= 2 && p.front() == '\'' && p.back() == '\'') p = p.substr(1, p.size() - 2);
+  if (p.empty() || is(t, ";") || is(t, "+")) unexpected(t, "a cut pattern");
+  return std::string(p);
 }
 
 // "+ LAYERS bottom cut top". Some writers put the cut last ("metal4 metal5 via4", OpenROAD's dpl
