@@ -277,3 +277,31 @@ def test_def_without_diearea_takes_the_placed_box(tmp_path):
     db = load(tmp_path, lef, design(body).replace("DIEAREA ( 0 0 ) ( 20000 20000 ) ;\n", ""))
     assert db.die_area == (1000, 2000, 1400, 3000)
     assert "no DIEAREA: the box of the rows, placed components and IO pins stands in" in db.warnings()[0]
+
+
+def test_guides_are_rescaled_with_their_def(tmp_path):
+    body = "NETS 1 ;\n- n ;\nEND NETS\n"
+    lef = write_lef(tmp_path, TECH)
+    def_path = tmp_path / "t.def"
+    def_path.write_text(design(body, 500))
+    guide = tmp_path / "t.guide"
+    guide.write_text("n\n(\n0 0 1000 500 M1\n)\n")
+    db = _engine.load([lef], str(def_path), str(guide))
+    assert list(db.guide_rects[0]) == [0, 0, 2000, 1000]
+
+
+def test_check_judges_nondefaultrule_width_and_spacing(tmp_path):
+    # Two parallel M1 wires 400 DBU apart (centre to centre). Default width 60 and spacing 70:
+    # legal. Under the rule (width 200, spacing 300) the gap is 200 < 300: one spacing marker.
+    def nets(rule: str) -> str:
+        head = ("NONDEFAULTRULES 1 ;\n- wide + LAYER M1 WIDTH 200 SPACING 300 ;\nEND NONDEFAULTRULES\n"
+                if rule else "")
+        return head + ("NETS 2 ;\n"
+                       f"- a + ROUTED M1 ( 1000 1000 ) ( 5000 1000 ){rule} ;\n"
+                       "- b + ROUTED M1 ( 1000 1400 ) ( 5000 1400 ) ;\nEND NETS\n")
+
+    plain = load(tmp_path, TECH, design(nets("")))
+    assert [m for m in plain.check_drc() if m["type"] == "MetalSpacing"] == []
+    wide = load(tmp_path, TECH, design(nets(" + NONDEFAULTRULE wide")))
+    spacing = [m for m in wide.check_drc() if m["type"] == "MetalSpacing"]
+    assert len(spacing) == 1 and spacing[0]["layer"] == "M1"

@@ -192,7 +192,10 @@ struct PlacedShape {
 struct Design {
   std::string name;
   std::string version;
-  int dbuPerMicron = 0;      // DEF UNITS DISTANCE MICRONS
+  int dbuPerMicron = 0;      // DEF UNITS DISTANCE MICRONS (the LEF's when the DEF was rescaled)
+  // A DEF whose UNITS differ from the LEF's: its coordinates (and the guides') were multiplied by
+  // defScaleMul and divided by defScaleDiv to reach the LEF's units.
+  int defScaleMul = 1, defScaleDiv = 1;
   std::string busBitChars = "[]";
   std::string dividerChar = "/";
   Rect dieArea;              // DBU, bounding box of DIEAREA

@@ -294,6 +294,8 @@ void DefParser::readUnits() {
       lex_.failAt(t, both + " have no integer ratio: the coordinates cannot be rescaled exactly");
     }
     warn(t.line, both + " differ: DEF coordinates rescaled to the LEF's units");
+    design_.defScaleMul = lex_.scaleMul();
+    design_.defScaleDiv = lex_.scaleDiv();
     design_.dbuPerMicron = lef;
   }
   lex_.expect(";");
