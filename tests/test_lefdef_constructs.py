@@ -305,3 +305,10 @@ def test_check_judges_nondefaultrule_width_and_spacing(tmp_path):
     wide = load(tmp_path, TECH, design(nets(" + NONDEFAULTRULE wide")))
     spacing = [m for m in wide.check_drc() if m["type"] == "MetalSpacing"]
     assert len(spacing) == 1 and spacing[0]["layer"] == "M1"
+
+
+def test_def_without_diearea_and_nothing_placed_keeps_no_die(tmp_path):
+    body = "PINS 1 ;\n- p + NET n + LAYER M1 ( 0 0 ) ( 10 10 ) + PLACED ( 500 500 ) N ;\nEND PINS\n"
+    db = load(tmp_path, TECH, design(body).replace("DIEAREA ( 0 0 ) ( 20000 20000 ) ;\n", ""))
+    assert db.die_area == (0, 0, 0, 0)  # one placed point has no area: no box stands in
+    assert not any("no DIEAREA" in w for w in db.warnings())

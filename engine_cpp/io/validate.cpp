@@ -64,8 +64,9 @@ void validateDesign(const Tech& tech, Design& design, const std::string& defPath
   if (design.dieLine <= 0) {
     // DIEAREA is optional (OpenROAD's dft/rmp/rsz tests lack it): the box of what is placed
     // stands in, with a warning; a design with nothing placed keeps no die.
-    if (!placedBox(tech, design, design.dieArea)) return;
-    const Rect& b = design.dieArea;
+    Rect b;
+    if (!placedBox(tech, design, b)) return;
+    design.dieArea = b;
     design.diePolygon = {{b.xlo, b.ylo}, {b.xhi, b.yhi}};
     design.dieLine = design.endLine;
     warn(design, defPath, design.endLine,
