@@ -193,17 +193,24 @@ def test_defines_are_skipped_with_a_warning(tmp_path):
 def test_macro_site_and_pin_defined_twice_warn_and_keep_the_first(tmp_path):
     inv = macro("INV", 0.4, 1.0, pin("a", "INPUT", [("M1", (0, 0, 0.1, 0.1))]),
                 pin("a", "INPUT", [("M1", (0.2, 0, 0.3, 0.1))]))
-    other = macro("INV", 0.6, 1.0)
-    db = _engine.load_lef([write_lef(tmp_path, TECH.replace("END LIBRARY\n", inv + inv + other + site("core", 0.2, 1.0)
+    db = _engine.load_lef([write_lef(tmp_path, TECH.replace("END LIBRARY\n", inv + inv + site("core", 0.2, 1.0)
                                                             + "END LIBRARY\n"))])
     warnings = db.warnings()
     assert any("PIN 'a' defined again in MACRO 'INV'" in w for w in warnings)
-    assert any("MACRO 'INV' defined again, identically" in w for w in warnings)
-    assert any("MACRO 'INV' defined again, differently: the first definition is kept" in w for w in warnings)
+    assert any("MACRO 'INV' defined again, identically: read once" in w for w in warnings)
     assert any("SITE 'core' defined again, identically" in w for w in warnings)
     m = db.macro("INV")
     assert m["size"] == (400, 1000)
     assert list(m["pins"]) == ["a"] and len(m["pins"]["a"]["shapes"]) == 2  # both ports of 'a'
+
+
+def test_macro_defined_again_differently_is_an_error(tmp_path):
+    lef = TECH.replace("END LIBRARY\n", macro("INV", 0.4, 1.0) + macro("INV", 0.6, 1.0) + "END LIBRARY\n")
+    path = write_lef(tmp_path, lef)
+    with pytest.raises(InputError) as info:
+        _engine.load_lef([path])
+    assert info.value.line == lef.split("\n").index("MACRO INV", lef.split("\n").index("MACRO INV") + 1) + 1
+    assert "MACRO 'INV' defined again with different pins, geometry or size" in info.value.message
 
 
 # ------------------------------------------------------------------ DEF constructs

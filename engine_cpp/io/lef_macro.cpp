@@ -108,11 +108,13 @@ void LefParser::parseMacro(const Token& opener) {
   for (MacroPin& p : macro.pins) shift(p.shapes, macro.origin);
   shift(macro.obstructions, macro.origin);
   if (earlier.valid()) {
-    // OpenROAD and the Si2 parser warn and keep the first definition (gf180's IO library defines
-    // some of its cells twice).
-    const bool same = sameMacro(tech_.macros[*earlier], macro);
-    warn(n.line, "MACRO " + quoteToken(n.text) + " defined again" + (same ? ", identically" : ", differently") +
-                     ": the first definition is kept");
+    // A repeated identical MACRO (Nangate45.lef then Nangate45_stdcell.lef in OpenROAD's tests) is
+    // read once, with a warning. Two different ones conflict: OpenROAD would merge them into one
+    // master (gf180's IO LEF); a router cannot know which pins are meant, so that is an error.
+    if (!sameMacro(tech_.macros[*earlier], macro)) {
+      failAt(n, "MACRO " + quoteToken(n.text) + " defined again with different pins, geometry or size: conflicting definitions");
+    }
+    warn(n.line, "MACRO " + quoteToken(n.text) + " defined again, identically: read once");
     return;
   }
   tech_.macroIndex.emplace(macro.name, MacroId(static_cast<int32_t>(tech_.macros.size())));
