@@ -319,3 +319,8 @@ def test_def_without_diearea_and_nothing_placed_keeps_no_die(tmp_path):
     db = load(tmp_path, TECH, design(body).replace("DIEAREA ( 0 0 ) ( 20000 20000 ) ;\n", ""))
     assert db.die_area == (0, 0, 0, 0)  # one placed point has no area: no box stands in
     assert not any("no DIEAREA" in w for w in db.warnings())
+
+
+def test_unknown_def_statement_is_quoted_as_written(tmp_path):
+    e = load_error(tmp_path, TECH, design("Bogus 1 ;\n"))
+    assert e.line == 5 and "expected a DEF statement, found 'Bogus'" in e.message

@@ -208,8 +208,9 @@ void DefParser::parse() {
   while (!lex_.atEnd()) {
     const Token t = lex_.next();
     if (t.quoted) unexpected(t, "a DEF statement");
-    lex_.upcase(t);  // keywords are case-insensitive
-    const std::string_view k = t.text;
+    std::string upper(t.text);  // keywords are case-insensitive; an error still quotes what was written
+    for (char& c : upper) c = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+    const std::string_view k = upper;
     if (k == "END") {
       design_.endLine = t.line;
       lex_.expect("DESIGN");
