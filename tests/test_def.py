@@ -408,9 +408,9 @@ def test_skipped_statements_counted(tmp_path: Path) -> None:
     skipped = d.skipped_statements()
     for key, count in {
         "NAMESCASESENSITIVE": 1, "TECHNOLOGY": 1, "HISTORY": 1, "PROPERTYDEFINITIONS": 1, "ROW.PROPERTY": 1,
-        "NONDEFAULTRULES": 1, "REGIONS": 1, "COMPONENTS.SOURCE": 1, "COMPONENTS.WEIGHT": 1,
+        "REGIONS": 1, "COMPONENTS.SOURCE": 1, "COMPONENTS.WEIGHT": 1,
         "COMPONENTS.PROPERTY": 1, "PINS.SPECIAL": 1, "BLOCKAGES.PUSHDOWN": 1, "BLOCKAGES.SPACING": 1,
-        "NETS.NONDEFAULTRULE": 1, "NETS.WEIGHT": 1, "NETS.MUSTJOIN": 1, "NETS.SYNTHESIZED": 1, "NETS.SOURCE": 1,
+        "NETS.WEIGHT": 1, "NETS.MUSTJOIN": 1, "NETS.SYNTHESIZED": 1, "NETS.SOURCE": 1,
         "NETS.PROPERTY": 1, "GROUPS": 1, "BEGINEXT": 1,
     }.items():
         assert skipped.get(key) == count, key

@@ -120,20 +120,6 @@ BAD_INPUTS = {
           TYPE ROUTING ;
         END M1
         """, "duplicate LAYER 'M1'"),
-    "duplicate macro": (True, """
-        MACRO X
-        END X
-        MACRO X   # <-- here
-        END X
-        """, "duplicate MACRO 'X'"),
-    "duplicate pin": (True, """
-        MACRO X
-          PIN A
-          END A
-          PIN A   # <-- here
-          END A
-        END X
-        """, "duplicate PIN 'A' in MACRO 'X'"),
     "RECT before LAYER": (True, """
         MACRO X
           OBS
@@ -171,11 +157,11 @@ BAD_INPUTS = {
         """, "expected a number, found 'many'"),
     "length before UNITS": (False, """
         VERSION 5.8 ;
-        MANUFACTURINGGRID 0.005 ;   # <-- here
+        MANUFACTURINGGRID 0.005 ;
         UNITS
-          DATABASE MICRONS 1000 ;
+          DATABASE MICRONS 2000 ;   # <-- here
         END UNITS
-        """, "length '0.005' before UNITS DATABASE MICRONS"),
+        """, "UNITS DATABASE MICRONS 2000 after a length at line 2, read with the default of 1000"),
     "short spacing table row": (True, """
         LAYER M3
           TYPE ROUTING ;
@@ -217,10 +203,11 @@ def test_bad_input_names_the_line(tmp_path, case):
 def test_units_differing_from_an_earlier_file(tmp_path):
     tech = write_lef(tmp_path, TECH, "tech.lef")
     cells = write_lef(tmp_path, "UNITS\n  DATABASE MICRONS 2000 ;\nEND UNITS\n", "cells.lef")
-    with pytest.raises(InputError) as info:
-        _engine.load_lef([tech, cells])
-    assert (info.value.path, info.value.line) == (cells, 2)
-    assert "UNITS DATABASE MICRONS 2000 differs from 1000 read before" in info.value.message
+    # LEF lengths are microns whatever a file's UNITS: OpenROAD keeps the first units and warns.
+    db = _engine.load_lef([tech, cells])
+    assert db.lef_dbu_per_micron == 1000
+    assert db.warnings() == [f"{cells}:2: UNITS DATABASE MICRONS 2000 differs from 1000 read before: "
+                             "lengths are converted with 1000"]
     same = write_lef(tmp_path, "UNITS\n  DATABASE MICRONS 1000 ;\nEND UNITS\n", "same.lef")
     assert _engine.load_lef([tech, same]).lef_dbu_per_micron == 1000
 

@@ -156,7 +156,6 @@ def test_unknown_and_unmodelled_statements_are_counted(tmp_path):
         "LAYER.LEF58_CORNERSPACING.CORNERONLY": 1,
         "LAYER.SPACING.LAYER": 1,
         "LAYER.ENCLOSURE": 1,
-        "LEF.NONDEFAULTRULE": 1,
         "VIARULE.DIRECTION": 1,
         "VIARULE.VIA": 1,
     }

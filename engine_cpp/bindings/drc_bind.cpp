@@ -89,7 +89,9 @@ void bindDrc(nb::module_& m) {
         std::vector<Marker> markers;
         {
           nb::gil_scoped_release release;
-          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design), makeOptions(skip_fixed_pairs, window));
+          DrcOptions options = makeOptions(skip_fixed_pairs, window);
+          options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);  // the nets' NONDEFAULTRULE spacing
+          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design), std::move(options));
         }
         return markerList(db.tech, markers);
       },

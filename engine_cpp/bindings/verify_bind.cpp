@@ -131,6 +131,7 @@ void bindCheckRouting(DatabaseClass& cls) {
           figures = computeGuideTrackFigures(db.tech, db.design);
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
+          options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);
           std::vector<std::string> names;
           markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design, &names), options);
           if (!report_path.empty()) writeDrcReport(report_path, db.tech, markers, names);  // the same markers

@@ -147,6 +147,7 @@ struct NetRouting {
 struct Net {
   std::string name;
   std::string use;   // SIGNAL, CLOCK, ... or empty
+  int ndr = -1;      // + NONDEFAULTRULE: index into Design::ndrs (-1 = the default rule)
   NetRouting routing;
 };
 
@@ -191,7 +192,10 @@ struct PlacedShape {
 struct Design {
   std::string name;
   std::string version;
-  int dbuPerMicron = 0;      // DEF UNITS DISTANCE MICRONS
+  int dbuPerMicron = 0;      // DEF UNITS DISTANCE MICRONS (the LEF's when the DEF was rescaled)
+  // A DEF whose UNITS differ from the LEF's: its coordinates (and the guides') were multiplied by
+  // defScaleMul and divided by defScaleDiv to reach the LEF's units.
+  int defScaleMul = 1, defScaleDiv = 1;
   std::string busBitChars = "[]";
   std::string dividerChar = "/";
   Rect dieArea;              // DBU, bounding box of DIEAREA
@@ -206,6 +210,8 @@ struct Design {
   std::vector<Blockage> blockages;
   std::vector<SpecialNet> specialNets;
   std::vector<Net> nets;
+  // DEF NONDEFAULTRULES, then the LEF rules that nets name (copied from Tech::ndrs when named).
+  std::vector<NonDefaultRule> ndrs;
 
   // Net -> pins, flat: net i owns pinRefs[netPinStart[i] .. netPinStart[i+1]).
   std::vector<int32_t> netPinStart;  // size nets.size() + 1
@@ -221,6 +227,7 @@ struct Design {
   StringMap<NetId> netIndex;
   StringMap<IoPinId> ioPinIndex;
   StringMap<DefViaId> viaIndex;
+  StringMap<int> ndrIndex;  // name -> index into ndrs
 
   // Sections and statements the reader skipped, by keyword.
   std::vector<std::pair<std::string, int>> skippedStatements;

@@ -173,6 +173,31 @@ struct Macro {
   StringMap<int> pinIndex;  // pin name -> index into pins
 };
 
+// One layer of a NONDEFAULTRULE (LEF "LAYER l WIDTH w ; [SPACING s ;] [WIREEXTENSION e ;] END l",
+// DEF "+ LAYER l WIDTH w [SPACING s] [WIREEXT e]").
+struct NdrLayer {
+  LayerId layer;
+  Dbu width = 0;    // DBU, wire width on this layer for nets of the rule
+  Dbu spacing = 0;  // DBU, minimum spacing (0 = the layer's own rules)
+  Dbu wireExt = 0;  // DBU (0 = half the width)
+};
+
+// A non-default routing rule, from a LEF NONDEFAULTRULE block or a DEF NONDEFAULTRULES entry.
+struct NonDefaultRule {
+  std::string name;
+  bool hardSpacing = false;
+  std::vector<NdrLayer> layers;
+  std::vector<std::string> vias;      // VIA / USEVIA names (DEF + VIA, + VIARULE names in viaRules)
+  std::vector<std::string> viaRules;  // USEVIARULE names
+  // The rule's layer entry for `layer`, or nullptr (the layer's defaults apply).
+  const NdrLayer* find(LayerId layer) const {
+    for (const NdrLayer& l : layers) {
+      if (l.layer == layer) return &l;
+    }
+    return nullptr;
+  }
+};
+
 struct Tech {
   int dbuPerMicron = 0;        // LEF UNITS DATABASE MICRONS (0 until read)
   Dbu manufacturingGrid = 0;   // DBU (0 = none given)
@@ -188,12 +213,14 @@ struct Tech {
   std::vector<ViaRule> viaRules;
   std::vector<Site> sites;
   std::vector<Macro> macros;
+  std::vector<NonDefaultRule> ndrs;  // LEF NONDEFAULTRULE blocks
 
   StringMap<LayerId> layerIndex;
   StringMap<ViaId> viaIndex;
   StringMap<ViaRuleId> viaRuleIndex;
   StringMap<SiteId> siteIndex;
   StringMap<MacroId> macroIndex;
+  StringMap<int> ndrIndex;  // name -> index into ndrs
 
   // Statements the reader did not understand and skipped, by keyword.
   std::vector<std::pair<std::string, int>> skippedStatements;

@@ -40,6 +40,9 @@ struct DrcOptions {
   std::optional<Rect> window;     // DBU: report only markers whose box intersects it
   bool obsAsMinWidth = true;      // LEF USEMINSPACING OBS ON (the LEF default)
   bool mergeMarkers = true;       // merge same-kind markers whose boxes touch
+  // NONDEFAULTRULE spacing: ndrSpacing[layer id][net id], DBU, the least gap a net's metal needs
+  // on that layer besides the layer's own rules (0 = none); empty when no net has a rule.
+  std::vector<std::vector<Dbu>> ndrSpacing;
 };
 
 // Markers sorted by (type, layer, box, net1, net2); independent of input order.
@@ -50,6 +53,10 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
 // no net. Obstructions (cell OBS, DEF layer blockages) have net -1.
 // netNames, when given, receives a name per net id: the net's name, then
 // "comp/pin", "*/pin" (POWER/GROUND pins sharing an id) or "PIN/name" (IO pin).
+// DrcOptions::ndrSpacing for a design: the SPACING of each net's NONDEFAULTRULE, by layer and
+// net id (regular nets only); empty when no net names a rule with a spacing.
+std::vector<std::vector<Dbu>> ndrSpacingByNet(const Tech& tech, const Design& design);
+
 std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design,
                                           std::vector<std::string>* netNames = nullptr);
 

@@ -49,6 +49,15 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
   for (Dbu s : l.prlTable.spacing) maxSpace = std::max(maxSpace, s);
   for (const SpacingRule& r : l.spacings)
     if (!r.sameNet) maxSpace = std::max(maxSpace, r.space);
+  // A NONDEFAULTRULE's SPACING: the gap its net's metal needs on this layer, whichever net is beside it.
+  const std::vector<Dbu>* ndr = size_t(*ls.layer) < options.ndrSpacing.size() && !options.ndrSpacing[*ls.layer].empty()
+                                    ? &options.ndrSpacing[*ls.layer]
+                                    : nullptr;
+  auto ndrOf = [&](int32_t i) {
+    const int32_t n = ls.nets[i];
+    return ndr != nullptr && n >= 0 && size_t(n) < ndr->size() ? (*ndr)[n] : Dbu(0);
+  };
+  if (ndr != nullptr) maxSpace = std::max(maxSpace, *std::max_element(ndr->begin(), ndr->end()));
   if (maxSpace <= 0) return;
   const Dbu minWidth = l.minWidth > 0 ? l.minWidth : l.width;
 
@@ -69,7 +78,7 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
       const Dbu overlapX = std::min(ra.xhi, rb.xhi) - std::max(ra.xlo, rb.xlo);
       const Dbu overlapY = std::min(ra.yhi, rb.yhi) - std::max(ra.ylo, rb.ylo);
       const Dbu prl = std::max(overlapX, overlapY);
-      const Dbu need = layerSpacing(l, widthOf(a), widthOf(b), prl);
+      const Dbu need = std::max({layerSpacing(l, widthOf(a), widthOf(b), prl), ndrOf(a), ndrOf(b)});
       if (closerThan(dx, dy, need, ls.euclidean)) addPairMarker(out, ls, MarkerType::MetalSpacing, gapBox(ra, rb), a, b);
     });
   }

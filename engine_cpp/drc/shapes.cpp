@@ -251,6 +251,22 @@ void Collector::addRegularRouting() {
 
 }  // namespace
 
+std::vector<std::vector<Dbu>> ndrSpacingByNet(const Tech& tech, const Design& design) {
+  std::vector<std::vector<Dbu>> out;
+  for (size_t n = 0; n < design.nets.size(); ++n) {
+    const int rule = design.nets[n].ndr;
+    if (rule < 0) continue;
+    for (const NdrLayer& l : design.ndrs[rule].layers) {
+      if (l.spacing <= 0) continue;
+      if (out.empty()) out.assign(tech.layers.size(), {});
+      std::vector<Dbu>& byNet = out[*l.layer];
+      if (byNet.empty()) byNet.assign(design.nets.size(), 0);
+      byNet[n] = l.spacing;
+    }
+  }
+  return out;
+}
+
 std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design, std::vector<std::string>* netNames) {
   return Collector(tech, design, netNames).run();
 }

@@ -115,6 +115,7 @@ void DefParser::readSpecialNet() {
     if (is(t, ";")) break;
     if (!is(t, "+")) unexpected(t, "'+' or ';'");
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER") {
       if (k != "ROUTED") countSkip("SPECIALNETS." + std::string(k));
@@ -140,9 +141,7 @@ void DefParser::readSpecialNet() {
         lex_.expect("MASK");
         lex_.integer();
       }
-      std::vector<Point> pts;
-      while (peekIs("(")) pts.push_back(readPoint());
-      if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+      const std::vector<Point> pts = readPolygonPoints(kw);
       Rect r{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
       for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
       net.rects.push_back({layer, r});
@@ -171,6 +170,27 @@ void DefParser::readSpecialNet() {
   design_.specialNets.push_back(std::move(net));
 }
 
+// A special via at `at`, or "DO nx BY ny STEP dx dy": an array of them from `at`.
+void DefParser::readSpecialViaArray(SpecialNet& net, ViaRef ref, Point at, const std::string& shape) {
+  int numX = 1, numY = 1;
+  Dbu stepX = 0, stepY = 0;
+  if (lex_.accept("DO")) {
+    const Token nt = lex_.peek();
+    const int64_t nx = lex_.integer();
+    lex_.expect("BY");
+    const int64_t ny = lex_.integer();
+    if (nx < 1 || ny < 1 || nx * ny > 1000000) lex_.failAt(nt, "bad via array size");
+    numX = static_cast<int>(nx);
+    numY = static_cast<int>(ny);
+    lex_.expect("STEP");
+    stepX = lex_.dbu();
+    stepY = lex_.dbu();
+  }
+  for (int i = 0; i < numX; ++i) {
+    for (int j = 0; j < numY; ++j) net.vias.push_back({ref, Point{at.x + i * stepX, at.y + j * stepY}, shape});
+  }
+}
+
 void DefParser::readSpecialWiring(SpecialNet& net) {
   if (peekIs("+")) return;  // "+ ROUTED + RECT ...": the shape is a net-level option
   while (true) {
@@ -182,6 +202,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
     while (peekIs("+")) {
       lex_.next();
       const Token kw = lex_.next();
+      lex_.upcase(kw);
       if (is(kw, "SHAPE")) {
         shape = plainWord("a shape type");
       } else if (is(kw, "STYLE") || is(kw, "MASK")) {
@@ -203,8 +224,16 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
           ++design_.warningCount;
         }
         if (cur.havePoint) {
-          if (p.x != cur.at.x && p.y != cur.at.y) lex_.fail(line, "diagonal wire");
-          net.wires.push_back({cur.layer, width, shape, cur.at, p});
+          const bool diagonal = p.x != cur.at.x && p.y != cur.at.y;
+          if (diagonal && std::abs(int64_t(p.x) - cur.at.x) != std::abs(int64_t(p.y) - cur.at.y)) {
+            lex_.fail(line, "diagonal wire that is not at 45 degrees");
+          }
+          if (diagonal) {  // 45-degree special wiring (DEF 5.8 allows it): not kept, counted and warned
+            countSkip("SPECIALNETS.DIAGONAL");
+            warn(line, "45-degree special wire not kept");
+          } else {
+            net.wires.push_back({cur.layer, width, shape, cur.at, p});
+          }
           cur.emitted = true;
         }
         cur.at = p;
@@ -221,25 +250,7 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
       } else {
         const Token viaTok = lex_.next();
         const ViaRef ref = readPathVia(viaTok, cur.havePoint, "SPECIALNETS");
-        int numX = 1, numY = 1;
-        Dbu stepX = 0, stepY = 0;
-        if (lex_.accept("DO")) {
-          const Token nt = lex_.peek();
-          const int64_t nx = lex_.integer();
-          lex_.expect("BY");
-          const int64_t ny = lex_.integer();
-          if (nx < 1 || ny < 1 || nx * ny > 1000000) lex_.failAt(nt, "bad via array size");
-          numX = static_cast<int>(nx);
-          numY = static_cast<int>(ny);
-          lex_.expect("STEP");
-          stepX = lex_.dbu();
-          stepY = lex_.dbu();
-        }
-        for (int i = 0; i < numX; ++i) {
-          for (int j = 0; j < numY; ++j) {
-            net.vias.push_back({ref, Point{cur.at.x + i * stepX, cur.at.y + j * stepY}, shape});
-          }
-        }
+        readSpecialViaArray(net, ref, cur.at, shape);
         cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         cur.emitted = true;
       }
@@ -304,17 +315,27 @@ void DefParser::readNet() {
     if (is(t, ";")) break;
     if (!is(t, "+")) unexpected(t, "'+' or ';'");
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER" || k == "NOSHIELD") {
       if (k != "ROUTED") countSkip("NETS." + std::string(k));
       readRegularWiring(net);
     } else if (k == "USE") {
       net.use = plainWord("a net use");
+    } else if (k == "NONDEFAULTRULE") {
+      net.ndr = netRule(lex_.next());
     } else if (k.empty() || k == ";") {
       unexpected(kw, "a net option");
     } else {
       skipToOptionEnd();
       countSkip("NETS." + std::string(k));
+    }
+  }
+  if (net.ndr >= 0) {  // the rule may come after the wiring: widths are set once the net is read
+    const NonDefaultRule& rule = design_.ndrs[net.ndr];
+    for (RouteWire& w : net.routing.wires) {
+      const NdrLayer* l = rule.find(w.layer);
+      if (l != nullptr && w.width == 0) w.width = l->width;
     }
   }
   design_.netPinStart.push_back(static_cast<int32_t>(design_.pinRefs.size()));

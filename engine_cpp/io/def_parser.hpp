@@ -41,6 +41,13 @@ class DefParser {
   void readBlockage();
   void skipSection(std::string_view keyword);
 
+  // def_ndr.cpp
+  void readNonDefaultRules();
+  void readNonDefaultRule();
+  Dbu ndrLength();  // a rule length: an integer, or a number rounded (rescaled like coordinates)
+  // "+ NONDEFAULTRULE name" of a net: the rule's index in Design::ndrs (a LEF rule is copied there).
+  int netRule(const Token& nameTok);
+
   // def_pins.cpp
   void readPins();
   void readPin();
@@ -52,6 +59,8 @@ class DefParser {
   void readVias();
   void readVia();
   ViaShape readViaShape(const Token& kw);
+  void readViaLayers(DefVia& v);
+  std::string readViaPattern();   // + PATTERN, quotes dropped  // + LAYERS: bottom, cut, top (the cut in any place)
   void finishVia(DefVia& v, int ruleLine);
 
   // def_nets.cpp
@@ -63,6 +72,7 @@ class DefParser {
   // including) the next net-level '+' or ';'.
   void readRegularWiring(Net& net);
   void readSpecialWiring(SpecialNet& net);
+  void readSpecialViaArray(SpecialNet& net, ViaRef ref, Point at, const std::string& shape);
   // A via name in a routing path (after its point), with an optional
   // orientation (only N is kept; others are counted under <section>.VIA.ORIENT).
   ViaRef readPathVia(const Token& viaTok, bool havePoint, std::string_view section);
@@ -70,9 +80,14 @@ class DefParser {
   LayerId layerAfterVia(const Token& viaTok, ViaRef ref, LayerId layer) const;
 
   // Shared helpers (def_reader.cpp).
-  static bool is(const Token& t, std::string_view w) { return !t.quoted && t.text == w; }
+  // `t` is the unquoted word `w` (keywords in any case).
+  static bool is(const Token& t, std::string_view w) { return !t.quoted && isKeyword(t.text, w); }
   bool peekIs(std::string_view w) { return !lex_.atEnd() && is(lex_.peek(), w); }
   Point readPoint();                      // "( x y )"
+  // POLYGON points "( x y ) ..." after `kw`, "*" repeating the previous point's coordinate; >= 3.
+  std::vector<Point> readPolygonPoints(const Token& kw);
+  // A warning "file:line: message" in Design::warnings (and warningCount).
+  void warn(int line, const std::string& message);
   LayerId layerAt(const Token& t) const;  // throws on an unknown layer
   LayerId routingLayerAt(const Token& t) const;
   ViaRef findVia(std::string_view name) const;  // invalid if unknown

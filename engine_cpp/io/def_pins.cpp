@@ -65,6 +65,7 @@ void DefParser::readPin() {
     if (is(t, ";")) break;
     if (!is(t, "+")) unexpected(t, "'+' or ';'");
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "NET") {
       pin.netName = plainWord("a net name");
@@ -133,9 +134,8 @@ IoPinShape DefParser::readPinPolygon() {
       unexpected(opt, "'('");
     }
   }
-  std::vector<Point> pts;
-  while (peekIs("(")) pts.push_back(readPoint());
-  if (pts.size() < 3) lex_.fail(lex_.line(), "POLYGON needs at least 3 points");
+  const Token first = lex_.peek();
+  const std::vector<Point> pts = readPolygonPoints(first);
   Rect box{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
   for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
   countSkip("PINS.POLYGON");

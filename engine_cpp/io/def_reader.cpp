@@ -11,7 +11,9 @@
 // Decisions (also in the report of the DEF task):
 // - A PINS entry whose + NET names a net that NETS lacks is allowed: netName
 //   is kept, IoPin::net stays invalid.
-// - UNITS must equal the LEF's DATABASE MICRONS (no rescaling).
+// - UNITS that differ from the LEF's DATABASE MICRONS by an integer ratio
+//   rescale every coordinate to the LEF's units (warned); others are an error.
+// - A section count that differs from its entries is a warning, as in OpenROAD.
 // - Kept approximately (counted and warned): POLYGONs of pins, vias and
 //   special nets (their bounding box); a pin's ports with different
 //   placements (shapes made absolute, placement dropped); via orientations
@@ -30,13 +32,13 @@ namespace {
 
 // Sections we do not use: skipped up to "END <keyword>" and counted.
 constexpr std::string_view kSkippedSections[] = {
-    "PROPERTYDEFINITIONS", "NONDEFAULTRULES", "REGIONS", "GROUPS", "FILLS", "SCANCHAINS",
+    "PROPERTYDEFINITIONS", "REGIONS", "GROUPS", "FILLS", "SCANCHAINS",
     "STYLES", "SLOTS", "PINPROPERTIES", "IOTIMINGS", "FLOORPLANCONSTRAINTS", "TIMINGDISABLES",
     "CONSTRAINTS", "ASSERTIONS"};
 
 // Statements "KEYWORD ... ;" we do not use.
 constexpr std::string_view kSkippedStatements[] = {"TECHNOLOGY", "HISTORY", "NAMESCASESENSITIVE",
-                                                    "NAMEMAPSTRINGS"};
+                                                    "NAMEMAPSTRINGS", "COMPONENTMASKSHIFT"};
 
 // Far above any real design (ISPD 2019's largest: about 20,000 tracks and 600 GCell lines per
 // axis), low enough that the grids built from them fit in memory.
@@ -73,6 +75,27 @@ Point DefParser::readPoint() {
   const Dbu y = lex_.dbu();
   lex_.expect(")");
   return {x, y};
+}
+
+std::vector<Point> DefParser::readPolygonPoints(const Token& kw) {
+  std::vector<Point> pts;
+  while (peekIs("(")) {
+    lex_.next();
+    Point p;
+    for (Dbu* v : {&p.x, &p.y}) {
+      if (peekIs("*")) {  // "*": the previous point's coordinate
+        const Token star = lex_.next();
+        if (pts.empty()) lex_.failAt(star, "'*' in the first point of a POLYGON");
+        *v = v == &p.x ? pts.back().x : pts.back().y;
+      } else {
+        *v = lex_.dbu();
+      }
+    }
+    lex_.expect(")");
+    pts.push_back(p);
+  }
+  if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+  return pts;
 }
 
 LayerId DefParser::layerAt(const Token& t) const {
@@ -124,11 +147,16 @@ bool DefParser::atSectionEnd(std::string_view section, int declared, int found) 
   if (!is(t, "END")) unexpected(t, "'-' or 'END " + std::string(section) + "'");
   const Token end = lex_.next();
   lex_.expect(section);
-  if (declared != found) {
-    lex_.failAt(end, std::string(section) + " " + std::to_string(declared) + " declared, " +
-                         std::to_string(found) + " found");
+  if (declared != found) {  // OpenROAD and the Si2 parser warn and go on
+    warn(end.line, std::string(section) + " " + std::to_string(declared) + " declared, " + std::to_string(found) +
+                       " found");
   }
   return true;
+}
+
+void DefParser::warn(int line, const std::string& message) {
+  design_.warnings.push_back(lex_.path() + ":" + std::to_string(line) + ": " + message);
+  ++design_.warningCount;
 }
 
 Token DefParser::entryName(std::string_view what) {
@@ -180,7 +208,9 @@ void DefParser::parse() {
   while (!lex_.atEnd()) {
     const Token t = lex_.next();
     if (t.quoted) unexpected(t, "a DEF statement");
-    const std::string_view k = t.text;
+    std::string upper(t.text);  // keywords are case-insensitive; an error still quotes what was written
+    for (char& c : upper) c = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+    const std::string_view k = upper;
     if (k == "END") {
       design_.endLine = t.line;
       lex_.expect("DESIGN");
@@ -222,6 +252,12 @@ void DefParser::parse() {
       readSpecialNets();
     } else if (k == "NETS") {
       readNets();
+    } else if (k == "NONDEFAULTRULES") {
+      readNonDefaultRules();
+    } else if (k.starts_with("&DEFINE")) {  // &defines / &defineS / &defineB: "&defineX &name = value ;"
+      lex_.skipStatement();
+      countSkip(k);
+      warn(t.line, std::string(k) + " skipped: its variables are not expanded");
     } else if (contains(kSkippedStatements, k)) {
       lex_.skipStatement();
       countSkip(k);
@@ -245,11 +281,24 @@ void DefParser::readUnits() {
   const Token t = lex_.peek();
   const int64_t n = lex_.integer();
   if (n <= 0 || n > 1000000) lex_.failAt(t, "bad DEF database units " + quoteToken(t.text));
-  if (tech_.dbuPerMicron != 0 && n != tech_.dbuPerMicron) {
-    lex_.failAt(t, "DEF UNITS DISTANCE MICRONS " + std::to_string(n) + " differs from the LEF's DATABASE MICRONS " +
-                       std::to_string(tech_.dbuPerMicron) + " (rescaling is not supported)");
-  }
   design_.dbuPerMicron = static_cast<int>(n);
+  const int lef = tech_.dbuPerMicron;
+  if (lef != 0 && n != lef) {
+    // Coordinates are kept in the LEF's units: an integer ratio either way rescales them.
+    const std::string both = "DEF UNITS DISTANCE MICRONS " + std::to_string(n) + " and the LEF's DATABASE MICRONS " +
+                             std::to_string(lef);
+    if (lef % n == 0) {
+      lex_.setScale(static_cast<int>(lef / n), 1);
+    } else if (n % lef == 0) {
+      lex_.setScale(1, static_cast<int>(n / lef));
+    } else {
+      lex_.failAt(t, both + " have no integer ratio: the coordinates cannot be rescaled exactly");
+    }
+    warn(t.line, both + " differ: DEF coordinates rescaled to the LEF's units");
+    design_.defScaleMul = lex_.scaleMul();
+    design_.defScaleDiv = lex_.scaleDiv();
+    design_.dbuPerMicron = lef;
+  }
   lex_.expect(";");
 }
 
@@ -267,6 +316,10 @@ void DefParser::readDieArea() {
   }
   Rect box = Rect::fromCorners(pts[0], pts[1]);
   for (const Point& p : pts) box.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+  if (box == Rect{0, 0, 0, 0}) {  // "( 0 0 ) ( 0 0 )": what OpenROAD writes for an unset die; as if absent
+    warn(line, "DIEAREA ( 0 0 ) ( 0 0 ): read as no DIEAREA");
+    return;
+  }
   if (box.xhi <= box.xlo || box.yhi <= box.ylo) {
     lex_.fail(line, "DIEAREA has zero " + std::string(box.xhi <= box.xlo ? "width" : "height") + " (" +
                         std::to_string(box.xlo) + " " + std::to_string(box.ylo) + " to " + std::to_string(box.xhi) +
@@ -303,6 +356,7 @@ void DefParser::readRow() {
   }
   while (lex_.accept("+")) {
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     if (!is(kw, "PROPERTY")) unexpected(kw, "PROPERTY or ';'");
     skipToOptionEnd();
     countSkip("ROW.PROPERTY");
@@ -346,7 +400,8 @@ void DefParser::readTracks() {
     }
   }
   const Token semi = lex_.next();
-  if (layers == 0) lex_.failAt(semi, "TRACKS without a LAYER");
+  // Without LAYER the tracks belong to no layer; OpenROAD reads such a statement and keeps nothing.
+  if (layers == 0) warn(semi.line, "TRACKS without a LAYER: ignored");
 }
 
 void DefParser::readGCellGrid() {
@@ -402,6 +457,7 @@ void DefParser::readComponent() {
     if (is(t, ";")) break;
     if (!is(t, "+")) unexpected(t, "'+' or ';'");
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     if (is(kw, "PLACED") || is(kw, "FIXED") || is(kw, "COVER")) {
       c.status = readPlacement(kw, c.location, c.orient);
     } else if (is(kw, "UNPLACED")) {
@@ -438,6 +494,7 @@ void DefParser::readBlockage() {
     if (is(t, ";")) break;
     if (is(t, "+")) {
       const Token kw = lex_.next();
+      lex_.upcase(kw);
       if (is(kw, "COMPONENT") || is(kw, "SPACING") || is(kw, "DESIGNRULEWIDTH") || is(kw, "MASK") ||
           is(kw, "PARTIAL")) {
         lex_.next();
@@ -451,10 +508,7 @@ void DefParser::readBlockage() {
       const Point c = readPoint();
       b.rects.push_back(Rect::fromCorners(a, c));
     } else if (is(t, "POLYGON")) {
-      std::vector<Point> pts;
-      while (peekIs("(")) pts.push_back(readPoint());
-      if (pts.size() < 3) lex_.failAt(t, "POLYGON needs at least 3 points");
-      b.polygons.push_back(std::move(pts));
+      b.polygons.push_back(readPolygonPoints(t));
     } else {
       unexpected(t, "RECT, POLYGON, '+' or ';'");
     }

@@ -147,6 +147,7 @@ void DefParser::readVia() {
     if (is(t, ";")) break;
     if (!is(t, "+")) unexpected(t, "'+' or ';'");
     const Token kw = lex_.next();
+    lex_.upcase(kw);
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "RECT" || k == "POLYGON") {
       v.via.shapes.push_back(readViaShape(kw));
@@ -162,13 +163,7 @@ void DefParser::readVia() {
       v.cutSizeY = lex_.dbu();
       haveCutSize = true;
     } else if (k == "LAYERS") {
-      v.botLayer = routingLayerAt(lex_.next());
-      const Token cut = lex_.next();
-      v.cutLayer = layerAt(cut);
-      if (tech_.layer(v.cutLayer).type != LayerType::Cut) {
-        lex_.failAt(cut, "layer " + quoteToken(cut.text) + " is not a cut layer");
-      }
-      v.topLayer = routingLayerAt(lex_.next());
+      readViaLayers(v);
       haveLayers = true;
     } else if (k == "CUTSPACING") {
       v.cutSpacingX = lex_.dbu();
@@ -194,7 +189,7 @@ void DefParser::readVia() {
       v.topOffX = lex_.dbu();
       v.topOffY = lex_.dbu();
     } else if (k == "PATTERN") {
-      v.pattern = plainWord("a cut pattern");
+      v.pattern = readViaPattern();
     } else if (k.empty() || k == ";") {
       unexpected(kw, "a via option");
     } else {
@@ -208,6 +203,40 @@ void DefParser::readVia() {
   }
   finishVia(v, ruleLine);
   design_.vias.push_back(std::move(v));
+}
+
+// "+ PATTERN 2_F0_2_F" as written; some routers quote it ("...", or '...' as one word): the
+// quotes are dropped.
+std::string DefParser::readViaPattern() {
+  const Token t = lex_.next();
+  std::string_view p = t.text;
+  if (!t.quoted && p.size() >= 2 && p.front() == '\'' && p.back() == '\'') p = p.substr(1, p.size() - 2);
+  if (p.empty() || is(t, ";") || is(t, "+")) unexpected(t, "a cut pattern");
+  return std::string(p);
+}
+
+// "+ LAYERS bottom cut top". Some writers put the cut last ("metal4 metal5 via4", OpenROAD's dpl
+// tests): the cut is found by its type and the metals ordered as the LEF orders them.
+void DefParser::readViaLayers(DefVia& v) {
+  Token toks[3] = {lex_.next(), lex_.next(), lex_.next()};
+  LayerId ids[3];
+  int cuts = 0;
+  for (int i = 0; i < 3; ++i) {
+    ids[i] = layerAt(toks[i]);
+    if (tech_.layer(ids[i]).type == LayerType::Cut) {
+      v.cutLayer = ids[i];
+      ++cuts;
+    }
+  }
+  if (cuts != 1) lex_.failAt(toks[1], "+ LAYERS needs one cut layer and two routing layers");
+  const bool cutMiddle = ids[1] == v.cutLayer;
+  const LayerId a = cutMiddle ? ids[0] : (ids[0] == v.cutLayer ? ids[1] : ids[0]);
+  const LayerId b = cutMiddle ? ids[2] : (ids[2] == v.cutLayer ? ids[1] : ids[2]);
+  for (const Token& t : toks) {
+    if (tech_.layer(layerAt(t)).type != LayerType::Cut) routingLayerAt(t);
+  }
+  v.botLayer = cutMiddle ? a : std::min(a, b);
+  v.topLayer = cutMiddle ? b : std::max(a, b);
 }
 
 // + RECT layer pt pt  |  + POLYGON layer pt pt pt ... (kept as its bounding box, counted), with an
@@ -224,9 +253,7 @@ ViaShape DefParser::readViaShape(const Token& kw) {
     const Point b = readPoint();
     return {layer, Rect::fromCorners(a, b)};
   }
-  std::vector<Point> pts;
-  while (peekIs("(")) pts.push_back(readPoint());
-  if (pts.size() < 3) lex_.failAt(kw, "POLYGON needs at least 3 points");
+  const std::vector<Point> pts = readPolygonPoints(kw);
   Rect r{pts[0].x, pts[0].y, pts[0].x, pts[0].y};
   for (const Point& p : pts) r.expandToInclude(Rect{p.x, p.y, p.x, p.y});
   countSkip("VIAS.POLYGON");

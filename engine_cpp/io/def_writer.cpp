@@ -64,6 +64,7 @@ class DefWriter {
     writeHeader();
     writeRowsTracksGrid();
     writeVias();
+    writeNonDefaultRules();
     writeComponents();
     writePins();
     writeBlockages();
@@ -232,6 +233,24 @@ class DefWriter {
     out_ << " )";
   }
 
+  void writeNonDefaultRules() {
+    if (d_.ndrs.empty()) return;
+    out_ << "NONDEFAULTRULES " << static_cast<int64_t>(d_.ndrs.size()) << " ;\n";
+    for (const NonDefaultRule& r : d_.ndrs) {
+      out_ << "- " << r.name;
+      if (r.hardSpacing) out_ << "\n  + HARDSPACING";
+      for (const NdrLayer& l : r.layers) {
+        out_ << "\n  + LAYER " << layer(l.layer) << " WIDTH " << l.width;
+        if (l.spacing > 0) out_ << " SPACING " << l.spacing;
+        if (l.wireExt > 0) out_ << " WIREEXT " << l.wireExt;
+      }
+      for (const std::string& v : r.vias) out_ << "\n  + VIA " << v;
+      for (const std::string& v : r.viaRules) out_ << "\n  + VIARULE " << v;
+      out_ << " ;\n";
+    }
+    out_ << "END NONDEFAULTRULES\n\n";
+  }
+
   void writeNets() {
     out_ << "NETS " << static_cast<int64_t>(d_.nets.size()) << " ;\n";
     for (size_t i = 0; i < d_.nets.size(); ++i) {
@@ -251,6 +270,7 @@ class DefWriter {
         }
       }
       if (!n.use.empty()) out_ << "\n  + USE " << n.use;
+      if (n.ndr >= 0) out_ << "\n  + NONDEFAULTRULE " << d_.ndrs[n.ndr].name;
       bool first = true;
       for (const RouteWire& w : n.routing.wires) {
         startPath(first);

@@ -98,13 +98,16 @@ void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
 
 }  // namespace
 
+// Guides are written in the DEF's units: rescaled as the DEF was (Design::defScaleMul/Div).
 void readGuides(const std::string& path, const Tech& tech, Design& design) {
   Lexer lex = Lexer::fromFile(path);
+  lex.setScale(design.defScaleMul, design.defScaleDiv);
   parseGuides(lex, tech, design);
 }
 
 void readGuidesText(const std::string& name, std::string text, const Tech& tech, Design& design) {
   Lexer lex(name, std::move(text));
+  lex.setScale(design.defScaleMul, design.defScaleDiv);
   parseGuides(lex, tech, design);
 }
 

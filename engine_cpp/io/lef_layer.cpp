@@ -23,11 +23,11 @@ bool typeFromName(std::string_view s, LayerType& out) {
 // DIRECTION HORIZONTAL | VERTICAL ;  (DIAG45 / DIAG135 are counted and read as no direction)
 void LefParser::parseLayerDirection(Layer& layer) {
   const Token d = name("HORIZONTAL or VERTICAL");
-  if (d.text == "HORIZONTAL") {
+  if (isKeyword(d.text, "HORIZONTAL")) {
     layer.direction = Direction::Horizontal;
-  } else if (d.text == "VERTICAL") {
+  } else if (isKeyword(d.text, "VERTICAL")) {
     layer.direction = Direction::Vertical;
-  } else if (d.text == "DIAG45" || d.text == "DIAG135") {
+  } else if (isKeyword(d.text, "DIAG45") || isKeyword(d.text, "DIAG135")) {
     layer.direction = Direction::None;
     count("LAYER.DIRECTION", d.text);
   } else {
@@ -36,11 +36,12 @@ void LefParser::parseLayerDirection(Layer& layer) {
   endStatement();
 }
 
-// PITCH p [py] ;  |  OFFSET o [oy] ;  (one value: the same along x and y)
+// PITCH p [py] ;  |  OFFSET o [oy] ;  (one value: the same along x and y; an offset may be negative)
 void LefParser::parseLayerPitchOrOffset(Layer& layer, bool pitch) {
   const std::string what = std::string(pitch ? "PITCH" : "OFFSET") + " of LAYER " + quoteToken(layer.name);
-  const Dbu a = pitch ? positiveDist(what) : nonNegativeDist(what);
-  const Dbu b = peekIs(";") ? a : (pitch ? positiveDist(what) : nonNegativeDist(what));
+  // An OFFSET may be negative (asap7 writes one): it only places the first track.
+  const Dbu a = pitch ? positiveDist(what) : dist();
+  const Dbu b = peekIs(";") ? a : (pitch ? positiveDist(what) : dist());
   endStatement();
   if (pitch) {
     layer.pitchX = a;
@@ -60,7 +61,7 @@ void LefParser::skipCurrentDensity(std::string_view keyword) {
   while (true) {
     const Token t = next();
     if (t.quoted) continue;
-    if (t.text == "TABLEENTRIES") seenEntries = true;
+    if (isKeyword(t.text, "TABLEENTRIES")) seenEntries = true;
     if (t.text == ";" && seenEntries) break;
   }
   count("LAYER", keyword);
@@ -84,10 +85,14 @@ void LefParser::parseLayer(const Token& opener) {
     }
     if (k == "TYPE") {
       const Token t = name("a layer type");
-      if (hasType) failAt(kw, "second TYPE in LAYER " + quoteToken(layer.name));
-      if (!typeFromName(t.text, layer.type)) {
+      lex_.upcase(t);
+      LayerType type = LayerType::Other;
+      if (!typeFromName(t.text, type)) {
         failAt(t, "unknown layer TYPE " + quoteToken(t.text) + " (ROUTING, CUT, MASTERSLICE, OVERLAP, IMPLANT)");
       }
+      if (hasType && type != layer.type) failAt(kw, "second TYPE in LAYER " + quoteToken(layer.name) + ", a different one");
+      if (hasType) warn(kw.line, "TYPE repeated in LAYER " + quoteToken(layer.name));  // asap7's M7 does this
+      layer.type = type;
       hasType = true;
       endStatement();
       continue;
@@ -152,7 +157,7 @@ void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
     return;
   }
   const Token t = peek();
-  if (!t.quoted && t.text == "RANGE") {
+  if (!t.quoted && isKeyword(t.text, "RANGE")) {
     next();
     SpacingRule r;
     r.space = space;
@@ -163,13 +168,13 @@ void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
       layer.spacings.push_back(r);
       return;
     }
-  } else if (!t.quoted && t.text == "SAMENET") {
+  } else if (!t.quoted && isKeyword(t.text, "SAMENET")) {
     next();
     if (accept(";")) {
       layer.spacings.push_back({space, false, 0, 0, true});
       return;
     }
-  } else if (!t.quoted && t.text == "ENDOFLINE") {
+  } else if (!t.quoted && isKeyword(t.text, "ENDOFLINE")) {
     next();
     EolRule e;
     e.space = space;
@@ -221,7 +226,7 @@ void LefParser::parseCutSpacing(Layer& layer, const Token& kw) {
 // TWOWIDTHS and INFLUENCE tables are skipped and counted.
 void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
   const Token form = keyword("SPACINGTABLE");
-  if (form.text != "PARALLELRUNLENGTH") {
+  if (!isKeyword(form.text, "PARALLELRUNLENGTH")) {
     skipStatement("LAYER.SPACINGTABLE", form);
     return;
   }
@@ -238,7 +243,7 @@ void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
   if (table.prls.empty()) failAt(peek(), "SPACINGTABLE PARALLELRUNLENGTH needs at least one length");
   while (!accept(";")) {
     const Token w = peek();
-    if (w.quoted || w.text != "WIDTH") failAt(w, "expected WIDTH or ';' in SPACINGTABLE, found " + quoteToken(w.text));
+    if (w.quoted || !isKeyword(w.text, "WIDTH")) failAt(w, "expected WIDTH or ';' in SPACINGTABLE, found " + quoteToken(w.text));
     next();
     const Token wv = peek();
     const Dbu width = dist();

@@ -29,11 +29,36 @@ void shift(std::vector<MacroShape>& shapes, Point by) {
   }
 }
 
+bool sameShapes(const std::vector<MacroShape>& a, const std::vector<MacroShape>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].layer != b[i].layer || !(a[i].rect == b[i].rect) || a[i].polygon != b[i].polygon) return false;
+  }
+  return true;
+}
+
+// Same geometry and pins: a MACRO defined twice like this is read once, with a warning.
+bool sameMacro(const Macro& a, const Macro& b) {
+  if (a.macroClass != b.macroClass || !(a.origin == b.origin) || a.width != b.width || a.height != b.height ||
+      a.site != b.site || a.symmetry != b.symmetry || a.pins.size() != b.pins.size() ||
+      !sameShapes(a.obstructions, b.obstructions)) {
+    return false;
+  }
+  for (size_t i = 0; i < a.pins.size(); ++i) {
+    const MacroPin& p = a.pins[i];
+    const MacroPin& q = b.pins[i];
+    if (p.name != q.name || p.direction != q.direction || p.use != q.use || !sameShapes(p.shapes, q.shapes)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 void LefParser::parseMacro(const Token& opener) {
   const Token n = name("a macro name");
-  if (tech_.findMacro(n.text).valid()) failAt(n, "duplicate MACRO " + quoteToken(n.text));
+  const MacroId earlier = tech_.findMacro(n.text);
   Scope scope(*this, "MACRO", n.text, opener.line);
   Macro macro;
   macro.name = std::string(n.text);
@@ -64,12 +89,14 @@ void LefParser::parseMacro(const Token& opener) {
       const Token s = name("a site name");
       if (!tech_.siteIndex.count(s.text)) failAt(s, "unknown site " + quoteToken(s.text));
       if (macro.site.empty()) macro.site = std::string(s.text);
-      if (!accept(";")) skipStatement("MACRO.SITE", keyword("a MACRO SITE statement"));  // STEP patterns
+      if (!accept(";")) skipStatement("MACRO", Token{"SITE.PATTERN", s.line, false});  // x y orient [DO..STEP]
+    } else if (k == "TIMING") {  // LEF 5.3 timing tables: "TIMING ... END TIMING"
+      skipBlock("MACRO", kw, "TIMING");
     } else if (k == "DENSITY") {  // DENSITY LAYER l ; RECT ... ; ... END
       Scope density(*this, "DENSITY", "", kw.line);
       while (true) {
         const Token t = next();
-        if (!t.quoted && t.text == "END") break;
+        if (!t.quoted && isKeyword(t.text, "END")) break;
       }
       count("MACRO", k);
     } else {
@@ -80,6 +107,16 @@ void LefParser::parseMacro(const Token& opener) {
   // macro's lower-left corner is (0,0), whichever order the statements came in.
   for (MacroPin& p : macro.pins) shift(p.shapes, macro.origin);
   shift(macro.obstructions, macro.origin);
+  if (earlier.valid()) {
+    // A repeated identical MACRO (Nangate45.lef then Nangate45_stdcell.lef in OpenROAD's tests) is
+    // read once, with a warning. Two different ones conflict: OpenROAD would merge them into one
+    // master (gf180's IO LEF); a router cannot know which pins are meant, so that is an error.
+    if (!sameMacro(tech_.macros[*earlier], macro)) {
+      failAt(n, "MACRO " + quoteToken(n.text) + " defined again with different pins, geometry or size: conflicting definitions");
+    }
+    warn(n.line, "MACRO " + quoteToken(n.text) + " defined again, identically: read once");
+    return;
+  }
   tech_.macroIndex.emplace(macro.name, MacroId(static_cast<int32_t>(tech_.macros.size())));
   tech_.macros.push_back(std::move(macro));
 }
@@ -87,12 +124,10 @@ void LefParser::parseMacro(const Token& opener) {
 void LefParser::parsePin(Macro& macro, const Token& opener) {
   const Token n = next();
   if (n.quoted || n.text == ";") failAt(n, "expected a pin name, found " + quoteToken(n.text));
-  if (macro.pinIndex.count(n.text)) {
-    failAt(n, "duplicate PIN " + quoteToken(n.text) + " in MACRO " + quoteToken(macro.name));
-  }
   Scope scope(*this, "PIN", n.text, opener.line);
   MacroPin pin;
   pin.name = std::string(n.text);
+  const auto earlier = macro.pinIndex.find(n.text);
   while (true) {
     const Token kw = keyword("PIN");
     const std::string_view k = kw.text;
@@ -124,6 +159,14 @@ void LefParser::parsePin(Macro& macro, const Token& opener) {
       skipStatement("PIN", kw);  // SHAPE, NETEXPR, ANTENNA*, MUSTJOIN, TAPERRULE, PROPERTY, ...
     }
   }
+  if (earlier != macro.pinIndex.end()) {  // a pin written twice: its ports join the first one's
+    MacroPin& first = macro.pins[earlier->second];
+    first.shapes.insert(first.shapes.end(), pin.shapes.begin(), pin.shapes.end());
+    first.portCount += pin.portCount;
+    warn(n.line, "PIN " + quoteToken(n.text) + " defined again in MACRO " + quoteToken(macro.name) +
+                     ": its ports are added to the first definition");
+    return;
+  }
   macro.pinIndex.emplace(pin.name, static_cast<int>(macro.pins.size()));
   macro.pins.push_back(std::move(pin));
 }
@@ -147,6 +190,7 @@ void LefParser::parseGeometry(std::string_view block, std::vector<MacroShape>& s
       skipStatement(block, kw);
       continue;
     }
+    if (accept("MASK")) integer();  // the mask comes before ITERATE: "RECT MASK 2 ITERATE ..."
     if (peekIs("ITERATE")) {
       skipStatement(block, kw);
       continue;

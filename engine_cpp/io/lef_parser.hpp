@@ -6,8 +6,11 @@
 //
 // Policies every block follows:
 // - Lengths are read in microns and converted with Tech::dbuPerMicron; a
-//   length before UNITS DATABASE MICRONS (in a Tech that has none yet) is an
-//   error, since the conversion would silently be wrong.
+//   length before any UNITS DATABASE MICRONS (in a Tech that has none yet)
+//   assumes 1000 per micron (OpenROAD's default), with a warning; a later
+//   UNITS in that file that differs is an error. A cell LEF whose UNITS
+//   differ from the technology LEF's is read in the technology's units
+//   (LEF lengths are microns either way), with a warning.
 // - A statement the reader does not store is skipped to its ';' and counted
 //   in Tech::skippedStatements under "<BLOCK>.<KEYWORD>" (plus warningCount).
 //   A statement that starts with something that is not a keyword (a number,
@@ -59,6 +62,11 @@ class LefParser {
   [[noreturn]] void failAt(const Token& t, const std::string& message) const;
   [[noreturn]] void failEof() const;
 
+  // A warning "file:line: message" in Tech::warnings (and warningCount).
+  void warn(int line, const std::string& message);
+  // Applies the LEF default units (with a warning) when a length comes before any UNITS.
+  void defaultUnits(const Token& t);
+
   // --- skipping and counting ---
   void count(std::string_view block, std::string_view keyword);
   void skipStatement(std::string_view block, const Token& keyword);
@@ -82,6 +90,8 @@ class LefParser {
   void parseLef58CornerSpacing(Layer& layer, const Token& valueTok);
   void parseVia(const Token& opener);
   void parseViaRule(const Token& opener);
+  void parseNonDefaultRule(const Token& opener);  // lef_ndr.cpp
+  void parseNdrLayer(NonDefaultRule& rule, const Token& opener);
   void parseMacro(const Token& opener);
   void parsePin(Macro& macro, const Token& opener);
   // LAYER/RECT/POLYGON/VIA/... statements up to a lone END (PORT and OBS).
@@ -107,8 +117,13 @@ class LefParser {
     LefParser& p_;
   };
 
+  // DATABASE MICRONS assumed when a length comes before any UNITS: OpenROAD's database default
+  // (the Si2 parser keeps microns and converts nothing; asap7's ifp test LEF has no UNITS).
+  static constexpr int kDefaultDbuPerMicron = 1000;
+
   Lexer& lex_;
   Tech& tech_;
+  int defaultUnitsLine_ = 0;  // line where the default units were applied (0: not applied)
   std::vector<OpenBlock> open_;
   StringMap<size_t> skippedIndex_;  // keyword -> index into tech_.skippedStatements
 };

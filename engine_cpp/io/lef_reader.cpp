@@ -1,7 +1,7 @@
 // LEF reader: entry points, token helpers, the file-level statements (VERSION,
 // BUSBITCHARS, DIVIDERCHAR, UNITS, MANUFACTURINGGRID, CLEARANCEMEASURE,
 // PROPERTYDEFINITIONS, END LIBRARY), SITE, and the blocks that are skipped
-// whole (NONDEFAULTRULE, top-level SPACING, ARRAY, BEGINEXT). The other
+// whole (top-level SPACING, ARRAY, NOISETABLE, CORRECTIONTABLE, IRDROP, BEGINEXT). The other
 // blocks live in lef_layer.cpp, lef58.cpp, lef_via.cpp and lef_macro.cpp.
 #include <cctype>
 #include <charconv>
@@ -57,7 +57,7 @@ const Token& LefParser::peek() {
 
 bool LefParser::peekIs(std::string_view word) {
   const Token& t = peek();
-  return !t.quoted && t.text == word;
+  return !t.quoted && isKeyword(t.text, word);
 }
 
 bool LefParser::accept(std::string_view word) {
@@ -92,14 +92,25 @@ Token LefParser::keyword(std::string_view where) {
     failAt(t, "expected a statement in " + std::string(where) + ", found " +
                   (t.quoted ? "a quoted string" : quoteToken(t.text)));
   }
+  lex_.upcase(t);  // keywords are case-insensitive: "Via", "layer"
   return t;
 }
 
+void LefParser::warn(int line, const std::string& message) {
+  tech_.warnings.push_back(lex_.path() + ":" + std::to_string(line) + ": " + message);
+  ++tech_.warningCount;
+}
+
+void LefParser::defaultUnits(const Token& t) {
+  if (tech_.dbuPerMicron > 0) return;
+  tech_.dbuPerMicron = kDefaultDbuPerMicron;
+  defaultUnitsLine_ = t.line;
+  warn(t.line, "length before UNITS DATABASE MICRONS: " + std::to_string(kDefaultDbuPerMicron) +
+                   " database units per micron assumed, OpenROAD's default");
+}
+
 Dbu LefParser::dist() {
-  const Token& t = peek();
-  if (tech_.dbuPerMicron <= 0) {
-    failAt(t, "length " + quoteToken(t.text) + " before UNITS DATABASE MICRONS (units unknown)");
-  }
+  defaultUnits(peek());
   return lex_.microns(tech_.dbuPerMicron);
 }
 
@@ -119,9 +130,7 @@ Dbu LefParser::nonNegativeDist(const std::string& what) {
 
 Area LefParser::area() {
   const Token t = peek();
-  if (tech_.dbuPerMicron <= 0) {
-    failAt(t, "area " + quoteToken(t.text) + " before UNITS DATABASE MICRONS (units unknown)");
-  }
+  defaultUnits(t);
   const double d = tech_.dbuPerMicron;
   const double v = lex_.number() * d * d;
   if (!(std::fabs(v) < 9.0e18)) failAt(t, "area out of range: " + quoteToken(t.text));
@@ -139,8 +148,10 @@ int64_t LefParser::integer() {
 }
 
 Point LefParser::point() {
+  const bool paren = accept("(");  // some writers put a point in parentheses: "( x y )"
   const Dbu x = dist();
   const Dbu y = dist();
+  if (paren) expect(")");
   return {x, y};
 }
 
@@ -204,10 +215,10 @@ void LefParser::skipBlock(std::string_view block, const Token& opener, std::stri
   Scope scope(*this, opener.text, endName, opener.line);
   while (true) {
     const Token t = next();
-    if (t.quoted || t.text != "END") continue;
+    if (t.quoted || !isKeyword(t.text, "END")) continue;
     if (endName.empty()) break;
     if (lex_.atEnd()) failEof();
-    if (!lex_.peek().quoted && lex_.peek().text == endName) {
+    if (!lex_.peek().quoted && (lex_.peek().text == endName || isKeyword(lex_.peek().text, endName))) {
       lex_.next();
       break;
     }
@@ -228,6 +239,12 @@ void LefParser::endBlock(std::string_view blockName) {
 
 void LefParser::parse() {
   while (!lex_.atEnd()) {
+    if (!lex_.peek().quoted && lex_.peek().text.starts_with("&")) {  // "&defines &x = ... ;" (LEF 5.8 macros)
+      const Token amp = next();
+      skipStatement("LEF", amp);
+      warn(amp.line, quoteToken(amp.text) + " skipped: its variables are not expanded");
+      continue;
+    }
     const Token kw = keyword("the LEF file");
     const std::string_view k = kw.text;
     if (k == "LAYER") {
@@ -254,28 +271,32 @@ void LefParser::parse() {
       endStatement();
     } else if (k == "CLEARANCEMEASURE") {
       const Token v = name("EUCLIDEAN or MAXXY");
-      if (v.text != "EUCLIDEAN" && v.text != "MAXXY") {
+      if (!isKeyword(v.text, "EUCLIDEAN") && !isKeyword(v.text, "MAXXY")) {
         failAt(v, "CLEARANCEMEASURE must be EUCLIDEAN or MAXXY, found " + quoteToken(v.text));
       }
       tech_.clearanceMeasure = std::string(v.text);
       endStatement();
     } else if (k == "PROPERTYDEFINITIONS") {
       parsePropertyDefinitions(kw);
-    } else if (k == "NONDEFAULTRULE" || k == "ARRAY") {
-      const Token n = name(k == "ARRAY" ? "an array name" : "a rule name");
+    } else if (k == "NONDEFAULTRULE") {
+      parseNonDefaultRule(kw);
+    } else if (k == "ARRAY") {
+      const Token n = name("an array name");
       skipBlock("LEF", kw, n.text);
+    } else if (k == "NOISETABLE" || k == "CORRECTIONTABLE" || k == "IRDROP") {
+      skipBlock("LEF", kw, k);  // electrical tables: "... END NOISETABLE"
     } else if (k == "SPACING") {  // LEF 5.x "SPACING SAMENET ... END SPACING"
       skipBlock("LEF", kw, "SPACING");
     } else if (k == "BEGINEXT") {
       Scope scope(*this, "BEGINEXT", "", kw.line);
       while (true) {
         const Token t = next();
-        if (!t.quoted && t.text == "ENDEXT") break;
+        if (!t.quoted && isKeyword(t.text, "ENDEXT")) break;
       }
       count("LEF", k);
     } else if (k == "END") {
       const Token t = next();
-      if (t.quoted || t.text != "LIBRARY") failAt(t, "expected END LIBRARY, found END " + quoteToken(t.text));
+      if (t.quoted || !isKeyword(t.text, "LIBRARY")) failAt(t, "expected END LIBRARY, found END " + quoteToken(t.text));
       if (!lex_.atEnd()) count("LEF", "text after END LIBRARY");
       return;
     } else {
@@ -288,11 +309,11 @@ void LefParser::parseUnits(const Token& opener) {
   Scope scope(*this, "UNITS", "", opener.line);
   while (true) {
     const Token kw = keyword("UNITS");
-    if (kw.text == "END") {
+    if (isKeyword(kw.text, "END")) {
       endBlock("UNITS");
       return;
     }
-    if (kw.text != "DATABASE") {
+    if (!isKeyword(kw.text, "DATABASE")) {
       skipStatement("UNITS", kw);
       continue;
     }
@@ -303,11 +324,20 @@ void LefParser::parseUnits(const Token& opener) {
       failAt(v, "UNITS DATABASE MICRONS must be a positive integer, found " + quoteToken(v.text));
     }
     const int dbu = static_cast<int>(d);
-    if (tech_.dbuPerMicron != 0 && tech_.dbuPerMicron != dbu) {
-      failAt(v, "UNITS DATABASE MICRONS " + std::to_string(dbu) + " differs from " +
-                    std::to_string(tech_.dbuPerMicron) + " read before");
+    if (defaultUnitsLine_ > 0 && dbu != kDefaultDbuPerMicron) {
+      failAt(v, "UNITS DATABASE MICRONS " + std::to_string(dbu) + " after a length at line " +
+                    std::to_string(defaultUnitsLine_) + ", read with the default of " +
+                    std::to_string(kDefaultDbuPerMicron) + ": put UNITS before the first length");
     }
-    tech_.dbuPerMicron = dbu;
+    if (tech_.dbuPerMicron != 0 && tech_.dbuPerMicron != dbu) {
+      // LEF lengths are microns whatever the UNITS: a cell LEF's own precision does not change
+      // them. OpenROAD keeps the technology's units and warns.
+      warn(v.line, "UNITS DATABASE MICRONS " + std::to_string(dbu) + " differs from " +
+                       std::to_string(tech_.dbuPerMicron) + " read before: lengths are converted with " +
+                       std::to_string(tech_.dbuPerMicron));
+    } else {
+      tech_.dbuPerMicron = dbu;
+    }
     endStatement();
   }
 }
@@ -316,7 +346,7 @@ void LefParser::parsePropertyDefinitions(const Token& opener) {
   Scope scope(*this, "PROPERTYDEFINITIONS", "", opener.line);
   while (true) {
     const Token kw = keyword("PROPERTYDEFINITIONS");
-    if (kw.text == "END") {
+    if (isKeyword(kw.text, "END")) {
       endBlock("PROPERTYDEFINITIONS");
       return;
     }
@@ -326,7 +356,7 @@ void LefParser::parsePropertyDefinitions(const Token& opener) {
 
 void LefParser::parseSite(const Token& opener) {
   const Token n = name("a site name");
-  if (tech_.siteIndex.count(n.text)) failAt(n, "duplicate SITE " + quoteToken(n.text));
+  const bool again = tech_.siteIndex.count(n.text) > 0;
   Scope scope(*this, "SITE", n.text, opener.line);
   Site site;
   site.name = std::string(n.text);
@@ -348,6 +378,13 @@ void LefParser::parseSite(const Token& opener) {
     } else {
       skipStatement("SITE", kw);
     }
+  }
+  if (again) {  // OpenROAD keeps the first definition
+    const Site& first = tech_.sites[*tech_.siteIndex.find(site.name)->second];
+    const bool same = first.width == site.width && first.height == site.height && first.siteClass == site.siteClass;
+    warn(n.line, "SITE " + quoteToken(n.text) + " defined again" + (same ? ", identically" : ", differently") +
+                     ": the first definition is kept");
+    return;
   }
   tech_.siteIndex.emplace(site.name, SiteId(static_cast<int32_t>(tech_.sites.size())));
   tech_.sites.push_back(std::move(site));

@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "io/gzip_text.hpp"
+
 namespace xroute {
 
 namespace {
@@ -64,6 +66,16 @@ void checkUtf8(const Lexer& lex, const Token& t) {
 }
 }  // namespace
 
+bool isKeyword(std::string_view text, std::string_view word) {
+  if (text.size() != word.size()) return false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const char u = c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+    if (u != word[i]) return false;
+  }
+  return true;
+}
+
 std::string quoteToken(std::string_view text) {
   std::string s(text.substr(0, 40));
   for (char& c : s) {
@@ -85,6 +97,7 @@ Lexer Lexer::fromFile(const std::string& path) {
   text.resize(static_cast<size_t>(size));
   in.seekg(0, std::ios::beg);
   if (size > 0 && !in.read(text.data(), size)) throw InputError(path, 0, "cannot read file");
+  if (isGzip(text)) text = gunzip(path, text);
   return Lexer(path, std::move(text));
 }
 
@@ -165,7 +178,7 @@ Token Lexer::next() {
 
 bool Lexer::accept(std::string_view w) {
   scan();
-  if (!hasLookahead_ || lookahead_.quoted || lookahead_.text != w) return false;
+  if (!hasLookahead_ || lookahead_.quoted || !isKeyword(lookahead_.text, w)) return false;
   next();
   return true;
 }
@@ -173,10 +186,19 @@ bool Lexer::accept(std::string_view w) {
 void Lexer::expect(std::string_view w) {
   scan();
   if (!hasLookahead_) fail(curLine_, "unexpected end of file, expected '" + std::string(w) + "'");
-  if (lookahead_.quoted || lookahead_.text != w) {
+  if (lookahead_.quoted || !isKeyword(lookahead_.text, w)) {
     failAt(lookahead_, "expected '" + std::string(w) + "', found " + quoteToken(lookahead_.text));
   }
   next();
+}
+
+void Lexer::upcase(const Token& t) {
+  const char* base = text_.data();
+  const char* p = t.text.data();
+  if (t.quoted || p < base || p + t.text.size() > base + text_.size()) return;  // a split-off ';'
+  for (size_t i = static_cast<size_t>(p - base), e = i + t.text.size(); i < e; ++i) {
+    if (text_[i] >= 'a' && text_[i] <= 'z') text_[i] = static_cast<char>(text_[i] - 'a' + 'A');
+  }
 }
 
 std::string_view Lexer::word() { return next().text; }
@@ -222,7 +244,17 @@ Dbu Lexer::microns(int dbuPerMicron) {
 
 Dbu Lexer::dbu() {
   const Token copy = peek();
-  const int64_t v = integer();
+  int64_t v = integer();
+  if (scaleDiv_ != 1 && v % scaleDiv_ != 0) {
+    failAt(copy, "coordinate " + quoteToken(copy.text) + " is not a multiple of " + std::to_string(scaleDiv_) +
+                     ": it has no exact value in the LEF's database units");
+  }
+  if (scaleMul_ != 1 || scaleDiv_ != 1) {
+    if (v > std::numeric_limits<Dbu>::max() || v < std::numeric_limits<Dbu>::min()) {
+      failAt(copy, "coordinate out of range: " + quoteToken(copy.text));
+    }
+    v = v / scaleDiv_ * scaleMul_;
+  }
   if (v > std::numeric_limits<Dbu>::max() || v < std::numeric_limits<Dbu>::min()) {
     failAt(copy, "coordinate out of range: " + quoteToken(copy.text));
   }

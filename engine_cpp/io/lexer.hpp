@@ -2,7 +2,10 @@
 // white space; "#" starts a comment to the end of the line; double-quoted
 // strings may hold spaces and span lines; ';'s glued to the end of a word are
 // split off as tokens of their own ("x;;" is "x" ";" ";"). Tokens are views into the file text held by the
-// lexer, so they live as long as the lexer.
+// lexer, so they live as long as the lexer. A gzip-compressed file (magic bytes 1f 8b) is
+// decompressed when read. LEF and DEF keywords are case-insensitive ("Via", "layer", "by"), names
+// are not: accept() and expect() match a keyword in any case, and a parser that takes a token in a
+// keyword position calls upcase() on it before comparing.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +32,10 @@ class Lexer {
   bool atEnd();
   const Token& peek();
   Token next();                        // throws at end of file
-  bool accept(std::string_view word);  // consume the next token if it is `word`
-  void expect(std::string_view word);  // throws unless the next token is `word`
+  bool accept(std::string_view word);  // consume the next token if it is `word` (any case)
+  void expect(std::string_view word);  // throws unless the next token is `word` (any case)
+  // Rewrites a token of this lexer's text in upper case, in place (for a keyword position).
+  void upcase(const Token& t);
   std::string_view word();             // any token (the name of something)
   std::string word(std::string_view what);  // a token, naming `what` in the error
   int64_t integer();                   // throws unless an integer
@@ -38,8 +43,16 @@ class Lexer {
   // A length in microns converted to DBU (rounded to nearest); throws if it
   // does not fit a Dbu.
   Dbu microns(int dbuPerMicron);
-  // A DEF integer coordinate that must fit a Dbu.
+  // A DEF integer coordinate that must fit a Dbu, rescaled by setScale().
   Dbu dbu();
+  // DEF coordinates read by dbu() are multiplied by `mul` and divided by `div` from now on (DEF
+  // units to the LEF's); a coordinate that `div` does not divide is an error.
+  void setScale(int mul, int div) {
+    scaleMul_ = mul;
+    scaleDiv_ = div;
+  }
+  int scaleMul() const { return scaleMul_; }
+  int scaleDiv() const { return scaleDiv_; }
   // Skips tokens up to and including the next ';'. Returns the number skipped.
   int skipStatement();
 
@@ -61,7 +74,12 @@ class Lexer {
   int pendingSemicolonLine_ = 0;
   Token lookahead_;
   bool eof_ = false;
+  int scaleMul_ = 1;  // dbu(): v * scaleMul_ / scaleDiv_
+  int scaleDiv_ = 1;
 };
+
+// True when `text` is the keyword `word` (upper case) written in any case.
+bool isKeyword(std::string_view text, std::string_view word);
 
 // Quotes a token for an error message, shortened if long.
 std::string quoteToken(std::string_view text);

@@ -29,15 +29,49 @@ void warn(Design& design, const std::string& defPath, int line, const std::strin
   ++design.warningCount;
 }
 
+// The bounding box of the rows, the placed components (with their macro's size) and the placed
+// IO pins; false when nothing is placed or the box has no area.
+bool placedBox(const Tech& tech, const Design& design, Rect& box) {
+  bool any = false;
+  auto add = [&](Point lo, Dbu w, Dbu h) {
+    const Rect r{lo.x, lo.y, lo.x + w, lo.y + h};
+    if (!any) box = r;
+    box.expandToInclude(r);
+    any = true;
+  };
+  for (const Row& r : design.rows) {
+    const auto site = tech.siteIndex.find(r.site);
+    const Site* s = site == tech.siteIndex.end() ? nullptr : &tech.sites[*site->second];
+    add(r.origin, Dbu(r.stepX * (r.numX - 1) + (s ? s->width : 0)), Dbu(r.stepY * (r.numY - 1) + (s ? s->height : 0)));
+  }
+  for (const Component& c : design.components) {
+    if (c.status == PlaceStatus::Unplaced) continue;
+    const Macro& m = tech.macros[*c.macro];
+    const bool turned = c.orient == Orient::W || c.orient == Orient::E || c.orient == Orient::FW || c.orient == Orient::FE;
+    add(c.location, turned ? m.height : m.width, turned ? m.width : m.height);
+  }
+  for (const IoPin& p : design.ioPins) {
+    if (p.status != PlaceStatus::Unplaced) add(p.location, 0, 0);
+  }
+  return any && box.xhi > box.xlo && box.yhi > box.ylo;
+}
+
 bool outside(const Rect& die, Point p) { return p.x < die.xlo || p.x > die.xhi || p.y < die.ylo || p.y > die.yhi; }
 
 }  // namespace
 
 void validateDesign(const Tech& tech, Design& design, const std::string& defPath) {
   if (design.dieLine <= 0) {
-    // Nothing placed and nothing to route (an empty design) needs no die; anything else does.
-    if (design.components.empty() && design.ioPins.empty() && design.nets.empty() && design.specialNets.empty()) return;
-    throw InputError(defPath, design.endLine, "no DIEAREA in the DEF");
+    // DIEAREA is optional (OpenROAD's dft/rmp/rsz tests lack it): the box of what is placed
+    // stands in, with a warning; a design with nothing placed keeps no die.
+    Rect b;
+    if (!placedBox(tech, design, b)) return;
+    design.dieArea = b;
+    design.diePolygon = {{b.xlo, b.ylo}, {b.xhi, b.yhi}};
+    design.dieLine = design.endLine;
+    warn(design, defPath, design.endLine,
+         "no DIEAREA: the box of the rows, placed components and IO pins stands in (" + std::to_string(b.xlo) + " " +
+             std::to_string(b.ylo) + " " + std::to_string(b.xhi) + " " + std::to_string(b.yhi) + ")");
   }
   int64_t linesX = 0, linesY = 0;
   for (const GCellPattern& g : design.gcellGrid) (g.isX ? linesX : linesY) += g.count;

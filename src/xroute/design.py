@@ -93,6 +93,10 @@ class Design:
         """LEF/DEF statements the readers did not understand and skipped, by keyword."""
         return dict(self._db.skipped_statements())
 
+    def warnings(self) -> list[str]:
+        """Odd but readable things the readers found (LEF then DEF), one 'file:line: message' each."""
+        return list(self._db.warnings())
+
     @property
     def warning_count(self) -> int:
         """Warnings raised while reading: one per LEF statement skipped, one per DEF item kept only
