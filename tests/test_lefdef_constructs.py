@@ -324,3 +324,18 @@ def test_def_without_diearea_and_nothing_placed_keeps_no_die(tmp_path):
 def test_unknown_def_statement_is_quoted_as_written(tmp_path):
     e = load_error(tmp_path, TECH, design("Bogus 1 ;\n"))
     assert e.line == 5 and "expected a DEF statement, found 'Bogus'" in e.message
+
+
+# ------------------------------------------------ a spacing-table row out of order (ISPD-2018 test4-10)
+def test_spacing_table_row_narrower_than_the_one_before_is_left_out_with_a_warning(tmp_path):
+    """ISPD-2018 test4-test10's Metal9 table ends with a WIDTH row narrower than the row before it;
+    no ascending lookup can reach it: the table keeps the rows in order, the warning names the row."""
+    table = ["SPACINGTABLE", "  PARALLELRUNLENGTH 0 1.0", "  WIDTH 0 0.07 0.08", "  WIDTH 0.3 0.1 0.12",
+             "  WIDTH 0.9 0.3 0.35", "  WIDTH 0.3 0.05 0.06 ;"]
+    lef = library(stack(spacing=None, rules={"M2": table}), site("core", 0.2, 1.0))
+    db = load(tmp_path, lef, design(""))
+    m2 = next(l for l in db.layers() if l["name"] == "M2")
+    assert m2["spacing_table"]["widths"] == [0, 300, 900]
+    assert m2["spacing_table"]["spacing"] == [[70, 80], [100, 120], [300, 350]]
+    assert any("SPACINGTABLE row WIDTH 0.3 of LAYER 'M2' is narrower than the row before it: left out" in w
+               for w in db.warnings())

@@ -247,17 +247,23 @@ void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
     next();
     const Token wv = peek();
     const Dbu width = dist();
-    if (!table.widths.empty() && width < table.widths.back()) {
-      failAt(wv, "SPACINGTABLE WIDTH values must be ascending, found " + quoteToken(wv.text));
+    // A row narrower than the one before (ISPD-2018 test4-test10's Metal9 ends with one) cannot be
+    // reached by a lookup in ascending widths: it is read, then left out, with a warning.
+    const bool outOfOrder = !table.widths.empty() && width < table.widths.back();
+    if (outOfOrder) {
+      warn(wv.line, "SPACINGTABLE row WIDTH " + std::string(wv.text) + " of LAYER " + quoteToken(layer.name) +
+                        " is narrower than the row before it: left out (widths must ascend)");
+    } else {
+      table.widths.push_back(width);
     }
-    table.widths.push_back(width);
     for (size_t i = 0; i < table.prls.size(); ++i) {
       if (peekIs("WIDTH") || peekIs(";")) {
         failAt(peek(), "SPACINGTABLE row WIDTH " + std::string(wv.text) + " has " + std::to_string(i) +
                            " spacing values, expected " + std::to_string(table.prls.size()) +
                            " (one per PARALLELRUNLENGTH)");
       }
-      table.spacing.push_back(nonNegativeDist("SPACINGTABLE spacing of LAYER " + quoteToken(layer.name)));
+      const Dbu space = nonNegativeDist("SPACINGTABLE spacing of LAYER " + quoteToken(layer.name));
+      if (!outOfOrder) table.spacing.push_back(space);
     }
   }
   if (table.widths.empty()) failAt(kw, "SPACINGTABLE PARALLELRUNLENGTH without a WIDTH row");

@@ -96,6 +96,8 @@ def main() -> int:
     if args.data:
         env["XROUTE_TESTCASES"] = args.data
     pending = jobs(args.only)
+    for job in pending:  # a job never asks for more threads than there are cores
+        job["threads"] = min(job["threads"], args.cores)
     running: dict[int, tuple[dict, subprocess.Popen, float, Path]] = {}
     free = args.cores
     start = time.monotonic()
