@@ -198,6 +198,12 @@ def count_def(text: str) -> dict[str, int]:
         if kw == "END":  # the end of a section this scanner does not count
             i += 2
             continue
+        if kw == "PROPERTYDEFINITIONS":  # its `ROW name TYPE ;` lines define properties, not rows
+            while i < len(toks) and not (toks[i].upper() == "END" and i + 1 < len(toks)
+                                         and toks[i + 1].upper() == "PROPERTYDEFINITIONS"):
+                i += 1
+            i += 2
+            continue
         if kw == "ROW":
             counts["rows"] += 1
         if kw in DEF_SECTIONS:

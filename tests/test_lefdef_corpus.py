@@ -101,3 +101,11 @@ def test_public_corpus_is_read(capsys: pytest.CaptureFixture[str]) -> None:
     status = corpus.main([str(CORPUS / "manifest.tsv"), "--jobs", "2"])
     report = capsys.readouterr().out
     assert status == 0, report
+
+
+def test_the_counter_skips_property_definitions_of_rows() -> None:
+    """`ROW name TYPE ;` inside PROPERTYDEFINITIONS defines a property, not a row (OpenROAD's
+    parser_test.def has six of them beside its one row)."""
+    text = ("VERSION 5.8 ;\nDESIGN d ;\nPROPERTYDEFINITIONS\n  ROW strprop STRING ;\n  ROW intprop INTEGER ;\n"
+            "END PROPERTYDEFINITIONS\nROW r0 core 0 0 N DO 10 BY 1 STEP 200 0 ;\nEND DESIGN\n")
+    assert corpus.count_def(text)["rows"] == 1
