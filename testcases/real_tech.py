@@ -10,7 +10,12 @@ own reader: a LEF it refuses raises its InputError with file and line) and keeps
   number of sites wide, with at least one INPUT and one OUTPUT signal pin (USE SIGNAL, CLOCK or
   none). Fillers, tie cells and antenna cells drop out by class or for lack of an input or an
   output; INOUT signal pins are never connected;
-* the power and ground pins of those cells (for the rails), when they have them.
+* the power and ground pins of those cells, as rails on the row boundaries, when every cell has
+  them on its bottom and top edges and a rail (as high as two abutting cells' supply pins) keeps
+  the layer's spacing to every other shape of every usable cell on that layer (``rails_fit``). The
+  ISPD-2019 libraries pass (their contest DEFs hold such 0.16 um Metal1 rails); the ISPD-2018
+  library does not (a 0.12 um rail needs 0.1 um where its pins keep 0.07 um) and gets no rails,
+  like its contest DEFs, which have no SPECIALNETS.
 
 A LEF with no CORE site or no usable core cell raises :class:`XrouteError` naming the file.
 """
@@ -118,6 +123,34 @@ def _usable(macro: dict[str, Any], site: str, site_w: int, row_h: int) -> bool:
             and bool(_signal_pins(macro, "INPUT")) and bool(_signal_pins(macro, "OUTPUT")))
 
 
+def _spacing(layer: dict[str, Any], width: int, prl: int) -> int:
+    """The spacing a shape of ``width`` needs along a parallel run of ``prl`` (DBU), from the PRL table."""
+    table = layer["spacing_table"]
+    if not table or not table.get("widths"):
+        return layer["min_spacing"]
+    row = max(i for i, w in enumerate(table["widths"]) if w <= width or i == 0)
+    col = max(i for i, p in enumerate(table["prls"]) if p <= prl or i == 0)
+    return max(layer["min_spacing"], table["spacing"][row][col])
+
+
+def rails_fit(rails: tuple[Rail, ...], macros: list[dict[str, Any]], layers: dict[str, dict[str, Any]],
+              row_h: int) -> bool:
+    """True when no rail comes closer than the layer's spacing to a non-supply shape of a cell on its layer."""
+    for rail in rails:
+        layer = layers[rail.layer]
+        for m in macros:
+            oy = m["origin"][1]
+            shapes = [s for p in m["pins"].values() if p["use"] not in ("POWER", "GROUND") for s in p["shapes"]]
+            shapes += list(m["obstructions"])
+            for name, x0, y0, x1, y1 in shapes:
+                if name != rail.layer:
+                    continue
+                gap = (y0 + oy - rail.half) if rail.at_bottom else (row_h - rail.half - (y1 + oy))
+                if gap < _spacing(layer, max(2 * rail.half, min(x1 - x0, y1 - y0)), x1 - x0):
+                    return False
+    return True
+
+
 def _rails(macros: list[dict[str, Any]], row_h: int) -> tuple[Rail, ...]:
     """The supply pins as rails, when every usable cell has a POWER and a GROUND pin on opposite row edges."""
     found: dict[str, Rail] = {}
@@ -165,5 +198,8 @@ def read_real_tech(lef_paths: Sequence[str | os.PathLike[str]]) -> RealTech:
         raise XrouteError(f"{where}: needs at least 3 routing layers of both directions, has {len(layers)}")
     cells = tuple(RealCell(m["name"], m["size"][0] // site_w, _signal_pins(m, "INPUT"), _signal_pins(m, "OUTPUT"))
                   for m in usable)
+    rails = _rails(usable, row_h)
+    if rails and not rails_fit(rails, usable, {la["name"]: la for la in db.layers()}, row_h):
+        rails = ()
     return RealTech(paths, db.lef_dbu_per_micron, max(1, db.manufacturing_grid), site, site_w, row_h, layers, cells,
-                    _rails(usable, row_h))
+                    rails)
