@@ -7,8 +7,8 @@ netlist from ``real_netlist``; the guides from the built-in global router (``xro
 Same LEFs, cells, seed, utilisation and folder name: byte-identical files.
 
 The DEF holds: the die (origin 0, whole GCells), rows of the core site alternating N/FS, TRACKS
-for every routing layer (its PITCH and OFFSET in its direction, the nearest layer's of the
-other direction across it; a track starts at OFFSET, or half a pitch when the LEF gives none),
+for every routing layer (its PITCH in its direction at the phase ``real_tech.track_phase`` gives
+relative to the rows, the nearest other-direction layer's across it),
 a GCELLGRID of ``gcell_size``, the placed cells, IO pins on the die edge, the rails as
 SPECIALNETS when the cells have POWER/GROUND pins on their row edges, and the nets.
 """
@@ -21,7 +21,7 @@ from typing import Sequence
 
 from xroute.atomic_files import atomic_write_text
 from xroute.errors import XrouteError
-from xroute.testcases.real_netlist import RealNetlist, make_real_netlist
+from xroute.testcases.real_netlist import RealNetlist, make_real_netlist, track_start
 from xroute.testcases.real_tech import RealLayer, RealTech, read_real_tech
 
 MAX_CELLS = 2_000_000
@@ -32,11 +32,12 @@ DEFAULT_UTILIZATION = 0.75
 UTILIZATION_RANGE = (0.2, 0.9)
 
 
-def _start(layer: RealLayer) -> int:
-    return layer.offset if layer.offset > 0 else layer.pitch // 2
+def _start(layer: RealLayer, core: int) -> int:
+    """The first track inside the die (DBU, never on its edge) of ``layer``, whose rows start at ``core``."""
+    return track_start(layer, core)
 
 
-def _tracks(tech: RealTech, width: int, height: int) -> list[str]:
+def _tracks(tech: RealTech, width: int, height: int, core: tuple[int, int]) -> list[str]:
     """Per layer: tracks in its direction at its pitch, and across it at the nearest other-direction layer's."""
     out = []
     for layer in tech.layers:
@@ -45,7 +46,7 @@ def _tracks(tech: RealTech, width: int, height: int) -> list[str]:
         for lay in (layer, cross):
             axis = "Y" if lay.horizontal else "X"
             extent = height if axis == "Y" else width
-            start = _start(lay)
+            start = _start(lay, core[1] if axis == "Y" else core[0])
             count = (extent - 1 - start) // lay.pitch + 1
             out.append(f"TRACKS {axis} {start} DO {count} STEP {lay.pitch} LAYER {layer.name} ;")
     return out
@@ -78,7 +79,7 @@ def def_text(name: str, tech: RealTech, nl: RealNetlist) -> str:
            f"UNITS DISTANCE MICRONS {tech.dbu} ;", "", f"DIEAREA ( 0 0 ) ( {fp.width} {fp.height} ) ;", ""]
     out += [f"ROW row{r} {tech.site} {fp.core_x} {fp.core_y + r * tech.row_h} {'N' if r % 2 == 0 else 'FS'} "
             f"DO {fp.sites} BY 1 STEP {tech.site_w} 0 ;" for r in range(fp.rows)]
-    out += [""] + _tracks(tech, fp.width, fp.height) + [""]
+    out += [""] + _tracks(tech, fp.width, fp.height, (fp.core_x, fp.core_y)) + [""]
     out += [f"GCELLGRID X 0 DO {fp.width // fp.gcell_w + 1} STEP {fp.gcell_w} ;",
             f"GCELLGRID Y 0 DO {fp.height // fp.gcell_h + 1} STEP {fp.gcell_h} ;", ""]
     out.append(f"COMPONENTS {len(nl.comps)} ;")

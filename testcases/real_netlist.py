@@ -88,6 +88,12 @@ def pin_center(p: Placed, pin: CellPin, row_h: int) -> tuple[int, int]:
     return p.x + cx, p.y + (cy if p.orient == "N" else row_h - cy)
 
 
+def track_start(layer: RealLayer, core: int) -> int:
+    """The first track of ``layer`` inside the die (DBU, never on its edge), rows starting at ``core``."""
+    start = ((core if layer.from_rows else 0) + layer.phase) % layer.pitch
+    return start if start > 0 else layer.pitch
+
+
 def gcell_size(tech: RealTech) -> tuple[int, int]:
     """GCell (width, height): 15 pitches of the lowest vertical / horizontal layer above the first.
 
@@ -161,7 +167,7 @@ def io_pins(rng: random.Random, tech: RealTech, fp: Floorplan, count: int) -> li
         side = i % 4
         layer = vert if side < 2 else horiz
         extent = fp.width if side < 2 else fp.height
-        start = layer.offset if layer.offset > 0 else layer.pitch // 2
+        start = track_start(layer, fp.core_x if side < 2 else fp.core_y)
         n_tracks = (extent - start) // layer.pitch
         while True:
             t = rng.randrange(2, n_tracks - 2)
