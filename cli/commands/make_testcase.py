@@ -18,6 +18,14 @@ import typer
 from xroute.cli.console import print_json
 
 
+def _generate_on_lef(lef: list[Path], cells: int, seed: int, utilization: float | None, out: Path | None) -> Path:
+    from xroute.testcases.real_generator import DEFAULT_UTILIZATION, make_real_testcase
+
+    stem = lef[-1].name.split(".")[0]
+    return make_real_testcase(lef, cells, seed, out if out is not None else Path(f"{stem}_gen{cells}_s{seed}"),
+                              DEFAULT_UTILIZATION if utilization is None else utilization)
+
+
 def make_testcase(
     cells: Annotated[
         int | None, typer.Option("--cells", help="Generate a testcase with this many logic cells.", show_default=False)
@@ -59,11 +67,7 @@ def make_testcase(
     from xroute.design import load_design
 
     if cells is not None and lef:
-        from xroute.testcases.real_generator import DEFAULT_UTILIZATION, make_real_testcase
-
-        stem = lef[-1].name.split(".")[0]
-        folder = make_real_testcase(lef, cells, seed, out if out is not None else Path(f"{stem}_gen{cells}_s{seed}"),
-                                    DEFAULT_UTILIZATION if utilization is None else utilization)
+        folder = _generate_on_lef(lef, cells, seed, utilization, out)
     elif cells is not None:
         from xroute.testcases.generator import make_testcase as generate
 
