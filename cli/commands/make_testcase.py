@@ -1,9 +1,11 @@
-"""``xroute make-testcase``: generate a testcase (``--cells N --seed S``) or tile a real one (``--tile NAME --by RxC``).
+"""``xroute make-testcase``: generate a testcase (``--cells N --seed S``, on our technology or on real
+``--lef`` files) or tile a real one (``--tile NAME --by RxC``).
 
 The output folder's name is the testcase's name: ``--out DIR`` writes ``DIR/<DIR name>.{lef,def,guide}``
-(generated) or ``DIR/<DIR name>.input.{lef,def,guide}`` (tiled, the contest naming of the original).
-Default folders: ``./gen<N>_s<S>`` and ``./<NAME>_<R>x<C>``. The written files are loaded back once to
-check them and to print their counts.
+(generated), ``DIR/<DIR name>.{def,guide}`` (generated on ``--lef`` files, which stay where they are) or
+``DIR/<DIR name>.input.{lef,def,guide}`` (tiled, the contest naming of the original). Default folders:
+``./gen<N>_s<S>``, ``./<LEF stem>_gen<N>_s<S>`` and ``./<NAME>_<R>x<C>``. The written files are loaded
+back once to check them and to print their counts.
 """
 
 from __future__ import annotations
@@ -16,11 +18,29 @@ import typer
 from xroute.cli.console import print_json
 
 
+def _generate_on_lef(lef: list[Path], cells: int, seed: int, utilization: float | None, out: Path | None) -> Path:
+    from xroute.testcases.real_generator import DEFAULT_UTILIZATION, make_real_testcase
+
+    stem = lef[-1].name.split(".")[0]
+    return make_real_testcase(lef, cells, seed, out if out is not None else Path(f"{stem}_gen{cells}_s{seed}"),
+                              DEFAULT_UTILIZATION if utilization is None else utilization)
+
+
 def make_testcase(
     cells: Annotated[
         int | None, typer.Option("--cells", help="Generate a testcase with this many logic cells.", show_default=False)
     ] = None,
     seed: Annotated[int, typer.Option("--seed", help="Seed of the generator (same seed, same files).")] = 1,
+    lef: Annotated[
+        list[Path] | None,
+        typer.Option("--lef", help="Generate on this technology/cell LEF (repeatable) instead of ours.",
+                     show_default=False),
+    ] = None,
+    utilization: Annotated[
+        float | None,
+        typer.Option("--utilization", help="With --lef: share of the row area the cells fill [default: 0.75].",
+                     show_default=False),
+    ] = None,
     tile: Annotated[
         str | None,
         typer.Option("--tile", help="Tile this testcase (a name on the search path) instead.", show_default=False),
@@ -33,15 +53,22 @@ def make_testcase(
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON, nothing else.")] = False,
 ) -> None:
     """Write a testcase: a generated one (--cells N [--seed S]: our own 45 nm-like technology LEF, a placed
-    DEF, guides) or R x C renamed copies of a real one (--tile NAME --by RxC). Route it with
-    `xroute route --lef DIR/X.lef --def DIR/X.def --guide DIR/X.guide` (tiled: X.input.lef, ...), or by
-    name with DIR's parent folder in XROUTE_TESTCASES."""
+    DEF, guides; with --lef FILE, a placed DEF and guides on that real technology and its core cells)
+    or R x C renamed copies of a real one (--tile NAME --by RxC). Route it with
+    `xroute route --lef DIR/X.lef --def DIR/X.def --guide DIR/X.guide` (tiled: X.input.lef, ...; --lef:
+    the same LEF files), or by name with DIR's parent folder in XROUTE_TESTCASES."""
     if (cells is None) == (tile is None):
         raise typer.BadParameter("give exactly one of --cells N or --tile TESTCASE", param_hint="--cells/--tile")
+    if (lef or utilization is not None) and cells is None:
+        raise typer.BadParameter("--lef and --utilization go with --cells N", param_hint="--lef")
+    if utilization is not None and not lef:
+        raise typer.BadParameter("--utilization needs --lef (our technology's is fixed)", param_hint="--utilization")
 
     from xroute.design import load_design
 
-    if cells is not None:
+    if cells is not None and lef:
+        folder = _generate_on_lef(lef, cells, seed, utilization, out)
+    elif cells is not None:
         from xroute.testcases.generator import make_testcase as generate
 
         folder = generate(cells, seed, out if out is not None else Path(f"gen{cells}_s{seed}"))
@@ -53,13 +80,15 @@ def make_testcase(
     name = folder.resolve().name
     infix = "" if cells is not None else ".input"
     files = {ext: folder / f"{name}{infix}.{ext}" for ext in ("lef", "def", "guide")}
+    lef_paths = [str(p) for p in lef] if lef else [str(files["lef"])]
     guide = files["guide"] if files["guide"].is_file() else None
-    design = load_design(lef=[str(files["lef"])], def_=str(files["def"]), guide=str(guide) if guide else None)
+    design = load_design(lef=lef_paths, def_=str(files["def"]), guide=str(guide) if guide else None)
     counts = design.counts()
     result = {
         "name": name,
         "folder": str(folder),
         "files": {k: str(v) for k, v in files.items() if v.is_file()},
+        "lef": lef_paths,
         "components": counts["components"],
         "nets": counts["nets"],
         "io_pins": counts["io_pins"],
@@ -75,4 +104,5 @@ def make_testcase(
                f"{counts['io_pins']:,} IO pins, {counts['guides']:,} guides, die {(x1 - x0) / dbu:g} x "
                f"{(y1 - y0) / dbu:g} um -> {folder}")
     guide_opt = f" --guide {files['guide']}" if guide else ""
-    typer.echo(f"route it: xroute route --lef {files['lef']} --def {files['def']}{guide_opt}")
+    lef_opts = " ".join(f"--lef {p}" for p in lef_paths)
+    typer.echo(f"route it: xroute route {lef_opts} --def {files['def']}{guide_opt}")
