@@ -285,3 +285,12 @@ def test_misspelled_names_get_a_suggestion(runner, args: list[str], hint: str, t
 
     res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
     assert res.exit_code == 2 and hint in res.output
+
+
+@pytest.mark.parametrize("command", ["plot", "plot-region"])
+def test_help_keeps_the_extras_name(runner, command: str) -> None:
+    """Rich markup would eat '[plot]' in pip install 'xroute[plot]' unless it is escaped."""
+    from xroute.cli.app import app
+
+    res = runner.invoke(app, [command, "--help"], terminal_width=200)
+    assert res.exit_code == 0 and "pip install 'xroute[plot]'" in res.output

@@ -36,7 +36,7 @@ def plot_region(
     on their shapes; --net NAME highlights one net. Axes in µm (--dbu: DBU). Give the region as
     --box xlo,ylo,xhi,yhi (DBU) or as --gcell X,Y --size C (GCells of the router's grid: the DEF's
     GCELLGRID, else the guides' most common size). A box with nothing in it is a warning and exit
-    status 2, no picture. Needs matplotlib (pip install 'xroute[plot]').
+    status 2, no picture. Needs matplotlib (pip install 'xroute\\[plot]').
 
     Example: xroute plot-region out/ispd18_test1 --gcell 35,43 --size 1 --out region1.png
     Example: xroute plot-region out/ispd18_test1 --box 100000,120000,104000,123000 --net net1234 --out n.svg
