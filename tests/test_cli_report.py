@@ -226,3 +226,11 @@ def test_line_chart_axes() -> None:
     # different dash patterns and marker shapes, not colour alone
     svg = line_chart("x", [("a", [1.0, 2.0]), ("b", [2.0, 1.0])], "n")
     assert 'stroke-dasharray="7 3"' in svg and "<rect x=" in svg and "<circle" in svg
+
+
+def test_report_says_when_it_replaces_a_file(runner: CliRunner, two_runs: Path, tmp_path: Path) -> None:
+    out = tmp_path / "r.html"
+    first = runner.invoke(app, ["report", str(two_runs), "--out", str(out)])
+    second = runner.invoke(app, ["report", str(two_runs), "--out", str(out)])
+    assert first.exit_code == second.exit_code == 0
+    assert "replaced" not in first.output and "(replaced the file that was there)" in second.output

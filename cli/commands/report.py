@@ -40,6 +40,7 @@ def report(
     runs, training = find_all_runs(run_dirs)
     if out.parent != Path(""):
         out.parent.mkdir(parents=True, exist_ok=True)
+    replaced = out.is_file()
     atomic_write_text(out, render(runs, cfg.cost, title, training, out.parent))
     extra = f", {len(training)} training run(s)" if training else ""
-    typer.echo(f"report: {len(runs)} run(s){extra} -> {out}")
+    typer.echo(f"report: {len(runs)} run(s){extra} -> {out}" + (" (replaced the file that was there)" if replaced else ""))
