@@ -127,3 +127,12 @@ def test_shlex_can_split_every_bash_line() -> None:
     for block in code_blocks("bash"):
         for line in _logical_lines(block):
             shlex.split(line)
+
+
+def test_the_gymnasium_quick_start_runs(capsys) -> None:
+    """policies/rl/README.md's quick start, run as written (on the shipped demo)."""
+    text = (REPO_ROOT / "policies" / "rl" / "README.md").read_text()
+    block = re.search(r"## Quick start\n\n```python\n(.*?)```", text, re.S)
+    assert block is not None and len(block.group(1).splitlines()) <= 12
+    exec(compile(block.group(1), "policies/rl/README.md quick start", "exec"), {})
+    assert re.fullmatch(r"region cost \d+\.\d\n", capsys.readouterr().out)
