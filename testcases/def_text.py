@@ -103,6 +103,35 @@ def write_def_text(d: DefText) -> str:
 
 
 @dataclass
+class IoPin:
+    """An IO pin of a generated design: one shape on one layer, placed at (x, y)."""
+
+    name: str
+    direction: str  # INPUT or OUTPUT
+    layer: str
+    rect: tuple[int, int, int, int]  # DBU, relative to (x, y)
+    x: int
+    y: int
+
+    @property
+    def center(self) -> tuple[int, int]:
+        return self.x + (self.rect[0] + self.rect[2]) // 2, self.y + (self.rect[1] + self.rect[3]) // 2
+
+
+def components_and_pins(comps: list, ios: list[IoPin], net_of_io: dict[str, str]) -> list[str]:
+    """The COMPONENTS and PINS sections of a generated design's DEF (``comps``: objects with name,
+    cell.name, x, y and orient; every IO pin's net by its name)."""
+    out = [f"COMPONENTS {len(comps)} ;"]
+    out += [f"- {p.name} {p.cell.name} + PLACED ( {p.x} {p.y} ) {p.orient} ;" for p in comps]
+    out += ["END COMPONENTS", "", f"PINS {len(ios)} ;"]
+    for io in ios:
+        x0, y0, x1, y1 = io.rect
+        out.append(f"- {io.name} + NET {net_of_io[io.name]} + DIRECTION {io.direction} + USE SIGNAL")
+        out.append(f"  + LAYER {io.layer} ( {x0} {y0} ) ( {x1} {y1} ) + PLACED ( {io.x} {io.y} ) N ;")
+    return out + ["END PINS", ""]
+
+
+@dataclass
 class GuideNet:
     name: str
     rects: list[tuple[int, int, int, int, str]]  # xlo, ylo, xhi, yhi (DBU), layer name

@@ -19,6 +19,7 @@ import math
 import random
 from dataclasses import dataclass, field
 
+from xroute.testcases.def_text import IoPin
 from xroute.testcases.gen_tech import CELL_BY_NAME, CELLS, M1_PITCH, ROW_H, SITE_W, Cell
 
 GCELL_SITES = 15  # GCell width in sites (5700 DBU)
@@ -36,15 +37,6 @@ class Placed:
     y: int
     orient: str  # N or FS
 
-
-@dataclass
-class IoPin:
-    name: str
-    direction: str  # INPUT or OUTPUT
-    layer: str
-    rect: tuple[int, int, int, int]  # DBU, relative to (x, y)
-    x: int
-    y: int
 
 
 @dataclass

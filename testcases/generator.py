@@ -20,7 +20,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from xroute.atomic_files import atomic_write_text
-from xroute.testcases.def_text import GuideNet, write_guides
+from xroute.testcases.def_text import GuideNet, components_and_pins, write_guides
 from xroute.testcases.gen_guides import net_guides
 from xroute.testcases.gen_netlist import GCELL_H, GCELL_W, Netlist, make_netlist, pin_center
 from xroute.testcases.gen_tech import DBU, LAYERS, RAIL_HALF, ROW_H, SITE_W, technology_lef
@@ -76,14 +76,8 @@ def _def_text(name: str, nl: Netlist, net_names: list[str]) -> str:
     out += [""] + _tracks(nl) + [""]
     out += [f"GCELLGRID X 0 DO {nl.width // GCELL_W + 1} STEP {GCELL_W} ;",
             f"GCELLGRID Y 0 DO {nl.height // GCELL_H + 1} STEP {GCELL_H} ;", ""]
-    out.append(f"COMPONENTS {len(nl.comps)} ;")
-    out += [f"- {p.name} {p.cell.name} + PLACED ( {p.x} {p.y} ) {p.orient} ;" for p in nl.comps]
-    out += ["END COMPONENTS", "", f"PINS {len(ios)} ;"]
-    for io in ios:
-        x0, y0, x1, y1 = io.rect
-        out.append(f"- {io.name} + NET {net_of_io[io.name]} + DIRECTION {io.direction} + USE SIGNAL")
-        out.append(f"  + LAYER {io.layer} ( {x0} {y0} ) ( {x1} {y1} ) + PLACED ( {io.x} {io.y} ) N ;")
-    out += ["END PINS", ""] + _special_nets(nl) + ["", f"NETS {len(nl.nets)} ;"]
+    out += components_and_pins(nl.comps, ios, net_of_io)
+    out += _special_nets(nl) + ["", f"NETS {len(nl.nets)} ;"]
     for net_name, net in zip(net_names, nl.nets):
         out.append(f"- {net_name}")
         out.append("  " + " ".join(f"( {comp} {pin} )" for comp, pin in net) + " ;")

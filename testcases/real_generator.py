@@ -21,6 +21,7 @@ from typing import Sequence
 
 from xroute.atomic_files import atomic_write_text
 from xroute.errors import XrouteError
+from xroute.testcases.def_text import components_and_pins
 from xroute.testcases.real_netlist import RealNetlist, make_real_netlist, track_start
 from xroute.testcases.real_tech import RealLayer, RealTech, read_real_tech
 
@@ -82,14 +83,8 @@ def def_text(name: str, tech: RealTech, nl: RealNetlist) -> str:
     out += [""] + _tracks(tech, fp.width, fp.height, (fp.core_x, fp.core_y)) + [""]
     out += [f"GCELLGRID X 0 DO {fp.width // fp.gcell_w + 1} STEP {fp.gcell_w} ;",
             f"GCELLGRID Y 0 DO {fp.height // fp.gcell_h + 1} STEP {fp.gcell_h} ;", ""]
-    out.append(f"COMPONENTS {len(nl.comps)} ;")
-    out += [f"- {p.name} {p.cell.name} + PLACED ( {p.x} {p.y} ) {p.orient} ;" for p in nl.comps]
-    out += ["END COMPONENTS", "", f"PINS {len(ios)} ;"]
-    for io in ios:
-        x0, y0, x1, y1 = io.rect
-        out.append(f"- {io.name} + NET {net_of_io[io.name]} + DIRECTION {io.direction} + USE SIGNAL")
-        out.append(f"  + LAYER {io.layer} ( {x0} {y0} ) ( {x1} {y1} ) + PLACED ( {io.x} {io.y} ) N ;")
-    out += ["END PINS", ""] + _special_nets(tech, nl) + [f"NETS {len(nl.nets)} ;"]
+    out += components_and_pins(nl.comps, ios, net_of_io)
+    out += _special_nets(tech, nl) + [f"NETS {len(nl.nets)} ;"]
     for k, net in enumerate(nl.nets):
         out.append(f"- n{k + 1}")
         out.append("  " + " ".join(f"( {comp} {pin} )" for comp, pin in net) + " ;")

@@ -23,6 +23,7 @@ import math
 import random
 from dataclasses import dataclass, field
 
+from xroute.testcases.def_text import IoPin
 from xroute.testcases.real_tech import CellPin, RealCell, RealLayer, RealTech
 
 # Pins per net (driver included) and their weights (percent): between ispd19_test3 (57 % two-pin,
@@ -47,20 +48,6 @@ class Placed:
     x: int  # DBU, lower-left corner
     y: int
     orient: str  # N or FS
-
-
-@dataclass
-class IoPin:
-    name: str
-    direction: str  # INPUT or OUTPUT
-    layer: str
-    rect: tuple[int, int, int, int]  # DBU, relative to (x, y)
-    x: int
-    y: int
-
-    @property
-    def center(self) -> tuple[int, int]:
-        return self.x + (self.rect[0] + self.rect[2]) // 2, self.y + (self.rect[1] + self.rect[3]) // 2
 
 
 @dataclass
