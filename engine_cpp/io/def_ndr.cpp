@@ -29,12 +29,7 @@ void DefParser::readNonDefaultRule() {
   if (design_.ndrIndex.count(nameTok.text)) lex_.failAt(nameTok, "duplicate NONDEFAULTRULE " + quoteToken(nameTok.text));
   NonDefaultRule rule;
   rule.name = std::string(nameTok.text);
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     if (is(kw, "HARDSPACING")) {
       rule.hardSpacing = true;
     } else if (is(kw, "LAYER")) {

@@ -110,12 +110,7 @@ void DefParser::readSpecialNet() {
     lex_.expect(")");
     net.pins.emplace_back(std::move(comp), std::move(pin));
   }
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER") {
       if (k != "ROUTED") countSkip("SPECIALNETS." + std::string(k));
@@ -310,12 +305,7 @@ void DefParser::readNet() {
     }
     lex_.expect(")");
   }
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "ROUTED" || k == "FIXED" || k == "COVER" || k == "NOSHIELD") {
       if (k != "ROUTED") countSkip("NETS." + std::string(k));

@@ -114,6 +114,8 @@ class DefParser {
   void skipToOptionEnd();                 // skip tokens up to the next '+' or ';' (not consumed)
   void countSkip(std::string_view key, int n = 1);
   [[noreturn]] void unexpected(const Token& t, const std::string& expected) const;
+  // The next "+ KEYWORD" of an entry into `kw` (upper-cased in place); false at the entry's ';'.
+  bool nextOption(Token& kw);
 
   Lexer& lex_;
   const Tech& tech_;

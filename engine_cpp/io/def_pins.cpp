@@ -60,12 +60,7 @@ void DefParser::readPin() {
   pin.name = std::string(nameTok.text);
   std::vector<PinPort> ports(1);
   bool explicitPorts = false;
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "NET") {
       pin.netName = plainWord("a net name");

@@ -65,6 +65,15 @@ void DefParser::countSkip(std::string_view key, int n) {
   design_.skippedStatements.emplace_back(std::string(key), n);
 }
 
+bool DefParser::nextOption(Token& kw) {
+  const Token t = lex_.next();
+  if (is(t, ";")) return false;
+  if (!is(t, "+")) unexpected(t, "'+' or ';'");
+  kw = lex_.next();
+  lex_.upcase(kw);
+  return true;
+}
+
 void DefParser::unexpected(const Token& t, const std::string& expected) const {
   lex_.failAt(t, "expected " + expected + ", found " + (t.quoted ? "the quoted string " : "") + quoteToken(t.text));
 }
@@ -452,12 +461,7 @@ void DefParser::readComponent() {
   Component& c = design_.components.emplace_back();
   c.name = std::string(nameTok.text);
   c.macro = macro;
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     if (is(kw, "PLACED") || is(kw, "FIXED") || is(kw, "COVER")) {
       c.status = readPlacement(kw, c.location, c.orient);
     } else if (is(kw, "UNPLACED")) {

@@ -142,12 +142,7 @@ void DefParser::readVia() {
   v.via.name = std::string(nameTok.text);
   bool haveShapes = false, haveCutSize = false, haveLayers = false;
   int ruleLine = 0;
-  while (true) {
-    const Token t = lex_.next();
-    if (is(t, ";")) break;
-    if (!is(t, "+")) unexpected(t, "'+' or ';'");
-    const Token kw = lex_.next();
-    lex_.upcase(kw);
+  for (Token kw; nextOption(kw);) {
     const std::string_view k = kw.quoted ? std::string_view() : kw.text;
     if (k == "RECT" || k == "POLYGON") {
       v.via.shapes.push_back(readViaShape(kw));
