@@ -21,7 +21,9 @@ DESIGN = pick("ispd19_sample4")  # or its generated stand-in without the contest
 
 
 # The child routes through this wrapper, which sends itself the signal just before the N-th
-# os.replace of the run (N = 0: never). A route's output writing calls os.replace five times, in this
+# os.replace of the run (N = 0: never); for Ctrl-C it raises the KeyboardInterrupt that Python makes
+# of SIGINT right there (a self-sent SIGINT reaches Python asynchronously: in one run of .ci/run
+# the route then ended with status 0). A route's output writing calls os.replace five times, in this
 # order: the staged metrics JSON, the publishing note, then the DEF, the DRC report and the metrics
 # JSON moved to their final names (xroute.output_set.publish). Stopping before each of them covers
 # every stage: files staged, the note written, none / one / two of the three files published.
@@ -34,6 +36,8 @@ def replace(src, dst, **kwargs):
     global calls
     calls += 1
     if calls == at:
+        if sig == signal.SIGINT:
+            raise KeyboardInterrupt  # what Python makes of Ctrl-C, raised here and not at a later bytecode
         os.kill(os.getpid(), sig)
     return real_replace(src, dst, **kwargs)
 
