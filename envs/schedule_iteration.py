@@ -10,7 +10,8 @@ zero violations, or a stop).
 Spaces:
 
 * action: ``Discrete(len(menu))``; ``info["action_mask"]`` masks ``stop`` before the first
-  iteration (it routes every net) and any entry whose region size the design cannot take;
+  iteration (it routes every net) and any entry whose region size the design cannot take; a masked
+  action runs the rule's plan instead, with ``info["masked_action"]`` true;
 * observation: ``Box(float32, (8 + number of violation types,), 0..1e9)``: the share of the iteration
   limit done, log1p of the last iteration's violations and of each type's, the last iteration's
   violation ratio to the one before (1 before two iterations), its region size / 10, its wire
@@ -213,8 +214,11 @@ class ScheduleIterationEnv(gym.Env):
         if self._finished:
             raise RuntimeError("step() after the episode ended: call reset()")
         action = int(action)
-        if not 0 <= action < len(self.menu) or not self._mask()[action]:
-            raise ValueError(f"action {action} is not allowed now (see info['action_mask'])")
+        if not 0 <= action < len(self.menu):
+            raise ValueError(f"action {action} is not in the menu (0..{len(self.menu) - 1})")
+        masked = not self._mask()[action]
+        if masked:  # any action of the space is taken (as Gymnasium's checker expects): the rule's plan runs
+            action = 0
         done_before = len(self._history)
         before = self._cost(self._history[-1]) if self._history else 0.0
         self._resume.put(self._plan(action))
@@ -224,7 +228,7 @@ class ScheduleIterationEnv(gym.Env):
             report = self._history[done_before]
             reward = (before - self._cost(report)) / 1000.0 - self.work_weight * report.net_routes / self._nets
         terminated = final is not None
-        info = self._info(**({"result": final} if final is not None else {}))
+        info = self._info(**({"result": final} if final is not None else {}), masked_action=masked)
         return self._observation(), float(reward), terminated, False, info
 
     def close(self) -> None:

@@ -89,12 +89,15 @@ def test_a_size_action_sets_that_iterations_region_size(env: Any) -> None:
     assert sizes[0] == (SIZE, 0) and sizes[1] == (5, 1) and all(s == (SIZE, 0) for s in sizes[2:])
 
 
-def test_disallowed_actions_and_a_reset_mid_episode(env: Any) -> None:
+def test_masked_and_unknown_actions_and_a_reset_mid_episode(env: Any) -> None:
+    """A masked action (stop before the first iteration) runs the rule's plan and says so; an action
+    outside the menu is an error; a reset drops the unfinished run."""
     env.reset(seed=1)
-    with pytest.raises(ValueError, match="not allowed"):
-        env.step(len(env.menu) - 1)  # stop before the first iteration
-    with pytest.raises(ValueError, match="not allowed"):
+    with pytest.raises(ValueError, match="not in the menu"):
         env.step(len(env.menu))
+    _, _, terminated, _, info = env.step(len(env.menu) - 1)  # stop, masked before the first iteration
+    assert info["masked_action"] and info["iteration"] == 1 and not terminated
+    assert info["history"][0]["plan"]["stop"] is False
     env.step(0)
     obs, info = env.reset(seed=2)  # drops the unfinished run
     assert info["iteration"] == 0 and obs.shape == env.observation_space.shape
