@@ -98,6 +98,25 @@ def test_weights_and_repair_rounds_reach_the_engine(default: tuple[str, Any]) ->
     assert routed(size=2, schedule_policy=repair)[0] != at_two
 
 
+def test_a_search_budget_in_every_plan_routes_as_the_victims_policy() -> None:
+    """search_budget B in every iteration's plan orders each region's nets by the victims search with
+    budget B: the same DEF byte for byte as --policy victims --search-budget B (at region size 2, where
+    that search changes the sample's routing); asked from the second iteration on, the first
+    iteration is the heuristic's."""
+    from xroute.net_order import VictimsPolicy
+
+    heuristic, plain = routed(size=2)
+    victims, _ = routed(size=2, policy=VictimsPolicy(3))
+    assert victims != heuristic
+    text, result = routed(size=2, schedule_policy=CallableSchedule(lambda h, r: {"search_budget": 3}, name="search"))
+    assert text == victims
+    assert all(it.plan.search_budget == 3 for it in result.iterations)
+    late = CallableSchedule(lambda h, r: {"search_budget": 3} if h else None, name="late")
+    _, late_result = routed(size=2, schedule_policy=late)
+    assert figures(late_result.iterations[:1]) == figures(plain.iterations[:1])
+    assert [it.plan.search_budget for it in late_result.iterations][:2] == [0, 3]
+
+
 def test_stop_ends_the_run_before_the_iteration(default: tuple[str, Any]) -> None:
     text, result = routed(schedule_policy=CallableSchedule(lambda h, r: {"stop": len(h) == 2}, name="two"))
     assert len(result.iterations) == 2
@@ -109,6 +128,7 @@ def test_stop_ends_the_run_before_the_iteration(default: tuple[str, Any]) -> Non
     ({"offset": 5}, "offset must be in 0..0"),
     ({"repair_rounds": -1}, "repair_rounds must be in 0.."),
     ({"use_penalty": 2.5}, "use_penalty must be an integer"),
+    ({"search_budget": -1}, "search_budget must be in 0..1024"),
     ({"colour": 1}, "unknown key(s) colour"),
     ([1, 2], "must return an IterationPlan, a dict or None, got list"),
     ({"stop": True}, "the first iteration cannot stop the run"),

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "flow/router.hpp"
+#include "flow/search_policy.hpp"
 
 namespace xroute {
 
@@ -20,6 +21,7 @@ inline nanobind::dict planDict(const IterationPlan& p) {
   d["history_penalty"] = p.historyPenalty;
   d["use_penalty"] = p.costs.usePenalty;
   d["stop"] = p.stop;
+  d["search_budget"] = p.searchBudget;
   return d;
 }
 
@@ -47,6 +49,8 @@ inline IterationPlan planFromDict(const nanobind::handle& d, IterationPlan rule)
       rule.historyPenalty = v;
     } else if (k == "use_penalty") {
       rule.costs.usePenalty = v;
+    } else if (k == "search_budget") {
+      rule.searchBudget = static_cast<int>(std::clamp<int64_t>(v, 0, kMaxSearchBudget));
     } else {
       throw nb::value_error(("planner: unknown plan key '" + k + "'").c_str());
     }

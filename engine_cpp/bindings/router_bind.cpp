@@ -168,6 +168,7 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
   std::unique_ptr<NetOrderPolicy> p =
       routePolicy(policy, seed, policyFn, needsRegion, policyNext, searchBudget, searchWidth);
   finishSettings(s, schedule);
+  s.searchSeed = seed;
   const int dbu = db.design.dbuPerMicron;
   RouteProgress cb;
   if (!progress.is_none()) {
@@ -226,7 +227,7 @@ void bindRouter(nb::module_& m) {
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
       "planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the "
       "iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, "
-      "history_penalty, use_penalty, stop); the iteration runs the plan it returns (keys left out: the rule's; "
+      "history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; "
       "stop: end the run, from iteration 1 on). "
       "Returns {'iterations': [report, ...]}.");
 }

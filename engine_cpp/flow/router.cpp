@@ -4,12 +4,14 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
 #include "flow/crossings.hpp"
 #include "flow/region_router.hpp"
 #include "flow/regions.hpp"
+#include "flow/search_policy.hpp"
 #include "flow/route_context.hpp"
 
 namespace xroute {
@@ -49,6 +51,7 @@ IterationPlan clampedPlan(IterationPlan p) {
   p.markerPenalty = std::max<int64_t>(0, p.markerPenalty);
   p.historyPenalty = std::max<int64_t>(0, p.historyPenalty);
   p.costs.usePenalty = std::max<int64_t>(0, p.costs.usePenalty);
+  p.searchBudget = std::clamp(p.searchBudget, 0, kMaxSearchBudget);
   return p;
 }
 
@@ -68,6 +71,13 @@ class Flow {
       const IterationPlan rule = rulePlan(s_, it);
       plan_ = planner_ ? clampedPlan(planner_(out.iterations, rule)) : rule;
       if (plan_.stop && it > 0) break;  // iteration 0 always runs: it routes every net
+      search_.reset();
+      if (plan_.searchBudget > 0) {
+        SearchSettings search;
+        search.budget = plan_.searchBudget;
+        search.seed = s_.searchSeed;
+        search_ = makeBuiltinPolicy("victims", search);
+      }
       const auto t0 = Clock::now();
       IterationReport rep;
       rep.iteration = it;
@@ -235,7 +245,7 @@ class Flow {
         const size_t i = next.fetch_add(1);
         if (i >= tasks.size()) return;
         try {
-          results[i] = routeRegion(ctx_, tasks[i], plan, policy_, ws);
+          results[i] = routeRegion(ctx_, tasks[i], plan, search_ ? *search_ : policy_, ws);
         } catch (...) {
           std::lock_guard<std::mutex> lock(errorMutex);
           if (!error) error = std::current_exception();
@@ -279,6 +289,7 @@ class Flow {
   const ColourHook& beforeColour_;
   const IterationPlanner& planner_;
   IterationPlan plan_;  // the running iteration's
+  std::unique_ptr<NetOrderPolicy> search_;  // the running iteration's search, when its plan asks for one
   RouteContext ctx_;
   std::vector<Marker> markers_;
   std::vector<MarkerCost> history_;

@@ -48,6 +48,7 @@ struct RouterSettings {
   int repairRounds = 0;
   int firstRepairRounds = 0;       // the same in iteration 0 (0 measured best: later iterations mend as much, for a fraction of the time)
   int64_t repairPenalty = 3000;    // cost units per node near a region marker, times the repair round
+  uint64_t searchSeed = 1;         // seeds the search of an iteration whose plan asks for one
 };
 
 // What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,
@@ -60,6 +61,9 @@ struct IterationPlan {
   int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
   int64_t historyPenalty = 1000;   // what each marker this iteration leaves adds near it from then on
   bool stop = false;               // end the run instead of running this iteration
+  // 0: the run's net-order policy orders each region's nets; 1..kMaxSearchBudget: the victims search
+  // (flow/search_policy.hpp) with this many trial routings per region does, in this iteration only.
+  int searchBudget = 0;
 };
 
 struct IterationReport {

@@ -3,7 +3,8 @@
 Before every iteration the router asks a schedule policy for the iteration's
 :class:`IterationPlan` - the region size and offset, the repair rounds inside each region, and the
 maze's weights for markers of the last iteration, for the history of earlier markers and for
-other nets' shapes - showing it the :class:`IterationReport` of every iteration done so far
+other nets' shapes, and the search that orders each region's nets (the run's net-order policy, or
+the victims search at a budget of the plan's) - showing it the :class:`IterationReport` of every iteration done so far
 (violations by type, wirelength, vias, seconds) and the plan the router's own rule would run. A
 plan may also stop the run (from the second iteration on: the first routes every net).
 
@@ -45,6 +46,7 @@ class IterationPlan:
     history_penalty: int  # what each marker this iteration leaves adds near it from then on
     use_penalty: int  # cost units per shape of another net that a step would violate
     stop: bool = False  # end the run instead of running this iteration (not the first)
+    search_budget: int = 0  # 0: the run's net-order policy; B >= 1: the victims search, B trial routings per region
 
     @classmethod
     def from_engine(cls, d: Mapping[str, Any]) -> IterationPlan:
@@ -60,7 +62,8 @@ class IterationPlan:
         size = self.region_size if isinstance(self.region_size, int) else 1
         limits = {"region_size": (1, defaults.MAX_REGION_SIZE), "offset": (0, size - 1),
                   "repair_rounds": (0, defaults.MAX_REPAIR_ROUNDS), "marker_penalty": (0, MAX_PENALTY),
-                  "history_penalty": (0, MAX_PENALTY), "use_penalty": (0, MAX_PENALTY)}
+                  "history_penalty": (0, MAX_PENALTY), "use_penalty": (0, MAX_PENALTY),
+                  "search_budget": (0, defaults.MAX_SEARCH_BUDGET)}
         for name, (lo, hi) in limits.items():
             value = getattr(self, name)
             if not isinstance(value, int) or isinstance(value, bool):
