@@ -71,8 +71,8 @@ SchedulePolicyOption = Annotated[
     str | None,
     typer.Option("--schedule-policy",
                  help="Each iteration's plan (region size and offset, repair rounds, marker / history / other-net "
-                      "weights, or stop): rule (the settings' own plans), or a .py file defining "
-                      "plan(history, rule). Default: rule.", show_default=False),
+                      "weights, or stop): rule (the settings' own plans), a .py file defining "
+                      "plan(history, rule), or a .json schedule model (xroute train-schedule). Default: rule.", show_default=False),
 ]
 ScheduleOption = Annotated[
     str | None,

@@ -90,14 +90,19 @@ def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> Ne
 
 
 def get_schedule_policy(spec: str | None) -> SchedulePolicy:
-    """The schedule policy ``spec``: None or ``"rule"`` (the router's own plans), or the path of a
-    Python file defining ``plan(history, rule)`` (:mod:`xroute.schedule`; ``NAME`` optional)."""
+    """The schedule policy ``spec``: None or ``"rule"`` (the router's own plans), the path of a
+    Python file defining ``plan(history, rule)`` (:mod:`xroute.schedule`; ``NAME`` optional), or a
+    ``.json`` schedule model (:mod:`xroute.schedule_model`)."""
     if spec is None or spec == RuleSchedule.name:
         return RuleSchedule()
     p = Path(spec)
+    if p.suffix.lower() == ".json":
+        from xroute.schedule_model import load_schedule_model
+
+        return load_schedule_model(p)
     if p.suffix != ".py":
-        raise PolicyError(f"unknown schedule policy '{spec}': use 'rule' or the path of a .py file defining "
-                          "plan(history, rule)")
+        raise PolicyError(f"unknown schedule policy '{spec}': use 'rule', the path of a .py file defining "
+                          "plan(history, rule) or a .json schedule model")
     module = _load_module(p)
     fn: Any = getattr(module, "plan", None)
     if not callable(fn):

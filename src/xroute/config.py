@@ -91,13 +91,14 @@ def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
 
 
 def check_schedule_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
-    """``rule`` stays as it is; anything else is a schedule policy file (.py, relative to the config
-    file's folder) that must be readable. Its ``plan`` function is checked when it is loaded."""
+    """``rule`` stays as it is; anything else is a schedule policy file (.py or a .json model,
+    relative to the config file's folder) that must be readable. It is checked when it is loaded."""
     if value == "rule":
         return value, None
     path = ctx.resolve(value)
-    if path.suffix != ".py":
-        return value, f"unknown schedule policy '{value}': use rule or the path of a .py file defining plan(history, rule)"
+    if path.suffix.lower() not in (".py", ".json"):
+        return value, (f"unknown schedule policy '{value}': use rule, the path of a .py file defining plan(history, rule) "
+                       "or a .json schedule model")
     if not path.is_file():
         return value, f"schedule policy file not found: {path}"
     if not os.access(path, os.R_OK):
