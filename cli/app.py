@@ -29,6 +29,7 @@ from xroute.cli.commands import (
     route,
     testcases,
     train,
+    train_schedule,
 )
 from xroute.cli.console import USER_ERRORS, print_error
 
@@ -104,6 +105,7 @@ app.command(name="info")(info.info)
 app.command(name="testcases")(testcases.testcases)
 app.command(name="route")(route.route)
 app.command(name="train")(train.train)
+app.command(name="train-schedule")(train_schedule.train_schedule)
 app.command(name="export")(export.export)
 app.command(name="make-region")(make_region.make_region_command)
 app.command(name="make-testcase")(make_testcase.make_testcase)

@@ -38,7 +38,7 @@ def make_testcase(
     ] = None,
     utilization: Annotated[
         float | None,
-        typer.Option("--utilization", help="With --lef: share of the row area the cells fill [default: 0.75].",
+        typer.Option("--utilization", help="With --lef: share of the row area the cells fill \\[default: 0.75].",
                      show_default=False),
     ] = None,
     tile: Annotated[
