@@ -28,7 +28,7 @@ import pytest
 
 from conftest import make_runner
 from drawn import write_design
-from lef_text import library, macro, pin, stack
+from lef_text import library, macro, pin, stack, via
 from xroute import _engine
 from xroute.check import check_design
 from xroute.cli.app import app
@@ -41,7 +41,8 @@ RULE = ("NONDEFAULTRULES 1 ;\n- wide + LAYER M2 WIDTH 120 SPACING 140 + LAYER M3
 CELLS = {"a1": (400, 1000), "a2": (400, 2800), "b1": (600, 1400), "b2": (600, 2200),
          "c1": (1400, 600), "c2": (2600, 600), "d1": (1800, 3000), "d2": (1800, 1000)}
 NETS = {"a": ["a1", "a2"], "b": ["b1", "b2"], "c": ["c1", "c2"], "d": ["d1", "d2"]}
-LEF = library(stack(), macro("PIN1", 0.2, 0.2, pin("A", "INPUT", [("M1", (0.07, 0.07, 0.13, 0.13))])))
+CELL = macro("PIN1", 0.2, 0.2, pin("A", "INPUT", [("M1", (0.07, 0.07, 0.13, 0.13))]))
+LEF = library(stack(), CELL)
 
 
 def def_text(rule_net: str | None, rule: str = RULE, cells: dict[str, tuple[int, int]] = CELLS,
@@ -149,3 +150,28 @@ def test_the_routed_def_does_not_depend_on_the_thread_count(tmp_path: Path) -> N
         design.write_def(out)
         texts.append(out.read_bytes())
     assert texts[0] == texts[1]
+
+
+def test_a_rule_net_places_the_via_its_rule_names(tmp_path: Path) -> None:
+    # The rule names V23W (M2 and M3 metal 120 x 120): a net of the rule going from M2 to M3
+    # places it; at its pins the vias stay the ones pin access checked (V12). Another net keeps
+    # the default V23.
+    wide_via = via("V23W", [("M2", (-0.06, -0.06, 0.06, 0.06)), ("V2", (-0.03, -0.03, 0.03, 0.03)),
+                            ("M3", (-0.06, -0.06, 0.06, 0.06))], default=False)
+    lef_text = library(stack(), wide_via, CELL)
+    rule = RULE.replace(" ;\nEND", " + VIA V23W ;\nEND")
+    cells = {"a1": (400, 1000), "a2": (2400, 2800), "b1": (400, 3400), "b2": (2400, 400)}
+    # M1 is blocked between the pins' columns: both nets need M3 to cross.
+    blockage = "BLOCKAGES 1 ;\n- LAYER M1 RECT ( 640 0 ) ( 2360 4000 ) ;\nEND BLOCKAGES\n"
+    text = def_text("a", rule, cells, {"a": ["a1", "a2"], "b": ["b1", "b2"]})
+    text = text.replace("NETS 2", blockage + "NETS 2")
+    lef, def_path = write_design(tmp_path, lef_text, text, stem="ndr")
+    design = prepare_design(lef=lef, def_=def_path)
+    result = route_design(design)
+    routed = tmp_path / "routed.def"
+    design.write_def(routed)
+    db = _engine.load([str(lef)], str(routed))
+    a_vias = {v[0] for v in db.net_routing(0)["vias"]}
+    b_vias = {v[0] for v in db.net_routing(1)["vias"]}
+    assert a_vias == {"V12", "V23W"} and b_vias == {"V12", "V23"}
+    assert result.violations == check_design(load_design(lef=lef, def_=routed)).violations == 0

@@ -40,8 +40,8 @@ int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMet
                    const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
   const Dbu pw = std::min(r.width(), r.height());
-  const Dbu own = ctx.ruleSpacing(net, z);  // the patch's net's NONDEFAULTRULE spacing
-  const Dbu widest = ctx.maxRuleSpacing.empty() ? 0 : ctx.maxRuleSpacing[z];  // any net's on the layer
+  const Dbu own = ctx.netRules.spacing(net, z);  // the patch's net's NONDEFAULTRULE spacing
+  const Dbu widest = ctx.netRules.maxSpacing(z);  // any net's on the layer
   const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], own});
   const Dbu reach = std::max({s, widest, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
                                                          std::numeric_limits<Dbu>::max() / 4)});
@@ -50,7 +50,8 @@ int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMet
   int64_t bad = 0;
   // `lineEnd`: whether o's edge facing the patch may be a line end.
   auto judge = [&](const Rect& o, int32_t other, bool lineEnd) {
-    const Dbu need = std::max({drc::metalNeed(layer, r, o, true, lineEnd), own, ctx.ruleSpacing(other, z)});
+    const Dbu rule = std::max(own, ctx.netRules.spacing(other, z));
+    const Dbu need = std::max(drc::metalNeed(layer, r, o, true, lineEnd), rule);
     if (drc::rectGap(o, r) < need) bad += kPatchConflict;
     else if (o.overlaps(grown)) bad += 10;
   };

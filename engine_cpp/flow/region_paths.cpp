@@ -49,7 +49,8 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     if (zu != zv) {
       const int zl = std::min(zu, zv);
       const int32_t lower = zu < zv ? u : v;
-      ViaId via = ctx.vias.cuts[zl].via;
+      const ViaId rule = ctx.netRules.via(net, zl);  // a NONDEFAULTRULE's via, else the default
+      ViaId via = rule.valid() ? rule : ctx.vias.cuts[zl].via;
       auto it = apVia.find(lower);
       if (it != apVia.end() && g.accessNet[lower] == net) via = it->second;
       out.vias.push_back({ViaRef{*via, false}, g.point(u)});
@@ -66,7 +67,7 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     }
     RouteWire w;
     w.layer = ctx.tracks.layers[zu].layer;
-    w.width = ctx.ruleWidth(net, zu);  // a NONDEFAULTRULE's width (0: the layer's default)
+    w.width = ctx.netRules.width(net, zu);  // a NONDEFAULTRULE's width (0: the layer's default)
     w.from = a;
     w.to = g.point(path[j]);
     out.wires.push_back(w);

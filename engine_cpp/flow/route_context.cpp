@@ -38,47 +38,18 @@ RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPoin
   for (const DrcShape& s : fixedShapes) rects.push_back(s.rect);
   fixedIndex = BoxIndex(std::move(rects));
 
-  ndrSpacing = ndrSpacingByNet(tech, design);
-  if (!ndrSpacing.empty()) {
-    maxRuleSpacing.assign(tracks.layers.size(), 0);
-    for (size_t z = 0; z < tracks.layers.size(); ++z) {
-      for (Dbu v : ndrSpacing[*tracks.layers[z].layer]) maxRuleSpacing[z] = std::max(maxRuleSpacing[z], v);
-    }
-  }
+  netRules = NetRules(tech, design, tracks, vias);
   Dbu maxPitch = 0;
   for (const LayerTracks& lt : tracks.layers) maxPitch = std::max(maxPitch, lt.pitch);
   halo = 2 * maxPitch;
-  for (const Net& n : design.nets) {  // a rule's wide wire and spacing reach further
-    if (n.ndr < 0) continue;
-    for (const NdrLayer& l : design.ndrs[n.ndr].layers) halo = std::max(halo, l.width + l.spacing);
-  }
+  halo = std::max(halo, netRules.reach());  // a rule's wide wire and spacing reach further
   rebuildRoutedIndex();
-}
-
-Dbu RouteContext::ruleWidth(int32_t net, int z) const {
-  if (z < 0 || z >= static_cast<int>(tracks.layers.size())) return 0;
-  const NdrLayer* l = netRuleLayer(design, net, tracks.layers[z].layer);
-  return l != nullptr && l->width != tracks.layers[z].wireWidth ? l->width : 0;
-}
-
-Dbu RouteContext::ruleSpacing(int32_t net, int z) const {
-  if (ndrSpacing.empty() || net < 0 || z < 0 || z >= static_cast<int>(tracks.layers.size())) return 0;
-  const std::vector<Dbu>& byNet = ndrSpacing[*tracks.layers[z].layer];
-  return static_cast<size_t>(net) < byNet.size() ? byNet[net] : 0;
-}
-
-bool RouteContext::hasRule(int32_t net) const {
-  if (net < 0 || static_cast<size_t>(net) >= design.nets.size() || design.nets[net].ndr < 0) return false;
-  for (int z = 0; z < static_cast<int>(tracks.layers.size()); ++z) {
-    if (ruleWidth(net, z) > 0 || ruleSpacing(net, z) > 0) return true;
-  }
-  return false;
 }
 
 DrcOptions RouteContext::drcOptions() const {
   DrcOptions o;
   o.skipFixedPairs = true;
-  o.ndrSpacing = ndrSpacing;
+  o.ndrSpacing = netRules.drcSpacing();
   return o;
 }
 

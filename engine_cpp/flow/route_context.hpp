@@ -10,6 +10,7 @@
 #include "db/design.hpp"
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
+#include "flow/net_rules.hpp"
 #include "flow/regions.hpp"
 #include "geom/box_index.hpp"
 #include "grid/footprint.hpp"
@@ -43,18 +44,9 @@ struct RouteContext {
   std::vector<DrcShape> fixedShapes;  // pins, OBS, special nets (DRC net ids: regular nets keep their id)
   BoxIndex fixedIndex;               // over fixedShapes' rects
   Dbu halo = 0;                      // DBU, how far outside a region shapes still matter
-  // NONDEFAULTRULE spacing by layer id and net id (DrcOptions::ndrSpacing; empty: no net has one).
-  std::vector<std::vector<Dbu>> ndrSpacing;
-  std::vector<Dbu> maxRuleSpacing;  // DBU per routing layer z: the largest of them (empty: none)
-
-  // Net n's wire width on routing layer z by its NONDEFAULTRULE, DBU; 0 = the layer's default.
-  Dbu ruleWidth(int32_t net, int z) const;
-  // Net n's NONDEFAULTRULE spacing on routing layer z, DBU; 0 = the layer's rules only (also for
-  // the ids of special nets and obstructions).
-  Dbu ruleSpacing(int32_t net, int z) const;
-  // True when net n's rule widens its wires or adds spacing on some routing layer.
-  bool hasRule(int32_t net) const;
-  // The design-rule options of the flow's checks: fixed-only pairs skipped, rule spacing as above.
+  NetRules netRules;                 // each net's NONDEFAULTRULE: widths, spacings, vias per layer
+  // The design-rule options of the flow's checks: fixed-only pairs skipped, the nets' rule
+  // spacings (as xroute check judges them).
   DrcOptions drcOptions() const;
 
   // GCell bucket -> nets with routing there (ascending net ids).

@@ -65,7 +65,8 @@ void bump(uint16_t& counter) {
 
 }  // namespace
 
-MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace) {
+MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace,
+                      const Rect* landing) {
   const Layer& layer = *rules.layers[z];
   const Dbu width = std::min(r.width(), r.height());
   const bool hz = rules.horizontal[z] != 0;
@@ -77,7 +78,7 @@ MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu hal
   // (minSpace) raises all three.
   const Dbu sSide = std::max(minSpace, requiredSpacing(layer, width, 2 * half, hz ? r.width() : r.height()));
   const Dbu sEnd = std::max(minSpace, requiredSpacing(layer, width, 2 * half, 2 * half));
-  const Rect& m = rules.viaLanding[z];
+  const Rect& m = landing != nullptr ? *landing : rules.viaLanding[z];
   const Dbu sVia = std::max(
       minSpace, requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height())));
   MetalReach out;

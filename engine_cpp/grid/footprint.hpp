@@ -35,12 +35,14 @@ FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, cons
 
 // Where metal `r` on routing layer z forbids a wire `half` wide through a node (wire: its line
 // end, its side, its end of line) and a via's landing metal at a node (via: beside, end of line),
-// DBU. minSpace (a NONDEFAULTRULE's SPACING of either net; 0 = none) raises the layer's spacing.
+// DBU. minSpace (a NONDEFAULTRULE's SPACING of either net; 0 = none) raises the layer's spacing;
+// landing: the via metal landing on z relative to the via origin (nullptr: rules.viaLanding[z]).
 struct MetalReach {
   std::array<Rect, 3> wire;
   std::array<Rect, 2> via;
 };
-MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace = 0);
+MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace = 0,
+                      const Rect* landing = nullptr);
 // Each node of layer z inside the reach: fn(node, false) once for the wire rects, fn(node, true)
 // once for the via rects.
 void forMetalReach(const RegionGrid& grid, const MetalReach& reach, int z,
