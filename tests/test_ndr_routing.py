@@ -152,14 +152,33 @@ def test_the_routed_def_does_not_depend_on_the_thread_count(tmp_path: Path) -> N
     assert texts[0] == texts[1]
 
 
-def test_a_rule_net_places_the_via_its_rule_names(tmp_path: Path) -> None:
-    # The rule names V23W (M2 and M3 metal 120 x 120): a net of the rule going from M2 to M3
-    # places it; at its pins the vias stay the ones pin access checked (V12). Another net keeps
-    # the default V23.
+LEF_RULE = """NONDEFAULTRULE wide
+  LAYER M2
+    WIDTH 0.12 ;
+    SPACING 0.14 ;
+  END M2
+  LAYER M3
+    WIDTH 0.12 ;
+    SPACING 0.14 ;
+  END M3
+  VIA V23W
+    LAYER M2 ; RECT -0.06 -0.06 0.06 0.06 ;
+    LAYER V2 ; RECT -0.03 -0.03 0.03 0.03 ;
+    LAYER M3 ; RECT -0.06 -0.06 0.06 0.06 ;
+  END V23W
+END wide
+"""
+
+
+@pytest.mark.parametrize("where", ["def", "lef"])
+def test_a_rule_net_places_the_via_its_rule_names(tmp_path: Path, where: str) -> None:
+    # The rule (in the DEF, naming a LEF VIA; or a LEF NONDEFAULTRULE defining it) names V23W,
+    # M2 and M3 metal 120 x 120: a net of the rule going from M2 to M3 places it; at its pins the
+    # vias stay the ones pin access checked (V12). Another net keeps the default V23.
     wide_via = via("V23W", [("M2", (-0.06, -0.06, 0.06, 0.06)), ("V2", (-0.03, -0.03, 0.03, 0.03)),
                             ("M3", (-0.06, -0.06, 0.06, 0.06))], default=False)
-    lef_text = library(stack(), wide_via, CELL)
-    rule = RULE.replace(" ;\nEND", " + VIA V23W ;\nEND")
+    lef_text = library(stack(), wide_via, CELL) if where == "def" else library(stack(), LEF_RULE, CELL)
+    rule = RULE.replace(" ;\nEND", " + VIA V23W ;\nEND") if where == "def" else ""
     cells = {"a1": (400, 1000), "a2": (2400, 2800), "b1": (400, 3400), "b2": (2400, 400)}
     # M1 is blocked between the pins' columns: both nets need M3 to cross.
     blockage = "BLOCKAGES 1 ;\n- LAYER M1 RECT ( 640 0 ) ( 2360 4000 ) ;\nEND BLOCKAGES\n"
@@ -171,6 +190,7 @@ def test_a_rule_net_places_the_via_its_rule_names(tmp_path: Path) -> None:
     routed = tmp_path / "routed.def"
     design.write_def(routed)
     db = _engine.load([str(lef)], str(routed))
+    assert wires(db, "a")[0] == ("M2", 500, 1100, 500, 2900, 120, -1, -1)
     a_vias = {v[0] for v in db.net_routing(0)["vias"]}
     b_vias = {v[0] for v in db.net_routing(1)["vias"]}
     assert a_vias == {"V12", "V23W"} and b_vias == {"V12", "V23"}
