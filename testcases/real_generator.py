@@ -10,7 +10,10 @@ The DEF holds: the die (origin 0, whole GCells), rows of the core site alternati
 for every routing layer (its PITCH in its direction at the phase ``real_tech.track_phase`` gives
 relative to the rows, the nearest other-direction layer's across it),
 a GCELLGRID of ``gcell_size``, the placed cells, IO pins on the die edge, the rails as
-SPECIALNETS when the cells have POWER/GROUND pins on their row edges, and the nets.
+SPECIALNETS when the cells have POWER/GROUND pins on their row edges, and the nets. With
+``ndr_nets`` K > 0, K nets spread evenly over the list carry ``+ NONDEFAULTRULE NDR_2W2S``, a DEF
+rule of twice the default width and twice the minimum spacing on every routing layer above the
+lowest (the pins' layer keeps its defaults).
 """
 
 from __future__ import annotations
@@ -72,7 +75,23 @@ def _special_nets(tech: RealTech, nl: RealNetlist) -> list[str]:
     return out + ["END SPECIALNETS", ""]
 
 
-def def_text(name: str, tech: RealTech, nl: RealNetlist) -> str:
+NDR_NAME = "NDR_2W2S"
+
+
+def _ndr_rule(tech: RealTech) -> list[str]:
+    """The DEF NONDEFAULTRULES section of NDR_2W2S (see the module's docstring)."""
+    layers = [f"  + LAYER {la.name} WIDTH {2 * la.width} SPACING {2 * la.min_spacing}"
+              for la in tech.layers if la.routing_index > 0]
+    return ["NONDEFAULTRULES 1 ;", f"- {NDR_NAME}"] + layers + [" ;", "END NONDEFAULTRULES", ""]
+
+
+def ndr_net_indices(nets: int, count: int) -> set[int]:
+    """``count`` net indices spread evenly over ``nets`` (the middle one of each equal share)."""
+    count = min(count, nets)
+    return {(2 * k + 1) * nets // (2 * count) for k in range(count)} if count > 0 else set()
+
+
+def def_text(name: str, tech: RealTech, nl: RealNetlist, ndr_nets: int = 0) -> str:
     fp = nl.fp
     net_of_io = {pin: f"n{k + 1}" for k, net in enumerate(nl.nets) for comp, pin in net if comp == "PIN"}
     ios = [io for io in nl.ios if io.name in net_of_io]
@@ -83,11 +102,14 @@ def def_text(name: str, tech: RealTech, nl: RealNetlist) -> str:
     out += [""] + _tracks(tech, fp.width, fp.height, (fp.core_x, fp.core_y)) + [""]
     out += [f"GCELLGRID X 0 DO {fp.width // fp.gcell_w + 1} STEP {fp.gcell_w} ;",
             f"GCELLGRID Y 0 DO {fp.height // fp.gcell_h + 1} STEP {fp.gcell_h} ;", ""]
+    ruled = ndr_net_indices(len(nl.nets), ndr_nets)
+    out += _ndr_rule(tech) if ruled else []
     out += components_and_pins(nl.comps, ios, net_of_io)
     out += _special_nets(tech, nl) + [f"NETS {len(nl.nets)} ;"]
     for k, net in enumerate(nl.nets):
         out.append(f"- n{k + 1}")
-        out.append("  " + " ".join(f"( {comp} {pin} )" for comp, pin in net) + " ;")
+        rule = f" + NONDEFAULTRULE {NDR_NAME}" if k in ruled else ""
+        out.append("  " + " ".join(f"( {comp} {pin} )" for comp, pin in net) + rule + " ;")
     out += ["END NETS", "", "END DESIGN"]
     return "\n".join(out) + "\n"
 
@@ -105,8 +127,10 @@ def make_real_testcase(
     seed: int,
     out_dir: str | os.PathLike[str],
     utilization: float = DEFAULT_UTILIZATION,
+    ndr_nets: int = 0,
 ) -> Path:
-    """Writes ``<name>.def`` and ``<name>.guide`` into ``out_dir`` (created if needed); returns the folder."""
+    """Writes ``<name>.def`` and ``<name>.guide`` into ``out_dir`` (created if needed); returns the folder.
+    ``ndr_nets``: how many nets carry the NDR_2W2S rule (0: none)."""
     from xroute.design import load_design
     from xroute.groute import global_route
 
@@ -115,13 +139,15 @@ def make_real_testcase(
     lo, hi = UTILIZATION_RANGE
     if not lo <= utilization <= hi:
         raise XrouteError(f"--utilization must be {lo}..{hi}, not {utilization}")
+    if ndr_nets < 0:
+        raise XrouteError(f"--ndr-nets must be >= 0, not {ndr_nets}")
     folder = Path(out_dir)
     name = testcase_name(folder)
     tech = read_real_tech(lefs)
     nl = make_real_netlist(tech, cells, seed, utilization)
     folder.mkdir(parents=True, exist_ok=True)
     def_path = folder / f"{name}.def"
-    atomic_write_text(def_path, def_text(name, tech, nl))
+    atomic_write_text(def_path, def_text(name, tech, nl, ndr_nets))
     design = load_design(lef=list(tech.lef_paths), def_=def_path)
     global_route(design, out=folder / f"{name}.guide")
     return folder

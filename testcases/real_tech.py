@@ -3,7 +3,7 @@
 ``read_real_tech(lef_paths)`` loads the LEF files with ``xroute._engine.load_lef`` (the project's
 own reader: a LEF it refuses raises its InputError with file and line) and keeps:
 
-* the routing layers in order (direction, pitch, offset, width, minimum area), DBU;
+* the routing layers in order (direction, pitch, offset, width, minimum area, minimum spacing), DBU;
 * the core site: the SITE of CLASS CORE that the most usable core cells name;
 * the usable core cells: MACRO CLASS CORE exactly (not CORE SPACER/TIEHIGH/TIELOW/WELLTAP/
   ANTENNACELL/FEEDTHRU, no ENDCAP, PAD, BLOCK or RING), on the core site, one row high, a whole
@@ -43,6 +43,7 @@ class RealLayer:
     min_area: int  # DBU^2, 0 when not given
     phase: int  # DBU in [0, pitch): where its tracks lie, from the die origin or the rows' (see track_phase)
     from_rows: bool  # True: ``phase`` counts from the rows' origin (the via-landing direction)
+    min_spacing: int = 0  # DBU, the smallest spacing the layer's rules ask between min-width shapes
 
     @property
     def horizontal(self) -> bool:
@@ -233,7 +234,7 @@ def read_real_tech(lef_paths: Sequence[str | os.PathLike[str]]) -> RealTech:
     pin_horizontal = bool(routing) and routing[0]["direction"] == "HORIZONTAL"
     layers = tuple(
         RealLayer(la["name"], la["routing_index"], la["direction"], la["pitch"][0], la["offset"][0], la["width"],
-                  la["min_area"], *track_phase(la, pin_horizontal, usable, (site_w, row_h)))
+                  la["min_area"], *track_phase(la, pin_horizontal, usable, (site_w, row_h)), la["min_spacing"])
         for la in routing if la["pitch"][0] > 0
     )
     if len(layers) < 3 or {la.direction for la in layers} != {"HORIZONTAL", "VERTICAL"}:

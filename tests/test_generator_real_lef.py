@@ -8,6 +8,7 @@ cases draw their own tiny LEFs.
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -152,3 +153,40 @@ def test_a_lef_without_site_or_cells_is_one_line_and_exit_2(tmp_path: Path, body
 def test_utilization_needs_a_lef(tmp_path: Path) -> None:
     result = CliRunner().invoke(app, ["make-testcase", "--cells", "20", "--utilization", "0.5", "--out", str(tmp_path / "x")])
     assert result.exit_code == 2 and not (tmp_path / "x").exists()
+
+
+def test_ndr_nets_are_spread_evenly_and_none_asked_none_given() -> None:
+    from xroute.testcases.real_generator import ndr_net_indices
+
+    assert ndr_net_indices(10, 2) == {2, 7} and ndr_net_indices(3, 5) == {0, 1, 2} and ndr_net_indices(9, 0) == set()
+
+
+def test_generated_nets_of_a_nondefaultrule_route_as_check_judges_them(tmp_path: Path) -> None:
+    # --ndr-nets 6: six nets of NDR_2W2S (twice the width and spacing above metal1); routed,
+    # their wires above metal1 are 200 wide, no net is open, and the router's own count of
+    # violations is the count of check on the written DEF.
+    if not TECHS.is_dir():
+        pytest.skip(f"no technology LEFs: {TECHS} is absent (the ISPD techs folder beside the repository)")
+    from xroute.check import check_design
+    from xroute.design import load_design
+    from xroute.pipeline import prepare_design
+    from xroute.router import route_design
+    from xroute.testcases.real_generator import make_real_testcase
+
+    folder = make_real_testcase([ISPD19], 300, 3, tmp_path / "g", ndr_nets=6)
+    text = (folder / "g.def").read_text()
+    assert text.count("+ NONDEFAULTRULE NDR_2W2S") == 6
+    assert "- NDR_2W2S\n  + LAYER metal2 WIDTH 200 SPACING 200\n" in text  # metal2: width 100, spacing 100
+    design = prepare_design(lef=[ISPD19], def_=folder / "g.def", guide=folder / "g.guide")
+    result = route_design(design, threads=2)
+    routed = tmp_path / "routed.def"
+    design.write_def(routed)
+    written = load_design(lef=[ISPD19], def_=routed)
+    checked = check_design(written)
+    assert checked.opens == 0 and result.violations == checked.violations
+    ruled = re.findall(r"^- (\S+)\n[^;]*\+ NONDEFAULTRULE NDR_2W2S", routed.read_text(), re.M)
+    assert len(ruled) == 6
+    names = written.net_names
+    for net in ruled:
+        for layer, *_pts, width, _e0, _e1 in written.net_routing(names.index(net))["wires"]:
+            assert width == (0 if layer == "metal1" else 200)

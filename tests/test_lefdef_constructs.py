@@ -273,6 +273,34 @@ END NETS
     assert again.net_routing(0)["wires"] == db.net_routing(0)["wires"]
 
 
+def test_a_taper_segment_of_a_rule_net_keeps_the_default_width(tmp_path):
+    # TAPER: that layer's wires of the path, up to its next via, at the layer's width (60); the
+    # rest of the net at the rule's width. The writer gives the TAPER back; a net without a rule
+    # reads TAPER as its default width anyway.
+    body = """NONDEFAULTRULES 1 ;
+- wide + LAYER M1 WIDTH 200 + LAYER M2 WIDTH 180 ;
+END NONDEFAULTRULES
+NETS 2 ;
+- n1 + NONDEFAULTRULE wide + ROUTED M1 TAPER ( 1000 1000 ) ( 3000 1000 ) V12 ( 3000 2000 )
+    NEW M1 ( 1000 1000 ) ( 1000 3000 ) ;
+- n2 + ROUTED M1 TAPER ( 1000 5000 ) ( 3000 5000 ) ;
+END NETS
+"""
+    db = load(tmp_path, TECH, design(body))
+    assert db.skipped_statements().get("NETS.TAPER") is None
+    assert db.net_routing(0)["wires"] == [("M1", 1000, 1000, 3000, 1000, 60, -1, -1),
+                                          ("M2", 3000, 1000, 3000, 2000, 180, -1, -1),
+                                          ("M1", 1000, 1000, 1000, 3000, 200, -1, -1)]
+    assert db.net_routing(1)["wires"] == [("M1", 1000, 5000, 3000, 5000, 60, -1, -1)]
+    out = tmp_path / "out.def"
+    db.write_def(str(out))
+    text = out.read_text()
+    assert "+ ROUTED M1 TAPER ( 1000 1000 ) ( 3000 1000 )\n    NEW M2 ( 3000 1000 ) ( 3000 2000 )" in text
+    assert text.count("TAPER") == 1
+    again = _engine.load([str(tmp_path / "t.lef")], str(out), "")
+    assert again.net_routing(0)["wires"] == db.net_routing(0)["wires"]
+
+
 def test_unknown_nondefaultrule_is_an_error(tmp_path):
     e = load_error(tmp_path, TECH, design("NETS 1 ;\n- n + NONDEFAULTRULE nope ;\nEND NETS\n"))
     assert e.line == 6 and "unknown NONDEFAULTRULE 'nope'" in e.message

@@ -18,12 +18,13 @@ import typer
 from xroute.cli.console import print_json
 
 
-def _generate_on_lef(lef: list[Path], cells: int, seed: int, utilization: float | None, out: Path | None) -> Path:
+def _generate_on_lef(lef: list[Path], cells: int, seed: int, utilization: float | None, out: Path | None,
+                     ndr_nets: int) -> Path:
     from xroute.testcases.real_generator import DEFAULT_UTILIZATION, make_real_testcase
 
     stem = lef[-1].name.split(".")[0]
     return make_real_testcase(lef, cells, seed, out if out is not None else Path(f"{stem}_gen{cells}_s{seed}"),
-                              DEFAULT_UTILIZATION if utilization is None else utilization)
+                              DEFAULT_UTILIZATION if utilization is None else utilization, ndr_nets)
 
 
 def make_testcase(
@@ -41,6 +42,11 @@ def make_testcase(
         typer.Option("--utilization", help="With --lef: share of the row area the cells fill \\[default: 0.75].",
                      show_default=False),
     ] = None,
+    ndr_nets: Annotated[
+        int,
+        typer.Option("--ndr-nets", help="With --lef: give this many nets a NONDEFAULTRULE of twice the width and "
+                     "spacing above the pin layer."),
+    ] = 0,
     tile: Annotated[
         str | None,
         typer.Option("--tile", help="Tile this testcase (a name on the search path) instead.", show_default=False),
@@ -61,13 +67,15 @@ def make_testcase(
         raise typer.BadParameter("give exactly one of --cells N or --tile TESTCASE", param_hint="--cells/--tile")
     if (lef or utilization is not None) and cells is None:
         raise typer.BadParameter("--lef and --utilization go with --cells N", param_hint="--lef")
+    if ndr_nets and not lef:
+        raise typer.BadParameter("--ndr-nets needs --lef", param_hint="--ndr-nets")
     if utilization is not None and not lef:
         raise typer.BadParameter("--utilization needs --lef (our technology's is fixed)", param_hint="--utilization")
 
     from xroute.design import load_design
 
     if cells is not None and lef:
-        folder = _generate_on_lef(lef, cells, seed, utilization, out)
+        folder = _generate_on_lef(lef, cells, seed, utilization, out, ndr_nets)
     elif cells is not None:
         from xroute.testcases.generator import make_testcase as generate
 

@@ -191,6 +191,7 @@ void bindDrcReport(DatabaseClass& cls) {
           std::vector<DrcShape> shapes = collectDesignShapes(db.tech, db.design, &names);
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
+          options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);  // as check_routing judges
           const std::vector<Marker> markers = checkShapes(db.tech, std::move(shapes), options);
           writeDrcReport(path, db.tech, markers, names);
           counts = countMarkers(markers);

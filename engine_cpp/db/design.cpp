@@ -59,6 +59,12 @@ bool routeWireRect(const Tech& tech, const RouteWire& w, Rect& out) {
   return false;
 }
 
+const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer) {
+  if (net < 0 || static_cast<size_t>(net) >= design.nets.size()) return nullptr;
+  const int rule = design.nets[net].ndr;
+  return rule < 0 ? nullptr : design.ndrs[rule].find(layer);
+}
+
 void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out) {
   if (shape.polygon.empty()) {
     out.push_back(t.apply(shape.rect));

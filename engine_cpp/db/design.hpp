@@ -258,6 +258,10 @@ std::vector<PlacedShape> netPinShapes(const Tech& tech, const Design& design, Ne
 // without a layer.
 bool routeWireRect(const Tech& tech, const RouteWire& wire, Rect& out);
 
+// The entry of net n's NONDEFAULTRULE for `layer`, or nullptr (the net has no rule, or its rule
+// leaves the layer to its defaults; n outside the regular nets: nullptr).
+const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer);
+
 // Appends a macro shape placed by `t` as rects (a POLYGON cut into slabs).
 void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out);
 

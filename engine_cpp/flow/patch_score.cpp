@@ -34,30 +34,36 @@ bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i,
 
 // Fixed shapes and routed metal are judged by the spacing table with the run
 // length (a patch runs along them, so a wide one, a power rail, may need its
-// wide-metal row), and by the end-of-line spacing where a line end of either
-// faces the other.
+// wide-metal row), by the end-of-line spacing where a line end of either
+// faces the other, and by the NONDEFAULTRULE spacing of either net.
 int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& routedMetal, int32_t net, int z,
                    const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
   const Dbu pw = std::min(r.width(), r.height());
-  const Dbu s = std::max(layer.minSpacing(), ctx.rules.eolSpace[z]);
-  const Dbu reach = std::max(s, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
-                                                std::numeric_limits<Dbu>::max() / 4));
+  const Dbu own = ctx.netRules.spacing(net, z);  // the patch's net's NONDEFAULTRULE spacing
+  const Dbu widest = ctx.netRules.maxSpacing(z);  // any net's on the layer
+  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], own});
+  const Dbu reach = std::max({s, widest, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
+                                                         std::numeric_limits<Dbu>::max() / 4)});
   const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
   const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
   int64_t bad = 0;
   // `lineEnd`: whether o's edge facing the patch may be a line end.
-  auto judge = [&](const Rect& o, bool lineEnd) {
-    if (drc::rectGap(o, r) < drc::metalNeed(layer, r, o, true, lineEnd)) bad += kPatchConflict;
+  auto judge = [&](const Rect& o, int32_t other, bool lineEnd) {
+    const Dbu rule = std::max(own, ctx.netRules.spacing(other, z));
+    const Dbu need = std::max(drc::metalNeed(layer, r, o, true, lineEnd), rule);
+    if (drc::rectGap(o, r) < need) bad += kPatchConflict;
     else if (o.overlaps(grown)) bad += 10;
   };
   ctx.fixedIndex.query(far, [&](int32_t id) {
     const DrcShape& sh = ctx.fixedShapes[id];
-    if (sh.net != net && ctx.tech.layer(sh.layer).routingIndex == z) judge(sh.rect, true);
+    if (sh.net != net && ctx.tech.layer(sh.layer).routingIndex == z) judge(sh.rect, sh.net, true);
   });
   const auto& metal = routedMetal[z];
   for (size_t i = 0; i < metal.size(); ++i) {
-    if (metal[i].second != net && metal[i].first.overlaps(far)) judge(metal[i].first, !edgeContinues(metal, i, r));
+    if (metal[i].second != net && metal[i].first.overlaps(far)) {
+      judge(metal[i].first, metal[i].second, !edgeContinues(metal, i, r));
+    }
   }
   int x0, x1, y0, y1;
   g.xRangeOpen(grown.xlo, grown.xhi, x0, x1);

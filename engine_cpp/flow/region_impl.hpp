@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -25,6 +26,11 @@ struct TermSpec {
   int32_t crossing = -1;      // free crossing terminals (iteration 0)
 };
 
+// A NONDEFAULTRULE net's extra node costs, cost units per node (MazeNet::ruleWire / ruleVia).
+struct RuleCosts {
+  std::vector<int32_t> wire, via;
+};
+
 struct NetState {
   RegionNetTask task;
   std::vector<TermSpec> terms;
@@ -33,6 +39,9 @@ struct NetState {
   RegionNetResult result;
   std::vector<std::vector<int32_t>> paths;  // the node paths its routing was made of
   std::vector<uint8_t> guide;               // guideMask, built on first use by moves()
+  RuleCosts rule;                           // ruleCosts for moves(), as of ruleAt routed nets
+  bool hasRule = false;
+  size_t ruleAt = std::numeric_limits<size_t>::max();
 };
 
 struct RegionRouter::Impl {
@@ -64,6 +73,11 @@ struct RegionRouter::Impl {
   void routeNet(int32_t index, MazeWorkspace& ws);
   void routeNetPaths(int32_t index, std::vector<std::vector<int32_t>> paths);
   void moves(int32_t index, int32_t node, std::array<MazeMove, kMoveCount>& out);
+
+  // region_rule.cpp
+  // Fills `out` for a net of a NONDEFAULTRULE from the metal marked around the box now; false
+  // (nothing filled) for a net of the default rule.
+  bool ruleCosts(int32_t net, RuleCosts& out) const;
 
  private:
   bool kept(size_t i) const { return seed && i < seed->keep.size() && seed->keep[i]; }

@@ -26,7 +26,8 @@ void markFixed(const RouteContext& ctx, const Rect& box, RegionGrid& g) {
     const DrcShape& s = ctx.fixedShapes[id];
     const Layer& l = ctx.tech.layer(s.layer);
     if (l.routingIndex >= 0) {
-      markMetal(g, ctx.rules, l.routingIndex, s.rect, s.net, true);
+      const int z = l.routingIndex;
+      markMetal(g, ctx.rules, z, s.rect, s.net, true, ctx.netRules.spacing(s.net, z));
     } else if (l.cutIndex >= 0) {
       const int z = cutBelow(ctx, s.layer);
       if (z >= 0) markCut(g, ctx.rules, z, s.rect, s.net);
@@ -40,7 +41,8 @@ void markShapes(const RouteContext& ctx, int32_t net, const std::vector<NetShape
     if (!s.rect.overlaps(win)) continue;
     const Layer& l = ctx.tech.layer(s.layer);
     if (l.routingIndex >= 0) {
-      markMetal(g, ctx.rules, l.routingIndex, s.rect, net, false);
+      const int z = l.routingIndex;
+      markMetal(g, ctx.rules, z, s.rect, net, false, ctx.netRules.spacing(net, z));
       metal[l.routingIndex].emplace_back(s.rect, net);
     } else if (l.cutIndex >= 0) {
       const int z = cutBelow(ctx, s.layer);

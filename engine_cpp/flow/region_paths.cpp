@@ -49,7 +49,8 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     if (zu != zv) {
       const int zl = std::min(zu, zv);
       const int32_t lower = zu < zv ? u : v;
-      ViaId via = ctx.vias.cuts[zl].via;
+      const ViaId rule = ctx.netRules.via(net, zl);  // a NONDEFAULTRULE's via, else the default
+      ViaId via = rule.valid() ? rule : ctx.vias.cuts[zl].via;
       auto it = apVia.find(lower);
       if (it != apVia.end() && g.accessNet[lower] == net) via = it->second;
       out.vias.push_back({ViaRef{*via, false}, g.point(u)});
@@ -66,6 +67,7 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     }
     RouteWire w;
     w.layer = ctx.tracks.layers[zu].layer;
+    w.width = ctx.netRules.width(net, zu);  // a NONDEFAULTRULE's width (0: the layer's default)
     w.from = a;
     w.to = g.point(path[j]);
     out.wires.push_back(w);
@@ -120,6 +122,11 @@ void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
   if (mn.terminals.size() < 2) return;
   const std::vector<uint8_t> mask = guideMask(ns.task.net);
   mn.inGuide = &mask;
+  RuleCosts rule;
+  if (ruleCosts(ns.task.net, rule)) {
+    mn.ruleWire = &rule.wire;
+    mn.ruleVia = &rule.via;
+  }
   std::vector<std::vector<int32_t>> paths;
   ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
   rounds += static_cast<int64_t>(paths.size());
@@ -226,6 +233,14 @@ void RegionRouter::Impl::moves(int32_t index, int32_t node, std::array<MazeMove,
   std::vector<int32_t> termOfSpec;
   MazeNet mn = mazeNet(ns, termOfSpec);
   mn.inGuide = &ns.guide;
+  if (ns.ruleAt != order.size()) {  // the costs change as nets are routed
+    ns.hasRule = ruleCosts(ns.task.net, ns.rule);
+    ns.ruleAt = order.size();
+  }
+  if (ns.hasRule) {
+    mn.ruleWire = &ns.rule.wire;
+    mn.ruleVia = &ns.rule.via;
+  }
   mazeMoves(*grid, task.costs, mn, node, out);
 }
 

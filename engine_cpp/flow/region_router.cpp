@@ -157,8 +157,7 @@ std::vector<Marker> RegionRouter::check() const {
     add(n, first.task.ripup ? first.kept : im.ctx.design.nets[n].routing, ShapeOrigin::Wire);
     for (const NetState* part : it->second) add(n, part->result.added, ShapeOrigin::Wire);
   }
-  DrcOptions o;
-  o.skipFixedPairs = true;
+  DrcOptions o = im.ctx.drcOptions();
   o.window = box;
   return checkShapes(im.ctx.tech, std::move(shapes), o);
 }

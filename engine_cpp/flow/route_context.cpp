@@ -38,10 +38,19 @@ RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPoin
   for (const DrcShape& s : fixedShapes) rects.push_back(s.rect);
   fixedIndex = BoxIndex(std::move(rects));
 
+  netRules = NetRules(tech, design, tracks, vias);
   Dbu maxPitch = 0;
   for (const LayerTracks& lt : tracks.layers) maxPitch = std::max(maxPitch, lt.pitch);
   halo = 2 * maxPitch;
+  halo = std::max(halo, netRules.reach());  // a rule's wide wire and spacing reach further
   rebuildRoutedIndex();
+}
+
+DrcOptions RouteContext::drcOptions() const {
+  DrcOptions o;
+  o.skipFixedPairs = true;
+  o.ndrSpacing = netRules.drcSpacing();
+  return o;
 }
 
 int32_t RouteContext::gcellX(Dbu x) const {

@@ -10,6 +10,7 @@
 #include "db/design.hpp"
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
+#include "flow/net_rules.hpp"
 #include "flow/regions.hpp"
 #include "geom/box_index.hpp"
 #include "grid/footprint.hpp"
@@ -43,6 +44,10 @@ struct RouteContext {
   std::vector<DrcShape> fixedShapes;  // pins, OBS, special nets (DRC net ids: regular nets keep their id)
   BoxIndex fixedIndex;               // over fixedShapes' rects
   Dbu halo = 0;                      // DBU, how far outside a region shapes still matter
+  NetRules netRules;                 // each net's NONDEFAULTRULE: widths, spacings, vias per layer
+  // The design-rule options of the flow's checks: fixed-only pairs skipped, the nets' rule
+  // spacings (as xroute check judges them).
+  DrcOptions drcOptions() const;
 
   // GCell bucket -> nets with routing there (ascending net ids).
   std::vector<std::vector<int32_t>> bucketNets;

@@ -84,7 +84,7 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
-      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), drcOptions());
+      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
@@ -101,12 +101,6 @@ class Flow {
   }
 
  private:
-  static DrcOptions drcOptions() {
-    DrcOptions o;
-    o.skipFixedPairs = true;
-    return o;
-  }
-
   std::vector<MarkerCost> markersNear(const Rect& box) const {
     std::vector<MarkerCost> out;
     const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};

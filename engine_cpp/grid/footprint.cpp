@@ -1,7 +1,7 @@
 #include "grid/footprint.hpp"
 
 #include <algorithm>
-#include <initializer_list>
+#include <array>
 #include <limits>
 
 #include "drc/drc.hpp"
@@ -65,20 +65,23 @@ void bump(uint16_t& counter) {
 
 }  // namespace
 
-void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed) {
+MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace,
+                      const Rect* landing) {
   const Layer& layer = *rules.layers[z];
-  const Dbu half = rules.wireHalf[z];
   const Dbu width = std::min(r.width(), r.height());
   const bool hz = rules.horizontal[z] != 0;
   // Spacing depends on the parallel run length. A wire along the preferred
   // direction beside the shape runs parallel at most the shape's extent in
   // that direction; a wire ending towards the shape (or passing a corner)
   // runs parallel at most its own width. Wide shapes (pads, macros, stripes)
-  // need their wide-metal row only beside them.
-  const Dbu sSide = requiredSpacing(layer, width, 2 * half, hz ? r.width() : r.height());
-  const Dbu sEnd = requiredSpacing(layer, width, 2 * half, 2 * half);
-  const Rect& m = rules.viaLanding[z];
-  const Dbu sVia = requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height()));
+  // need their wide-metal row only beside them. A NONDEFAULTRULE spacing
+  // (minSpace) raises all three.
+  const Dbu sSide = std::max(minSpace, requiredSpacing(layer, width, 2 * half, hz ? r.width() : r.height()));
+  const Dbu sEnd = std::max(minSpace, requiredSpacing(layer, width, 2 * half, 2 * half));
+  const Rect& m = landing != nullptr ? *landing : rules.viaLanding[z];
+  const Dbu sVia = std::max(
+      minSpace, requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height())));
+  MetalReach out;
   // A wire through the node: its square [x-half, x+half] must stay away.
   const Rect wireEnd{r.xlo - sEnd - half, r.ylo - sEnd - half, r.xhi + sEnd + half, r.yhi + sEnd + half};
   const Rect wireSide = hz ? Rect{r.xlo - half, r.ylo - sSide - half, r.xhi + half, r.yhi + sSide + half}
@@ -106,29 +109,48 @@ void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r,
       viaEol = {r.xlo - w - m.xhi, r.ylo - ev - m.yhi, r.xhi + w - m.xlo, r.yhi + ev - m.ylo};
     }
   }
+  out.wire = {wireEnd, wireSide, wireEol};
+  out.via = {viaRegion, viaEol};
+  return out;
+}
+
+namespace {
+
+// Every node of layer z strictly inside one of the rects, once.
+template <size_t N, class Fn>
+void eachNodeOnce(const RegionGrid& g, int z, const std::array<Rect, N>& rects, Fn&& fn) {
+  for (size_t a = 0; a < N; ++a) {
+    forNodesInside(g, z, rects[a], [&](int32_t n) {
+      const Point p = g.point(n);
+      for (size_t b = 0; b < a; ++b) {
+        const Rect& q = rects[b];
+        if (p.x > q.xlo && p.x < q.xhi && p.y > q.ylo && p.y < q.yhi) return;
+      }
+      fn(n);
+    });
+  }
+}
+
+}  // namespace
+
+void forMetalReach(const RegionGrid& g, const MetalReach& reach, int z, const std::function<void(int32_t, bool)>& fn) {
+  eachNodeOnce(g, z, reach.wire, [&](int32_t n) { fn(n, false); });
+  eachNodeOnce(g, z, reach.via, [&](int32_t n) { fn(n, true); });
+}
+
+void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed,
+               Dbu minSpace) {
+  const MetalReach reach = metalReach(rules, z, r, rules.wireHalf[z], minSpace);
   const int32_t owner = net < 0 ? kOwnerMixed : net;
-  // Every node strictly inside one of the rects, once.
-  auto each = [&](std::initializer_list<Rect> rects, auto&& fn) {
-    const Rect* begin = rects.begin();
-    for (const Rect* a = begin; a != rects.end(); ++a) {
-      forNodesInside(g, z, *a, [&](int32_t n) {
-        const Point p = g.point(n);
-        for (const Rect* b = begin; b != a; ++b) {
-          if (p.x > b->xlo && p.x < b->xhi && p.y > b->ylo && p.y < b->yhi) return;
-        }
-        fn(n);
-      });
-    }
-  };
   if (fixed) {
-    each({wireEnd, wireSide, wireEol}, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
-    each({viaRegion, viaEol}, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
+    eachNodeOnce(g, z, reach.wire, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });
+    eachNodeOnce(g, z, reach.via, [&](int32_t n) { claimOwner(g.viaFixedOwner[n], owner); });
   } else {
-    each({wireEnd, wireSide, wireEol}, [&](int32_t n) {
+    eachNodeOnce(g, z, reach.wire, [&](int32_t n) {
       bump(g.wireUse[n]);
       claimOwner(g.wireUseOwner[n], owner);
     });
-    each({viaRegion, viaEol}, [&](int32_t n) {
+    eachNodeOnce(g, z, reach.via, [&](int32_t n) {
       bump(g.viaUse[n]);
       claimOwner(g.viaUseOwner[n], owner);
     });

@@ -1,12 +1,16 @@
 // How shapes make grid nodes costly. A shape on routing layer z claims the
 // nodes where a default-width wire (or the metal of a via landing there)
-// would come closer to it than the layer's spacing rules allow; a cut claims
+// would come closer to it than the layer's spacing rules allow (or the
+// NONDEFAULTRULE spacing of the shape's net, when larger); a cut claims
 // the nodes where another via's cut would be too close. Fixed shapes (pins,
 // obstructions, special nets) go into the fixed owner fields, routed shapes
 // into the use counters. The net of the shape (-1 = obstruction) is recorded
-// so that a net is never charged for its own metal.
+// so that a net is never charged for its own metal. metalReach is the same
+// reach for a wire of any width (a NONDEFAULTRULE net's, judged by the flow).
 #pragma once
 
+#include <array>
+#include <functional>
 #include <vector>
 
 #include "db/tech.hpp"
@@ -29,8 +33,25 @@ struct FootprintRules {
 
 FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, const ViaSet& vias);
 
-// Metal `r` on routing layer z owned by `net` (-1 = obstruction).
-void markMetal(RegionGrid& grid, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed);
+// Where metal `r` on routing layer z forbids a wire `half` wide through a node (wire: its line
+// end, its side, its end of line) and a via's landing metal at a node (via: beside, end of line),
+// DBU. minSpace (a NONDEFAULTRULE's SPACING of either net; 0 = none) raises the layer's spacing;
+// landing: the via metal landing on z relative to the via origin (nullptr: rules.viaLanding[z]).
+struct MetalReach {
+  std::array<Rect, 3> wire;
+  std::array<Rect, 2> via;
+};
+MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace = 0,
+                      const Rect* landing = nullptr);
+// Each node of layer z inside the reach: fn(node, false) once for the wire rects, fn(node, true)
+// once for the via rects.
+void forMetalReach(const RegionGrid& grid, const MetalReach& reach, int z,
+                   const std::function<void(int32_t, bool)>& fn);
+
+// Metal `r` on routing layer z owned by `net` (-1 = obstruction), marked for default-width
+// wires; minSpace: the owner's NONDEFAULTRULE spacing on the layer (0 = none).
+void markMetal(RegionGrid& grid, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed,
+               Dbu minSpace = 0);
 // A cut `r` on the cut layer between z and z+1, owned by `net`.
 void markCut(RegionGrid& grid, const FootprintRules& rules, int z, const Rect& r, int32_t net);
 

@@ -336,9 +336,12 @@ void DefParser::readRegularWiring(Net& net) {
   while (true) {
     PathCursor cur;
     cur.layer = routingLayerAt(lex_.next());
+    // TAPER: this layer's wires of the path (up to its next via) at the layer's default width,
+    // not the net's NONDEFAULTRULE width (0 = the width the net's rule implies).
+    Dbu width = 0;
     while (true) {
       if (lex_.accept("TAPER")) {
-        countSkip("NETS.TAPER");
+        width = tech_.layer(cur.layer).width;
       } else if (lex_.accept("TAPERRULE")) {
         lex_.word("a rule name");
         countSkip("NETS.TAPERRULE");
@@ -358,7 +361,7 @@ void DefParser::readRegularWiring(Net& net) {
         const Point p = readPathPoint(lex_, cur, ext);
         if (cur.havePoint) {
           if (p.x != cur.at.x && p.y != cur.at.y) lex_.fail(line, "diagonal wire");
-          r.wires.push_back({cur.layer, cur.at, p, 0, cur.ext, ext});
+          r.wires.push_back({cur.layer, cur.at, p, width, cur.ext, ext});
           cur.emitted = true;
         }
         cur.at = p;
@@ -384,7 +387,7 @@ void DefParser::readRegularWiring(Net& net) {
         cur.havePoint = true;
         countSkip("NETS.VIRTUAL");
       } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
-        if (cur.havePoint && !cur.emitted) r.wires.push_back({cur.layer, cur.at, cur.at, 0, cur.ext, cur.ext});
+        if (cur.havePoint && !cur.emitted) r.wires.push_back({cur.layer, cur.at, cur.at, width, cur.ext, cur.ext});
         if (!is(t, "NEW")) return;
         lex_.next();
         break;
@@ -393,6 +396,7 @@ void DefParser::readRegularWiring(Net& net) {
         const ViaRef ref = readPathVia(viaTok, cur.havePoint, "NETS");
         r.vias.push_back({ref, cur.at});
         cur.layer = layerAfterVia(viaTok, ref, cur.layer);
+        width = 0;
         cur.emitted = true;
       }
     }

@@ -18,8 +18,10 @@
 //   special nets (their bounding box); a pin's ports with different
 //   placements (shapes made absolute, placement dropped); via orientations
 //   other than N (ignored). Kept as ROUTED: FIXED/COVER/NOSHIELD/SHIELD
-//   wiring. Not kept: MASK, STYLE, TAPER, VIRTUAL, wildcard "( * pin )" refs
-//   in NETS, component SOURCE/WEIGHT/HALO..., blockage options.
+//   wiring. A TAPER segment of regular wiring gets the layer's default width
+//   (a NONDEFAULTRULE's width everywhere else on its net). Not kept: MASK, STYLE,
+//   TAPERRULE, VIRTUAL, wildcard "( * pin )" refs in NETS, component
+//   SOURCE/WEIGHT/HALO..., blockage options.
 #include <algorithm>
 #include <limits>
 

@@ -1,6 +1,8 @@
 // DEF writer: the whole design as standard DEF 5.8, nets with their routing
 // as ROUTED/NEW paths (one straight piece per path, vias as "NEW layer ( x y )
-// VIA", patches as "NEW layer ( x y ) RECT ( 0 0 w h )"). The output depends
+// VIA", patches as "NEW layer ( x y ) RECT ( 0 0 w h )"). A net of a
+// NONDEFAULTRULE is written "+ NONDEFAULTRULE name": its wires have the rule's
+// width by DEF's reading; one drawn at the default width is written "TAPER". The output depends
 // only on the database, so the same design gives the same bytes.
 #include <charconv>
 
@@ -251,6 +253,15 @@ class DefWriter {
     out_ << "END NONDEFAULTRULES\n\n";
   }
 
+  // A wire of a net of a NONDEFAULTRULE drawn at the layer's default width where the rule names
+  // another: DEF writes it "TAPER" (a net's regular wiring has its rule's width otherwise).
+  bool tapered(const Net& n, const RouteWire& w) const {
+    if (n.ndr < 0 || !w.layer.valid()) return false;
+    const NdrLayer* l = d_.ndrs[n.ndr].find(w.layer);
+    const Dbu standard = tech_.layer(w.layer).width;
+    return l != nullptr && l->width != standard && (w.width > 0 ? w.width : standard) == standard;
+  }
+
   void writeNets() {
     out_ << "NETS " << static_cast<int64_t>(d_.nets.size()) << " ;\n";
     for (size_t i = 0; i < d_.nets.size(); ++i) {
@@ -274,7 +285,7 @@ class DefWriter {
       bool first = true;
       for (const RouteWire& w : n.routing.wires) {
         startPath(first);
-        out_ << layer(w.layer) << ' ';
+        out_ << layer(w.layer) << (tapered(n, w) ? " TAPER " : " ");
         writeEnd(w.from, w.extFrom);
         out_ << ' ';
         writeEnd(w.to, w.extTo);

@@ -117,6 +117,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
 
 int64_t Search::wireNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
+  if (net_.ruleWire) cost += (*net_.ruleWire)[v];
   if (own(v)) {
     // The net's own access point: pin access checked it against fixed
     // shapes only; other nets' routing (their access vias) still counts.
@@ -133,6 +134,7 @@ int64_t Search::wireNodeCost(int32_t v) const {
 
 int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
+  if (net_.ruleVia) cost += (*net_.ruleVia)[v];
   if (own(v)) {
     if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
     // Pin access checked the via only where it offers one (kAccessVia); a

@@ -38,6 +38,10 @@ struct MazeNet {
   int32_t net = -1;
   std::vector<MazeTerminal> terminals;
   const std::vector<uint8_t>* inGuide = nullptr;  // per node, 1 = inside the net's guides; null = all
+  // A net of a NONDEFAULTRULE: per node, the cost units its wider wire (ruleWire) or its via's
+  // metal kept at the rule's spacing (ruleVia) adds there; null for a net of the default rule.
+  const std::vector<int32_t>* ruleWire = nullptr;
+  const std::vector<int32_t>* ruleVia = nullptr;
 };
 
 // Reusable search buffers (one per thread).
