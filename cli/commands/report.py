@@ -36,6 +36,9 @@ def report(
     from xroute.atomic_files import atomic_write_text
     from xroute.cli.report_html import find_all_runs, render
 
+    from xroute.regular_files import check_output
+
+    check_output(out, "report file")  # a folder, FIFO or device there: refused before any work
     cfg = load_config(config)
     runs, training = find_all_runs(run_dirs)
     if out.parent != Path(""):

@@ -161,6 +161,7 @@ def route(
 
     from xroute import pipeline
     from xroute.policies import get_policy, get_schedule_policy
+    from xroute.regular_files import make_output_folder
     from xroute.safe_paths import safe_stem
 
     steps = parse_schedule(schedule) if schedule is not None else None
@@ -180,7 +181,7 @@ def route(
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
     out_dir = out if out is not None else Path("out") / safe_stem(design.name)
-    out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
+    make_output_folder(out_dir)  # fail before routing, not after
     if design.global_route_stats is not None and mode in ("rich", "lines"):
         typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
                    f"({global_route_summary(design.global_route_stats)})")

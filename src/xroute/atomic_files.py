@@ -23,14 +23,19 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> None:
 def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
     """Writes ``data`` to ``path`` through a temporary file in the same folder and ``os.replace``
     (the file gets the usual permissions: 0666 less the umask); the temporary file is created
-    exclusively (never an existing file or link) and removed if anything fails."""
-    path = Path(path)
+    exclusively (never an existing file or link) and removed if anything fails. Only a regular
+    file or a link is ever replaced: a folder, FIFO, device or socket at ``path`` is an InputError
+    (:func:`xroute.regular_files.check_output`)."""
+    from xroute.regular_files import check_output
+
+    path = check_output(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
     try:
         with open(tmp, "xb") as f:
             f.write(data)
             f.flush()
             os.fsync(f.fileno())
+        check_output(path)  # again: something may have appeared there meanwhile
         os.replace(tmp, path)
     except BaseException:
         try:

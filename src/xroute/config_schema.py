@@ -74,6 +74,8 @@ def compose_file(path: str | os.PathLike[str]) -> yaml.Node | None:
         text = read_text_limited(str(p))
     except YamlProblem as exc:
         raise ConfigError(exc.message, str(p), exc.line) from None
+    except InputError as exc:  # missing, not a regular file (a FIFO would block), unreadable
+        raise ConfigError(f"cannot read config file: {exc.message}", exc.path, 0) from None
     except OSError as exc:
         raise ConfigError(f"cannot read config file: {exc.strerror or exc}", str(p), 0) from exc
     except UnicodeDecodeError as exc:

@@ -58,7 +58,9 @@ def file_sha256(path: Path) -> str:
 def publish(out_dir: Path, stage: Path, files: Iterable[tuple[Path, Path]]) -> None:
     """Moves each staged ``(source, final)`` file into place, in order (the manifest last), as
     described in the module doc; every final path must lie inside ``out_dir``."""
-    pairs = [(Path(src), inside(out_dir, dst)) for src, dst in files]
+    from xroute.regular_files import check_output
+
+    pairs = [(Path(src), check_output(inside(out_dir, dst))) for src, dst in files]  # all checked before the first rename
     note = {"files": [dst.name for _, dst in pairs], "sha256": {dst.name: file_sha256(src) for src, dst in pairs}}
     atomic_write_text(stage / NOTE, json.dumps(note, indent=2) + "\n")
     for src, dst in pairs:

@@ -88,10 +88,12 @@ def check_tree(root: yaml.Node) -> None:
 
 
 def read_text_limited(path: str) -> str:
-    """The UTF-8 text of a file, read up to MAX_BYTES + 1 bytes (a huge file or a device is an
-    error, not a hang). Raises OSError, UnicodeDecodeError or YamlProblem."""
-    with open(path, "rb") as f:
-        data = f.read(MAX_BYTES + 1)
+    """The UTF-8 text of a regular file, read up to MAX_BYTES + 1 bytes (a huge file is an error;
+    a FIFO or a device is refused without blocking). Raises InputError, UnicodeDecodeError or
+    YamlProblem."""
+    from xroute.regular_files import read_regular_bytes
+
+    data = read_regular_bytes(path, MAX_BYTES, "file")
     if len(data) > MAX_BYTES:
         raise YamlProblem(f"YAML file too large: more than {MAX_BYTES:,} bytes")
     return data.decode("utf-8")
