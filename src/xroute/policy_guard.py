@@ -91,6 +91,8 @@ class Watchdog:
 
     def __init__(self, limit: float, policy: Any) -> None:
         self.limit = float(limit)
+        if not 0 < self.limit < float("inf"):  # NaN or infinity would never fire
+            raise ValueError(f"policy call time limit must be a finite number of seconds > 0, got {limit!r}")
         self.policy = policy
         self.name = str(getattr(policy, "name", "policy"))
         self._lock = threading.Lock()
