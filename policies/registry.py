@@ -26,7 +26,8 @@ from xroute.net_order import (
     builtin_policy,
     is_builtin_name,
 )
-from xroute.errors import InputError, did_you_mean
+from xroute.errors import InputError, did_you_mean, safe_text
+from xroute.policy_guard import kept_cwd
 from xroute.regular_files import check_input
 from xroute.schedule import CallableSchedule, RuleSchedule, SchedulePolicy
 
@@ -52,15 +53,22 @@ def _load_module(p: Path) -> Any:
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module
     try:
-        spec.loader.exec_module(module)
-    except (Exception, SystemExit) as exc:  # noqa: BLE001 - the user's file: report it as one line
+        with kept_cwd():  # a module that calls os.chdir does not move the run
+            spec.loader.exec_module(module)
+    except KeyboardInterrupt:
+        sys.modules.pop(module_name, None)
+        raise
+    except BaseException as exc:  # noqa: BLE001 - the user's file, whatever it raises: one line
         sys.modules.pop(module_name, None)
         import traceback
 
-        lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename) == p]
+        here = os.path.abspath(p)  # the frames name the file by its absolute path
+        lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if os.path.abspath(f.filename) == here]
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
         where = f"{p}:{line}: " if line else ""
-        raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+        message = safe_text(exc)
+        raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}"
+                          + (f": {message}" if message else "")) from None
     return module
 
 

@@ -140,3 +140,14 @@ def test_a_name_that_is_not_utf8_is_one_line(runner: CliRunner, tmp_path: Path, 
     line = one_error(result)
     assert "\\xff" in line or "not found" in line or "no *.metrics.json" in line
     assert os.listdir(tmp_path) == []
+
+
+def test_an_ascii_terminal_never_crashes_the_command(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONIOENCODING": "ascii"}
+    proc = subprocess.run([sys.executable, "-m", "xroute", "info", "demo"], capture_output=True, text=True,
+                          env=env, timeout=300)
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert "\\xb5m" in proc.stdout  # the micro sign, escaped
