@@ -89,6 +89,24 @@ def _read_runs(files: list[Path]) -> list[Run]:
     return runs
 
 
+def set_warnings(runs: list[Run]) -> list[str]:
+    """One line per run whose routed DEF or DRC report beside its metrics JSON is not the file the
+    metrics describe (their SHA-256 in the metrics' ``"run"``: a run killed while publishing, or
+    files copied in from another run)."""
+    from xroute.output_set import set_mismatches
+
+    lines = []
+    for r in runs:
+        stem = r.path.name[: -len(".metrics.json")] if r.path.name.endswith(".metrics.json") else r.path.stem
+        files = {"def": r.path.with_name(f"{stem}.routed.def"), "drc_report": r.path.with_name(f"{stem}.drc.rpt")}
+        bad = set_mismatches(r.metrics, files)
+        if bad:
+            names = " and ".join(p.name for p in bad)
+            lines.append(f"{r.path}: {names} {'is not the file' if len(bad) == 1 else 'are not the files'} these "
+                         "metrics describe (another run's, or changed since): figures and files may disagree")
+    return lines
+
+
 def _run_name(path: Path) -> str:
     folder = path.parent.name
     return folder if folder else path.stem
