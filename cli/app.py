@@ -34,6 +34,7 @@ from xroute.cli.commands import (
     train,
 )
 from xroute.cli.console import USER_ERRORS, print_error
+from xroute.errors import safe_text
 
 EXIT_USER_ERROR = 2
 
@@ -132,6 +133,15 @@ def tolerant_streams() -> None:
                 pass
 
 
+def _thread_failure(args: threading.ExceptHookArgs) -> None:
+    """One line for an exception that ends a thread (one a user's policy started): no traceback."""
+    if args.exc_type is SystemExit:
+        return
+    name = args.thread.name if args.thread is not None else "a thread"
+    sys.stderr.write(f"warning: thread {name} (started by a policy?) ended with {args.exc_type.__name__}: "
+                     f"{safe_text(args.exc_value)}\n")
+
+
 def stray_threads() -> list[threading.Thread]:
     """Threads still running that are neither the main thread nor daemons (a user's policy may
     start one and leave it running)."""
@@ -168,6 +178,7 @@ def main() -> None:
     """Console-script entry point (``xroute``): text that the terminal's encoding cannot show is
     escaped, and threads a policy left running do not outlive the command (:func:`finish`)."""
     tolerant_streams()
+    threading.excepthook = _thread_failure
     try:
         app(prog_name="xroute")
         code: object = 0

@@ -97,10 +97,16 @@ def job_dir(out_root: Path, job: Job) -> Path:
 
 def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
     """The record of a finished job with the same fingerprint, or None."""
+    from xroute.json_files import read_json
+
     path = job_dir(out_root, job) / JOB_RECORD
+    if not path.exists():
+        return None
     try:
-        record = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        record = read_json(path, "job record")
+    except ValueError:  # InputError: unreadable, not JSON, nested too deep: the job runs again
+        return None
+    if not isinstance(record, dict):
         return None
     if record.get("status") == "done" and record.get("fingerprint") == job.fingerprint():
         return record

@@ -105,3 +105,14 @@ def test_a_thread_left_running_does_not_keep_the_process_alive(tmp_path: Path, w
     assert proc.returncode == 0, proc.stderr
     assert "-> " in proc.stdout and "Traceback" not in proc.stderr
     assert (tmp_path / "o" / "demo.routed.def").is_file()
+
+
+def test_a_thread_that_fails_is_one_warning_line(tmp_path: Path) -> None:
+    text = ("import threading\ndef boom():\n    raise ValueError('in a thread')\n"
+            "threading.Thread(target=boom).start()\n" + ORDER.format(body="pass"))
+    pol = policy_file(tmp_path, text)
+    proc = subprocess.run([sys.executable, "-m", "xroute", "route", "--policy", str(pol), "--out", str(tmp_path / "o"),
+                           "--quiet"], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("warning: thread ") and "ValueError: in a thread" in lines[0]
