@@ -9,6 +9,9 @@ traceback.
 
 from __future__ import annotations
 
+import os
+import sys
+import threading
 from typing import Annotated, Any
 
 import typer
@@ -32,6 +35,7 @@ from xroute.cli.commands import (
     train_schedule,
 )
 from xroute.cli.console import USER_ERRORS, print_error
+from xroute.errors import safe_text
 
 EXIT_USER_ERROR = 2
 
@@ -118,6 +122,68 @@ app.command(name="global-route")(global_route.global_route)
 app.command(name="check")(check.check)
 
 
+def tolerant_streams() -> None:
+    """Makes stdout and stderr write what their encoding cannot hold as escapes (``\\xb5``) instead
+    of raising UnicodeEncodeError (``PYTHONIOENCODING=ascii``, a C locale, a file name with bytes
+    that are not UTF-8)."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            try:
+                reconfigure(errors="backslashreplace")
+            except (ValueError, OSError):  # a closed or detached stream: nothing to protect
+                pass
+
+
+def _thread_failure(args: threading.ExceptHookArgs) -> None:
+    """One line for an exception that ends a thread (one a user's policy started): no traceback."""
+    if args.exc_type is SystemExit:
+        return
+    name = args.thread.name if args.thread is not None else "a thread"
+    sys.stderr.write(f"warning: thread {name} (started by a policy?) ended with {args.exc_type.__name__}: "
+                     f"{safe_text(args.exc_value)}\n")
+
+
+def stray_threads() -> list[threading.Thread]:
+    """Threads still running that are neither the main thread nor daemons (a user's policy may
+    start one and leave it running)."""
+    main = threading.main_thread()
+    return [t for t in threading.enumerate() if t is not main and not t.daemon and t.is_alive()]
+
+
+def finish(code: object) -> None:
+    """Ends the process with ``code`` (a ``SystemExit`` code) once the command is done. Python waits
+    for every non-daemon thread before it exits, so a thread left running by a user's policy
+    would keep the process alive after the outputs are written: then the exit handlers are run
+    and the streams flushed here, and the process ends at once (``os._exit``)."""
+    if not stray_threads():
+        sys.exit(code)
+    if code is None:
+        status = 0
+    elif isinstance(code, int):
+        status = code & 0xFF
+    else:
+        sys.stderr.write(f"{code}\n")
+        status = 1
+    import atexit
+
+    atexit._run_exitfuncs()  # what a normal exit runs after the threads (multiprocessing, logging)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (ValueError, OSError):
+            pass
+    os._exit(status)
+
+
 def main() -> None:
-    """Console-script entry point (``xroute``)."""
-    app(prog_name="xroute")
+    """Console-script entry point (``xroute``): text that the terminal's encoding cannot show is
+    escaped, and threads a policy left running do not outlive the command (:func:`finish`)."""
+    tolerant_streams()
+    threading.excepthook = _thread_failure
+    try:
+        app(prog_name="xroute")
+        code: object = 0
+    except SystemExit as exc:
+        code = exc.code
+    finish(code)

@@ -7,9 +7,11 @@ Layout of the output folder ``OUT``::
     OUT/jobs/.<job id>.tmp-<pid>  a job being run (renamed into place when complete)
     OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute.cli.batch_summary`)
 
-A job writes everything into its temporary folder and renames it to ``jobs/<job id>`` as its
-last step, so an interrupted batch leaves no partial job folder (stale temporary folders are
-removed by the next run). A job whose folder holds a ``job.json`` with status ``done`` and the
+A job writes everything into its temporary folder (locked while the job runs) and renames it to
+``jobs/<job id>`` as its last step, so an interrupted batch leaves no partial job folder; the
+next run removes the temporary folders whose lock is free, whatever the process id in their name
+(:func:`xroute.atomic_files.owner_gone`). On Linux the worker processes end with the batch
+process, even when it is killed, so none of them goes on writing into a folder a rerun cleans. A job whose folder holds a ``job.json`` with status ``done`` and the
 same fingerprint (testcase, settings, policy file content) is skipped.
 """
 
@@ -19,9 +21,12 @@ import hashlib
 import json
 import os
 import shutil
+import signal
+import sys
 import time
 from collections import Counter
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
@@ -92,10 +97,16 @@ def job_dir(out_root: Path, job: Job) -> Path:
 
 def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
     """The record of a finished job with the same fingerprint, or None."""
+    from xroute.json_files import read_json
+
     path = job_dir(out_root, job) / JOB_RECORD
+    if not path.exists():
+        return None
     try:
-        record = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        record = read_json(path, "job record")
+    except ValueError:  # InputError: unreadable, not JSON, nested too deep: the job runs again
+        return None
+    if not isinstance(record, dict):
         return None
     if record.get("status") == "done" and record.get("fingerprint") == job.fingerprint():
         return record
@@ -103,8 +114,8 @@ def completed_record(out_root: Path, job: Job) -> dict[str, Any] | None:
 
 
 def clean_stale_job_folders(out_root: Path) -> list[Path]:
-    """Removes temporary job folders whose process is gone (an interrupted batch)."""
-    from xroute.atomic_files import pid_alive
+    """Removes temporary job folders whose job has ended (an interrupted batch): their lock is free."""
+    from xroute.atomic_files import owner_gone
 
     removed = []
     jobs = out_root / "jobs"
@@ -112,8 +123,8 @@ def clean_stale_job_folders(out_root: Path) -> list[Path]:
         return removed
     for p in jobs.iterdir():
         pid_text = p.name.rpartition(".tmp-")[2]
-        if p.name.startswith(".") and ".tmp-" in p.name and pid_text.isdigit():
-            if int(pid_text) != os.getpid() and not pid_alive(int(pid_text)):
+        if p.name.startswith(".") and ".tmp-" in p.name and p.is_dir() and not p.is_symlink():
+            if owner_gone(p, int(pid_text) if pid_text.isdigit() else None):
                 shutil.rmtree(p, ignore_errors=True)
                 removed.append(p)
     return removed
@@ -127,7 +138,7 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     """
     from xroute.cli.console import error_line
     from xroute.errors import XrouteError
-    from xroute.atomic_files import atomic_write_text
+    from xroute.atomic_files import atomic_write_text, open_locked_folder, replace
     from xroute.cli.progress import iteration_line
     from xroute.cli.runs import route_testcase, run_summary
 
@@ -136,6 +147,7 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     tmp = root / "jobs" / f".{job.id}.tmp-{os.getpid()}"
     shutil.rmtree(tmp, ignore_errors=True)
     tmp.mkdir(parents=True)
+    lock = open_locked_folder(tmp)  # in use until this job ends (clean_stale_job_folders)
     record: dict[str, Any] = {
         "format": JOB_FORMAT,
         "id": job.id,
@@ -167,7 +179,7 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
         atomic_write_text(tmp / JOB_RECORD, json.dumps(record, indent=2) + "\n")
         if final.exists():
             shutil.rmtree(final)  # an outdated result (other fingerprint)
-        os.replace(tmp, final)
+        replace(tmp, final)
     except (XrouteError, OSError) as exc:
         shutil.rmtree(tmp, ignore_errors=True)
         record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
@@ -181,7 +193,23 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
+    finally:
+        os.close(lock)
     return record
+
+
+def end_with_parent(parent: int) -> None:
+    """Pool worker initializer: on Linux the kernel kills the worker when the batch process ends,
+    however it ends (``PR_SET_PDEATHSIG``), so a killed batch leaves no worker behind."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGKILL))  # 1: PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            return
+    if os.getppid() != parent:  # the batch ended before the signal was set up
+        os._exit(1)
 
 
 @dataclass
@@ -205,7 +233,8 @@ def run_local(jobs: list[Job], out_root: Path, workers: int, progress: BatchProg
     if not jobs:
         return records
     ctx = mp.get_context("spawn")  # no fork of a process that may hold threads
-    with ctx.Manager() as manager, ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+    with ctx.Manager() as manager, ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=end_with_parent,
+                                                       initargs=(os.getpid(),)) as pool:
         events = manager.Queue()
         pending = {}
         for job in jobs:
@@ -224,6 +253,12 @@ def run_local(jobs: list[Job], out_root: Path, workers: int, progress: BatchProg
                 progress.on_event(ev)
             for fut in done:
                 job = pending.pop(fut)
-                records[job.id] = fut.result()
+                try:
+                    records[job.id] = fut.result()
+                except BrokenProcessPool:
+                    from xroute.errors import XrouteError
+
+                    raise XrouteError(f"a worker process ended abruptly (killed, or out of memory) during job {job.id}; "
+                                      "the finished jobs are kept: run the batch again to resume") from None
                 progress.on_done(job, records[job.id])
     return records

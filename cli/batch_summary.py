@@ -17,6 +17,7 @@ from typing import Any
 
 from xroute.cli.batch_config import Gates
 from xroute.config_schema import ConfigError
+from xroute.errors import InputError
 from xroute.atomic_files import atomic_write_text
 from xroute.glossary import COST_NAME
 
@@ -29,10 +30,12 @@ CSV_COLUMNS = ("id", "testcase", "policy", "settings", "status", "resumed", "wir
 def load_baseline(path: str | None) -> dict[str, Any] | None:
     if path is None:
         return None
+    from xroute.json_files import read_json
+
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        raise ConfigError(f"cannot read baseline file: {exc}", path, 0) from exc
+        data = read_json(path, "baseline file")
+    except InputError as exc:
+        raise ConfigError(exc.message, exc.path, 0) from None
     if not isinstance(data, dict) or data.get("format") != BASELINE_FORMAT:
         raise ConfigError(f"not a baseline file (format {BASELINE_FORMAT} written by `xroute batch --write-baseline`)",
                           path, 0)

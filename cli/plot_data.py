@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from xroute.errors import InputError, XrouteError
+from xroute.errors import InputError, XrouteError, safe_text
 
 if TYPE_CHECKING:
     from xroute.design import Design
@@ -127,18 +127,19 @@ class RunFiles:
 def run_files(folder: Path) -> RunFiles:
     """The routed DEF, LEF, guide and DRC report of a route output folder (from its metrics JSON; the
     guide gives the GCell grid when the DEF has no GCELLGRID, and the out-of-guide wire)."""
-    import json
-
     found = sorted(folder.glob("*.metrics.json"))
     if not found:
         raise InputError("no *.metrics.json here: give a route output folder, or a DEF with --lef", str(folder), 0)
+    from xroute.json_files import read_json
+
+    m = read_json(found[0], "metrics JSON")
     try:
-        m = json.loads(found[0].read_text(encoding="utf-8"))
         lef = [str(p) for p in m["inputs"]["lef"]]
         guide = m["inputs"].get("guide")
         design = m["design"]
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise InputError(f"not a metrics JSON written by xroute: {exc}", str(found[0]), 0) from exc
+    except (KeyError, TypeError, AttributeError, IndexError) as exc:
+        raise InputError(f"not a metrics JSON written by xroute: {type(exc).__name__}: {safe_text(exc)}",
+                         str(found[0]), 0) from None
     from xroute.safe_paths import safe_stem
 
     def_path = folder / f"{safe_stem(str(design))}.routed.def"

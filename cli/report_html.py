@@ -11,7 +11,6 @@ train``) found there too get the training dashboard (:mod:`xroute.cli.report_tra
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import dataclass
 from datetime import datetime, timezone
@@ -21,7 +20,7 @@ from typing import Any
 from urllib.parse import quote
 
 from xroute.config import CostSection
-from xroute.errors import InputError
+from xroute.errors import InputError, safe_text
 from xroute.cli.report_training import TRAINING_LOG, TrainingRun, find_training_logs, read_training_log, render_training
 from xroute.cli.report_trends import design_section
 from xroute.glossary import COST_NAME, cost_line, score_line
@@ -64,16 +63,48 @@ def find_runs(folders: list[Path]) -> list[Run]:
     return find_all_runs(folders)[0]
 
 
+_SHAPE_ERRORS = (KeyError, TypeError, ValueError, AttributeError, IndexError, OverflowError, ZeroDivisionError)
+
+
 def _read_runs(files: list[Path]) -> list[Run]:
+    """The runs of ``files``, each checked by rendering it alone: a metrics JSON that is not one
+    (wrong types, missing fields, deep nesting) is an InputError naming that file."""
+    from xroute.json_files import read_json
+
     runs = []
     for f in files:
+        metrics = read_json(f, "metrics JSON")
+        run = Run(name=_run_name(f), path=f, metrics=metrics)
         try:
-            metrics = json.loads(f.read_text(encoding="utf-8"))
+            if not isinstance(metrics, dict):
+                raise TypeError(f"a JSON {type(metrics).__name__}, not an object")
             metrics["final"], metrics["iterations"]  # noqa: B018 - the fields the report needs
-        except (OSError, ValueError, KeyError, TypeError) as exc:
-            raise InputError(f"not a metrics JSON written by xroute ({type(exc).__name__}: {exc})", str(f), 0) from exc
-        runs.append(Run(name=_run_name(f), path=f, metrics=metrics))
+            render([run], CostSection(), "check", [], f.parent)
+        except _SHAPE_ERRORS as exc:
+            raise InputError(f"not a metrics JSON written by xroute ({type(exc).__name__}: {safe_text(exc)})",
+                             str(f), 0) from None
+        except RecursionError:
+            raise InputError("not a metrics JSON written by xroute (nested too deeply)", str(f), 0) from None
+        runs.append(run)
     return runs
+
+
+def set_warnings(runs: list[Run]) -> list[str]:
+    """One line per run whose routed DEF or DRC report beside its metrics JSON is not the file the
+    metrics describe (their SHA-256 in the metrics' ``"run"``: a run killed while publishing, or
+    files copied in from another run)."""
+    from xroute.output_set import set_mismatches
+
+    lines = []
+    for r in runs:
+        stem = r.path.name[: -len(".metrics.json")] if r.path.name.endswith(".metrics.json") else r.path.stem
+        files = {"def": r.path.with_name(f"{stem}.routed.def"), "drc_report": r.path.with_name(f"{stem}.drc.rpt")}
+        bad = set_mismatches(r.metrics, files)
+        if bad:
+            names = " and ".join(p.name for p in bad)
+            lines.append(f"{r.path}: {names} {'is not the file' if len(bad) == 1 else 'are not the files'} these "
+                         "metrics describe (another run's, or changed since): figures and files may disagree")
+    return lines
 
 
 def _run_name(path: Path) -> str:

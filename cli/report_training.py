@@ -17,7 +17,7 @@ from html import escape
 from pathlib import Path
 from typing import Any
 
-from xroute.errors import InputError
+from xroute.errors import InputError, safe_text
 from xroute.cli.svg_chart import line_chart
 
 TRAINING_LOG = "metrics.jsonl"
@@ -34,9 +34,11 @@ class TrainingRun:
 def read_training_log(path: Path) -> TrainingRun:
     """The episodes of a ``metrics.jsonl``; an :class:`InputError` naming the file and line otherwise."""
     episodes = []
+    from xroute.regular_files import read_regular_bytes
+
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
+        lines = read_regular_bytes(path, what="training log").decode("utf-8").splitlines()  # never a FIFO
+    except UnicodeDecodeError as exc:
         raise InputError(f"cannot read the training log ({exc})", str(path), 0) from exc
     for n, line in enumerate(lines, 1):
         if not line.strip():
@@ -44,9 +46,9 @@ def read_training_log(path: Path) -> TrainingRun:
         try:
             row = json.loads(line)
             float(row["episode"]), float(row["reward"])  # noqa: B018 - the fields the dashboard needs
-        except (ValueError, KeyError, TypeError) as exc:
-            raise InputError(f"not a training log line written by xroute train ({type(exc).__name__}: {exc})",
-                             str(path), n) from exc
+        except (ValueError, KeyError, TypeError, IndexError, RecursionError) as exc:
+            raise InputError(f"not a training log line written by xroute train ({type(exc).__name__}: "
+                             f"{safe_text(exc)[:200]})", str(path), n) from None
         episodes.append(row)
     if not episodes:
         raise InputError("the training log has no episode", str(path), 0)

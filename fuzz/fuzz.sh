@@ -20,6 +20,7 @@
 # (with XROUTE_FUZZ_LEF/XROUTE_FUZZ_DEF set as below), fix the reader and keep
 # the input as tests/fuzz_regressions/<target>/<name> (tests/test_fuzz_regressions.py
 # loads every file there through the Python API).
+# Then fuzz/hostile_cli.py runs HOSTILE_CASES cases (default 100; HOSTILE_SEED picks the seed).
 # Exit status: 0 when no target found anything, 1 otherwise, 2 on setup errors.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -119,4 +120,13 @@ took=$(awk '/^Done [0-9]+ runs in/ {print $5}' "$log")
 printf '%-6s %10s %8s %7s %8s  %s\n' yaml "${execs:-?}" "${rate:-?}" \
   "$(find "$build/corpus/yaml" -type f | wc -l)" "${took:-?}" "$result"
 if [ $rc -ne 0 ]; then grep -E 'Error|CRASH|Traceback|Test unit written' "$log" | head -5 | sed 's/^/       /'; fi
+# The hostile-use harness (issue 32): special files, odd policies, numbers, deep JSON, kills.
+log=$build/hostile_cli.log
+set +e
+PYTHONPATH=$root "$py" "$root/fuzz/hostile_cli.py" --cases "${HOSTILE_CASES:-100}" --seed "${HOSTILE_SEED:-$RANDOM}" \
+  --keep "$build/artifacts/hostile" >"$log" 2>&1
+rc=$?
+set -e
+if [ $rc -eq 0 ]; then result="no finding"; else status=1; result="FOUND SOMETHING (see $log)"; fi
+printf '%-6s %10s %8s %7s %8s  %s\n' hostile "${HOSTILE_CASES:-100}" - - - "$result"
 exit $status

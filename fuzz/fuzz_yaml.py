@@ -1,13 +1,16 @@
 """Fuzz target for the YAML configs (`route --config`, `batch`): any bytes as a config file.
 
     python fuzz/fuzz_yaml.py [libFuzzer flags] [CORPUS_DIR ...]     (with atheris: pip install atheris)
-    python fuzz/fuzz_yaml.py --plain SECONDS [SEED_FILE ...]        (no atheris: a built-in mutator)
+    python fuzz/fuzz_yaml.py --plain SECONDS [SEED_FILE ...]        (no atheris: a built-in mutator;
+                                                                     XROUTE_FUZZ_SEED=N picks its seed)
 
 Each input is written to a file and loaded twice, as an xroute config
 (:func:`xroute.config.load_config`) and as a batch file
 (:func:`xroute.cli.batch_config.load_batch_config`). Loading must return a config or raise
 :class:`xroute.config_schema.ConfigError` with a line inside the file; anything else
-(RecursionError, TypeError, a ConstructorError, ...) is a crash. Under atheris the target is
+(RecursionError, TypeError, a ConstructorError, ...) is a crash, and so is a config that loads
+with a number that is not finite (NaN, infinity) or a setting read from a YAML 1.1 base-60
+number (``1:30``). Under atheris the target is
 coverage-guided (libFuzzer flags such as -max_total_time=600 -dict=... apply); fuzz/fuzz.sh runs it
 beside the C++ targets. Inputs that crashed are kept as tests/fuzz_regressions/yaml/<name>.yaml
 (tests/test_hostile_input.py loads every file there).
@@ -36,6 +39,21 @@ def _import_targets():
     return load_config, load_batch_config, ConfigError
 
 
+def check_numbers(value: object, where: str = "config") -> None:
+    """Raises AssertionError for a number in a loaded config that is not finite."""
+    import dataclasses
+    import math
+
+    if isinstance(value, float) and not math.isfinite(value):
+        raise AssertionError(f"{where} = {value!r}: a loaded config holds a number that is not finite")
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        for f in dataclasses.fields(value):
+            check_numbers(getattr(value, f.name), f"{where}.{f.name}")
+    elif isinstance(value, (tuple, list)):
+        for i, v in enumerate(value):
+            check_numbers(v, f"{where}[{i}]")
+
+
 def one_input(data: bytes, targets=None) -> None:
     """Loads ``data`` as both kinds of config; raises on anything but a config or a ConfigError."""
     load_config, load_batch_config, ConfigError = targets or _import_targets()
@@ -44,7 +62,7 @@ def one_input(data: bytes, targets=None) -> None:
     lines = len(data.decode("utf-8", "replace").splitlines()) + 1
     for load in (load_config, load_batch_config):
         try:
-            load(_FILE)
+            check_numbers(load(_FILE))
         except ConfigError as exc:
             if not (exc.path == str(_FILE) and 0 <= exc.line <= lines):
                 raise AssertionError(f"ConfigError names {exc.path}:{exc.line} (the file has {lines} lines)") from exc
@@ -58,17 +76,22 @@ SEED_TEXTS = [
     b"base: &b {region_size: 3}\nregion:\n  <<: *b\n",
     b"router:\n  iteration_schedule:\n    - {region_size: 5, offset: 0}\n    - {region_size: 5, offset: 2}\n",
     b"policy: !!python/name:os.system\n",
+    b"policy: {call_timeout: .nan, seed: 1:30}\ncost: {via_weight: .inf, drv_weight: -.inf}\n",
+    b"testcases: [demo]\ngates: {max_wirelength_increase_pct: .NaN}\n",
 ]
 TOKENS = [b"<<: ", b"&a ", b"*a", b"!!python/name:os.system", b"!custom ", b"!!binary ", b"[", b"]", b"{", b"}",
           b": ", b"- ", b"\n  ", b"---\n", b"2147483648", b"99999999999999999999", b"-1", b".inf", b".nan",
           b"2020-13-45", b"~", b"null", b"region_size", b"iteration_schedule", b"offset", b"policy", b"seed",
-          b"testcases", b"settings", b"name", b"gates", b"baseline", b"\xff", b"\t", b"'", b'"', b"?", b"|", b">"]
+          b"testcases", b"settings", b"name", b"gates", b"baseline", b"\xff", b"\t", b"'", b'"', b"?", b"|", b">",
+          b"1:30", b"-2:05:00", b"1:30.5", b"!!int ", b"!!float ", b".NaN", b"-.inf", b".Inf", b"0x7fffffffffffffff",
+          b"1_0", b"0o17", b"017", b"1e400", b"call_timeout: ", b"via_weight: ", b"drv_weight: ",
+          b"max_vias_increase_pct: "]
 
 
 def plain_fuzz(seconds: float, seeds: list[bytes]) -> int:
     """A simple mutation loop (no coverage feedback) for machines without atheris."""
     targets = _import_targets()
-    rng = random.Random(1)
+    rng = random.Random(int(os.environ.get("XROUTE_FUZZ_SEED", "1")))
     corpus = list(seeds) or list(SEED_TEXTS)
     deadline = time.monotonic() + seconds
     runs = 0

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -25,14 +26,25 @@ from xroute.net_order import (
     builtin_policy,
     is_builtin_name,
 )
-from xroute.errors import did_you_mean
+from xroute.errors import InputError, did_you_mean, safe_text
+from xroute.policy_guard import kept_cwd
+from xroute.regular_files import check_input
 from xroute.schedule import CallableSchedule, RuleSchedule, SchedulePolicy
+
+
+def _check_regular(p: Path) -> None:
+    """PolicyError unless ``p`` is a regular file (a FIFO or a device would block the import)."""
+    try:
+        check_input(p, "policy file")
+    except InputError as exc:
+        raise PolicyError(f"{exc.path}: {exc.message}") from None
 
 
 def _load_module(p: Path) -> Any:
     """A policy file run as a module of its own (PolicyError, one line, when it cannot be)."""
-    if not p.is_file():
+    if not os.path.lexists(p):
         raise PolicyError(f"policy file not found: {p}")
+    _check_regular(p)
     # A module name unique per file, so two policy files with the same stem do not collide.
     module_name = "xroute_policy_" + hashlib.sha1(str(p.resolve()).encode()).hexdigest()[:12]
     spec = importlib.util.spec_from_file_location(module_name, p)
@@ -41,15 +53,22 @@ def _load_module(p: Path) -> Any:
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module
     try:
-        spec.loader.exec_module(module)
-    except (Exception, SystemExit) as exc:  # noqa: BLE001 - the user's file: report it as one line
+        with kept_cwd():  # a module that calls os.chdir does not move the run
+            spec.loader.exec_module(module)
+    except KeyboardInterrupt:
+        sys.modules.pop(module_name, None)
+        raise
+    except BaseException as exc:  # noqa: BLE001 - the user's file, whatever it raises: one line
         sys.modules.pop(module_name, None)
         import traceback
 
-        lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename) == p]
+        here = os.path.abspath(p)  # the frames name the file by its absolute path
+        lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if os.path.abspath(f.filename) == here]
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
         where = f"{p}:{line}: " if line else ""
-        raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}: {exc}") from exc
+        message = safe_text(exc)
+        raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}"
+                          + (f": {message}" if message else "")) from None
     return module
 
 
@@ -80,6 +99,8 @@ def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> Ne
     if suffix == ".onnx":
         from xroute.policies.onnx_policy import OnnxPolicy
 
+        if os.path.lexists(spec):
+            _check_regular(Path(spec))
         return OnnxPolicy(spec)
     if suffix == ".py":
         return load_policy_file(spec)

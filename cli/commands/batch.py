@@ -130,6 +130,10 @@ def batch(
 
     if backend not in ("local", "ray"):
         raise typer.BadParameter("use local or ray", param_hint="--backend")
+    if write_baseline is not None:
+        from xroute.regular_files import check_output
+
+        check_output(write_baseline, "baseline file")  # refused before any job runs
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
     job_list = _checked_jobs(cfg)

@@ -75,7 +75,7 @@ def check(
     Give the routed DEF with --def and either a testcase name (its LEF and guide are used) or
     --lef files (and --guide for the out-of-guide figures). Exit status 1 when a net is open.
     """
-    from xroute.check import check_design, check_paths, write_check_outputs
+    from xroute.check import check_to_outputs
     from xroute.design import load_design
     from xroute.testcases.registry import find_testcase
 
@@ -93,10 +93,7 @@ def check(
     design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
     stem = _stem(def_)
     out_dir = out if out is not None else Path("out") / f"check-{stem}"
-    out_dir.mkdir(parents=True, exist_ok=True)
-    paths = check_paths(out_dir, stem)
-    result = check_design(design, report_path=paths["report"])
-    write_check_outputs(result, design, paths)
+    result, paths = check_to_outputs(design, out_dir, stem)  # published as one set
 
     if as_json:
         print_json(result.to_dict())

@@ -52,6 +52,10 @@ def global_route(
     from xroute.design import load_design
     from xroute.groute import global_route as run_global_route
 
+    from xroute.regular_files import check_output
+
+    if out is not None:
+        check_output(out, "guide file")
     testcase, def_, lefs = _split_inputs(inputs)
     if testcase is not None:
         design = load_design(testcase, use_guide=False)
@@ -61,6 +65,7 @@ def global_route(
 
     path = out if out is not None else Path("out") / safe_stem(design.name) / f"{safe_stem(design.name)}.guide"
     path.parent.mkdir(parents=True, exist_ok=True)
+    check_output(path, "guide file")  # never replace a folder, FIFO or device (checked before routing)
     stats = run_global_route(design, path, iterations=iterations, capacity_percent=capacity, slack=slack)
     if as_json:
         print_json({"design": design.name, "guide": str(path), **stats.to_dict()})

@@ -34,10 +34,15 @@ def report(
     """
     from xroute.config import load_config
     from xroute.atomic_files import atomic_write_text
-    from xroute.cli.report_html import find_all_runs, render
+    from xroute.cli.report_html import find_all_runs, render, set_warnings
 
+    from xroute.regular_files import check_output
+
+    check_output(out, "report file")  # a folder, FIFO or device there: refused before any work
     cfg = load_config(config)
     runs, training = find_all_runs(run_dirs)
+    for line in set_warnings(runs):  # a mixed set (a run killed while publishing): said, then reported
+        typer.echo(f"warning: {line}", err=True)
     if out.parent != Path(""):
         out.parent.mkdir(parents=True, exist_ok=True)
     replaced = out.is_file()

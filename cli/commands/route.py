@@ -145,6 +145,7 @@ def route(
     from xroute.config import load_config, run_settings
 
     cfg = load_config(config)  # validated before anything else
+    cwd = Path.cwd()  # the output folder is resolved against it, whatever a policy's code does later
     if testcase is None and not lef and def_ is None:
         testcase = cfg.testcase.testcase_name
     if testcase is None and not lef and def_ is None and guide is None:
@@ -161,6 +162,7 @@ def route(
 
     from xroute import pipeline
     from xroute.policies import get_policy, get_schedule_policy
+    from xroute.regular_files import make_output_folder
     from xroute.safe_paths import safe_stem
 
     steps = parse_schedule(schedule) if schedule is not None else None
@@ -179,8 +181,8 @@ def route(
         pol = NetRouterPolicy(net_router, design.dbu_per_micron)
     if out is None and cfg.output.out_dir is not None:
         out = Path(cfg.output.out_dir)
-    out_dir = out if out is not None else Path("out") / safe_stem(design.name)
-    out_dir.mkdir(parents=True, exist_ok=True)  # fail before routing, not after
+    out_dir = out if out is not None else Path("out") / safe_stem(design.name)  # as printed
+    write_dir = make_output_folder(cwd / out_dir)  # fail before routing, not after
     if design.global_route_stats is not None and mode in ("rich", "lines"):
         typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
                    f"({global_route_summary(design.global_route_stats)})")
@@ -189,7 +191,7 @@ def route(
                    f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
     with ProgressDisplay(console, mode, rs.iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
-        outputs = pipeline.route_to_outputs(design, out_dir, settings, pol, progress=display, started=started,
+        outputs = pipeline.route_to_outputs(design, write_dir, settings, pol, progress=display, started=started,
                                             schedule_policy=planner)
 
     if net_router is not None and mode in ("rich", "lines"):

@@ -10,6 +10,7 @@ range raises :class:`~xroute.errors.InputError` with the file and line.
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -110,6 +111,8 @@ def config_from_dict(algorithm: str, values: dict[str, Any], path: str = "",
               "float": isinstance(value, float), "str": isinstance(value, str)}[want]
         if not ok:
             raise InputError(f"setting '{key}' must be {want}, got {value!r}", path, line)
+        if want == "float" and not math.isfinite(value):
+            raise InputError(f"setting '{key}' must be a finite number, got {value!r}", path, line)
         kwargs[key] = value
     cfg = cls(**kwargs)
     problem = _check(cfg)

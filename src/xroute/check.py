@@ -165,15 +165,35 @@ def lyrdb_text(result: CheckResult, design: Design) -> str:
 
 
 def check_paths(out_dir: str | os.PathLike[str], stem: str) -> dict[str, Path]:
-    """Where :func:`check_design` (``report``) and :func:`write_check_outputs` write in ``out_dir``."""
+    """Where :func:`check_to_outputs` writes in ``out_dir``: the check JSON, the text DRC report and
+    the marker database."""
     out = Path(out_dir)
     return {"json": out / f"{stem}.check.json", "report": out / f"{stem}.drc.rpt", "lyrdb": out / f"{stem}.lyrdb"}
 
 
-def write_check_outputs(result: CheckResult, design: Design, paths: dict[str, Path]) -> None:
-    """Writes ``json`` (figures, markers included) and ``lyrdb`` of :func:`check_paths`, each
-    atomically (the text report comes from :func:`check_design` itself)."""
+def check_to_outputs(design: Design, out_dir: str | os.PathLike[str], stem: str) -> tuple[CheckResult, dict[str, Path]]:
+    """Checks ``design`` and publishes :func:`check_paths` as one set, like a route's outputs
+    (:mod:`xroute.output_set`): the three files are written in a staging folder, then renamed into
+    place, the check JSON last; it is the set's manifest (``"run"``: the SHA-256 of the DRC
+    report and the marker database). Leftovers of a killed run in ``out_dir`` are cleaned first;
+    a folder, FIFO or device at an output path is refused before the check runs."""
     import json
 
-    atomic_write_text(paths["lyrdb"], lyrdb_text(result, design))
-    atomic_write_text(paths["json"], json.dumps(result.to_dict(with_markers=True), indent=2) + "\n")
+    from xroute.output_set import publish, run_record, staging
+    from xroute.outputs import clean_stale_temporaries
+    from xroute.regular_files import check_output, make_output_folder
+
+    out = make_output_folder(out_dir)
+    paths = check_paths(out, stem)
+    for path in paths.values():
+        check_output(path)
+    clean_stale_temporaries(out)
+    with staging(out) as stage:
+        staged = {role: stage / path.name for role, path in paths.items()}
+        result = check_design(design, report_path=staged["report"])
+        atomic_write_text(staged["lyrdb"], lyrdb_text(result, design))
+        doc = result.to_dict(with_markers=True)
+        doc["run"] = run_record({"drc_report": staged["report"], "lyrdb": staged["lyrdb"]})
+        atomic_write_text(staged["json"], json.dumps(doc, indent=2) + "\n")
+        publish(out, stage, [(staged[r], paths[r]) for r in ("report", "lyrdb", "json")])
+    return result, paths

@@ -78,7 +78,7 @@ def check_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
         names = ", ".join(BUILTIN_POLICIES)
         return value, (f"unknown policy '{value}'{did_you_mean(value, BUILTIN_POLICIES)}: use {names}, best-of-K, "
                        "or the path of a policy file (.py, .onnx)")
-    if path.exists() and not path.is_file():
+    if os.path.lexists(path) and not path.is_file():
         return value, f"policy file {path} is not a file"
     if not path.is_file():
         return value, f"policy file not found: {path}"
@@ -99,6 +99,8 @@ def check_schedule_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
     if path.suffix.lower() not in (".py", ".json"):
         return value, (f"unknown schedule policy '{value}': use rule, the path of a .py file defining plan(history, rule) "
                        "or a .json schedule model")
+    if os.path.lexists(path) and not path.is_file():
+        return value, f"schedule policy file {path} is not a regular file"
     if not path.is_file():
         return value, f"schedule policy file not found: {path}"
     if not os.access(path, os.R_OK):
@@ -108,6 +110,8 @@ def check_schedule_policy(value: str, ctx: Context) -> tuple[Any, str | None]:
 
 def check_input_file(value: str, ctx: Context) -> tuple[Any, str | None]:
     path = ctx.resolve(value)
+    if os.path.lexists(path) and not path.is_file():
+        return value, f"{path} is not a regular file"
     if not path.is_file():
         return value, f"file not found: {path}"
     if not os.access(path, os.R_OK):

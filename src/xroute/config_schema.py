@@ -16,6 +16,7 @@ Other commands reuse this module with their own dataclasses (see :func:`load_sec
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 import types
 import typing
@@ -26,8 +27,10 @@ from typing import Any, Callable, Literal, Union
 import yaml
 
 from xroute.errors import InputError, did_you_mean
+from xroute.safe_yaml import SEXAGESIMAL_HINT, looks_sexagesimal
 
 _NUMBER_TYPES = (int, float)
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
 
 
 class ConfigError(InputError):
@@ -74,6 +77,8 @@ def compose_file(path: str | os.PathLike[str]) -> yaml.Node | None:
         text = read_text_limited(str(p))
     except YamlProblem as exc:
         raise ConfigError(exc.message, str(p), exc.line) from None
+    except InputError as exc:  # missing, not a regular file (a FIFO would block), unreadable
+        raise ConfigError(f"cannot read config file: {exc.message}", exc.path, 0) from None
     except OSError as exc:
         raise ConfigError(f"cannot read config file: {exc.strerror or exc}", str(p), 0) from exc
     except UnicodeDecodeError as exc:
@@ -94,6 +99,8 @@ _CONSTRUCTOR = yaml.SafeLoader("")  # turns scalar nodes into Python values (int
 
 
 def scalar_value(node: yaml.ScalarNode) -> Any:
+    if node.tag in _NUMBER_TAGS and looks_sexagesimal(str(node.value)):  # "!!int 1:30": text, never 90
+        return str(node.value)
     try:
         return _CONSTRUCTOR.construct_object(node, deep=True)
     except (ValueError, OverflowError, yaml.YAMLError):  # e.g. a date-like "2020-13-45": keep the text
@@ -152,7 +159,11 @@ def _convert(tp: Any, node: yaml.Node, key: str, ctx: Context, meta: typing.Mapp
     if tp is float and isinstance(value, int) and not isinstance(value, bool):
         value, ok = float(value), True
     if not ok:
-        ctx.problem(node, key, f"expected {_type_name(tp)}, found {value!r}")
+        hint = SEXAGESIMAL_HINT if tp in _NUMBER_TYPES and isinstance(value, str) and looks_sexagesimal(value) else ""
+        ctx.problem(node, key, f"expected {_type_name(tp)}, found {value!r}{hint}")
+        return None
+    if isinstance(value, float) and not math.isfinite(value):  # NaN passes every bound check
+        ctx.problem(node, key, f"must be a finite number, found {value!r}")
         return None
     if isinstance(value, _NUMBER_TYPES):
         lo, hi = meta.get("min"), meta.get("max")

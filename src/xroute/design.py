@@ -314,10 +314,10 @@ class Design:
 
 
 def _check_file(path: str | os.PathLike[str], what: str) -> str:
-    p = Path(path)
-    if not p.is_file():
-        raise InputError(f"{what} file not found", str(p), 0)
-    return str(p)
+    """``path`` as text if it is a regular file (a FIFO would block the reader): InputError otherwise."""
+    from xroute.regular_files import check_input
+
+    return check_input(path, f"{what} file")
 
 
 def load_design(

@@ -17,6 +17,25 @@ def did_you_mean(word: str, choices: Iterable[str]) -> str:
     return f" (did you mean '{close[0]}'?)" if close else ""
 
 
+def safe_text(value: object) -> str:
+    """``str(value)`` on one line, never raising: an object (a user's exception) whose ``__str__``
+    fails or returns something other than text gives ``<TypeName: unprintable>`` instead."""
+    try:
+        text = str(value)
+        if not isinstance(text, str):
+            raise TypeError("__str__ returned a non-string")
+        text = " ".join(text.split())
+    except KeyboardInterrupt:
+        raise
+    except BaseException:  # noqa: BLE001 - whatever a user's __str__ raises
+        try:
+            name = type(value).__name__
+        except BaseException:  # noqa: BLE001
+            name = "object"
+        return f"<{name}: unprintable>"
+    return text
+
+
 class XrouteError(Exception):
     """Base class of the errors xroute reports to users as one line (exit code 2)."""
 

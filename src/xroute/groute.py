@@ -71,6 +71,10 @@ def global_route(
             raise GlobalRouteArgumentError(f"{name} must be an integer in {lo}..{hi}, got {value!r}")
     if isinstance(congestion_cost, bool) or not isinstance(congestion_cost, (int, float)) or not congestion_cost >= 0:
         raise GlobalRouteArgumentError(f"congestion_cost must be a number >= 0, got {congestion_cost!r}")
+    if out is not None:
+        from xroute.regular_files import check_output
+
+        out = check_output(out, "guide file")  # never replace a folder, FIFO or device
     raw = _engine().global_route(
         design.engine,
         out=os.fspath(out) if out is not None else "",

@@ -1,34 +1,39 @@
 """One run, one consistent set of output files.
 
-A run writes its files (routed DEF, DRC report, metrics JSON) into a fresh staging folder
-inside the output folder, ``.xroute-stage.<pid>.<hex>`` (created exclusively), checks them
-there, and only then publishes them (:func:`publish`):
+A run (``route``: routed DEF, DRC report, metrics JSON; ``check``: DRC report, marker database,
+check JSON) writes its files into a fresh staging folder inside the output folder,
+``.xroute-stage.<pid>.<hex>`` (created exclusively and locked while in use, :func:`staging`),
+checks them there, and only then publishes them (:func:`publish`):
 
 1. a note ``publishing.json`` in the staging folder names the final files and the SHA-256 of
    each new one;
-2. each staged file is renamed over its final name (``os.replace``: each file whole), the
-   metrics JSON last; the metrics JSON is the run's manifest: it holds the run id and the
-   SHA-256 of the DEF and DRC report it describes (``"run"``);
+2. each staged file is renamed over its final name (each file whole), the manifest last: the
+   metrics JSON (or check JSON) holds the run id and the SHA-256 of the other files of its set
+   (``"run"``), so a reader can tell a set whose files come from different runs
+   (:func:`set_problems`, used by ``report``);
 3. the staging folder is removed.
 
 A run killed before step 1 leaves only its staging folder. One killed during step 2 leaves the
-staging folder with its note; :func:`clean_leftovers`, called at the start of every run in that
-folder, removes staging folders of dead processes and, when their note shows that some but not
-all files had been replaced (a mix of two runs), removes those files too: a set is whole (old or
-new) or absent.
+staging folder with its note, the files not yet moved still in it. :func:`clean_leftovers`,
+called at the start of every run in that folder, finds the staging folders whose run has ended
+(their lock is free: :func:`xroute.atomic_files.owner_gone`, whatever the process id in the
+name) and finishes an interrupted publish: the files still staged are moved into place, so the
+folder holds the new set whole; when that cannot be done (a staged file missing or changed) the
+files of the mixed set are removed. Either way a set is whole (old or new) or absent.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
 import shutil
 import uuid
 from pathlib import Path
-from typing import Iterable
+from typing import Any, Iterable, Iterator
 
-from xroute.atomic_files import atomic_write_text, pid_alive
+from xroute.atomic_files import atomic_write_text, open_locked_folder, owner_gone, replace
 from xroute.safe_paths import inside
 
 STAGE_PREFIX = ".xroute-stage."
@@ -47,6 +52,20 @@ def make_stage(out_dir: Path) -> Path:
     raise FileExistsError(f"cannot create a staging folder in {out_dir}")
 
 
+@contextlib.contextmanager
+def staging(out_dir: Path) -> Iterator[Path]:
+    """A new staging folder in ``out_dir``, locked as in use while the block runs, removed after it."""
+    stage = make_stage(out_dir)
+    fd = None
+    try:
+        fd = open_locked_folder(stage)
+        yield stage
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+        if fd is not None:
+            os.close(fd)
+
+
 def file_sha256(path: Path) -> str:
     h = hashlib.sha256()
     with open(path, "rb") as f:
@@ -58,20 +77,30 @@ def file_sha256(path: Path) -> str:
 def publish(out_dir: Path, stage: Path, files: Iterable[tuple[Path, Path]]) -> None:
     """Moves each staged ``(source, final)`` file into place, in order (the manifest last), as
     described in the module doc; every final path must lie inside ``out_dir``."""
-    pairs = [(Path(src), inside(out_dir, dst)) for src, dst in files]
+    from xroute.regular_files import check_output
+
+    pairs = [(Path(src), check_output(inside(out_dir, dst))) for src, dst in files]  # all checked before the first rename
     note = {"files": [dst.name for _, dst in pairs], "sha256": {dst.name: file_sha256(src) for src, dst in pairs}}
     atomic_write_text(stage / NOTE, json.dumps(note, indent=2) + "\n")
     for src, dst in pairs:
-        os.replace(src, dst)
+        replace(src, dst)
 
 
-def _clean_partial_publish(out_dir: Path, stage: Path) -> list[Path]:
-    """The files of an interrupted publish, removed when only some of them had been replaced."""
+def _matches(path: Path, digest: Any) -> bool:
+    try:
+        return path.is_file() and not path.is_symlink() and file_sha256(path) == digest
+    except OSError:
+        return False
+
+
+def _finish_partial_publish(out_dir: Path, stage: Path) -> list[Path]:
+    """Completes the publish a killed run began (files still staged moved into place), or, when it
+    cannot, removes the files of the mixed set. Returns the removed paths."""
     try:
         note = json.loads((stage / NOTE).read_text(encoding="utf-8"))
         names = [n for n in note["files"] if isinstance(n, str)]
         hashes = dict(note["sha256"])
-    except (OSError, ValueError, KeyError, TypeError):
+    except (OSError, ValueError, KeyError, TypeError, RecursionError):
         return []
     targets = []
     for n in names:
@@ -79,14 +108,15 @@ def _clean_partial_publish(out_dir: Path, stage: Path) -> list[Path]:
             targets.append(inside(out_dir, out_dir / n))
         except ValueError:
             continue
-    new = 0
-    for t in targets:
-        try:
-            new += bool(t.is_file() and not t.is_symlink() and file_sha256(t) == hashes.get(t.name))
-        except OSError:
-            pass
-    if new == 0 or new == len(targets):
+    placed = [_matches(t, hashes.get(t.name)) for t in targets]
+    if not any(placed) or all(placed):
         return []  # the old set untouched, or the new set complete
+    staged = [_matches(stage / t.name, hashes.get(t.name)) for t in targets]
+    if all(p or s for p, s in zip(placed, staged)):
+        for t, p in zip(targets, placed):  # in the note's order: the manifest last
+            if not p:
+                replace(stage / t.name, t)
+        return []
     removed = []
     for t in targets:
         if t.is_file() or t.is_symlink():
@@ -96,19 +126,45 @@ def _clean_partial_publish(out_dir: Path, stage: Path) -> list[Path]:
 
 
 def clean_leftovers(out_dir: Path) -> list[Path]:
-    """Removes what killed runs left in ``out_dir``: staging folders of dead processes, and the
-    files of a publish that was cut between its renames. Returns the removed paths."""
+    """Removes what killed runs left in ``out_dir``: staging folders whose run has ended (after
+    finishing or undoing a publish that was cut between its renames). Returns the removed paths."""
     removed: list[Path] = []
     if not out_dir.is_dir():
         return removed
     for p in list(out_dir.iterdir()):
         if p.name.startswith(STAGE_PREFIX) and p.is_dir() and not p.is_symlink():
             pid_text = p.name[len(STAGE_PREFIX):].partition(".")[0]
-            if pid_text.isdigit() and int(pid_text) != os.getpid() and not pid_alive(int(pid_text)):
-                removed += _clean_partial_publish(out_dir, p)
+            if owner_gone(p, int(pid_text) if pid_text.isdigit() else None):
+                removed += _finish_partial_publish(out_dir, p)
                 shutil.rmtree(p, ignore_errors=True)
                 removed.append(p)
     return removed
+
+
+def run_record(manifest_of: dict[str, Path]) -> dict[str, Any]:
+    """The ``"run"`` entry of a manifest: a new run id and the SHA-256 of each file of the set
+    (``{role: staged path}``)."""
+    return {"id": new_run_id(), "sha256": {role: file_sha256(p) for role, p in manifest_of.items()}}
+
+
+def set_mismatches(manifest: dict[str, Any], files: dict[str, Path]) -> list[Path]:
+    """The files of a manifest's set (``{role: path}``, beside it) whose SHA-256 differs from the
+    one its ``"run"`` records: files of another run (absent files are not counted)."""
+    run = manifest.get("run")
+    if not isinstance(run, dict) or not isinstance(run.get("sha256"), dict):
+        return []  # written before manifests: nothing to compare
+    mismatched = []
+    for role, path in files.items():
+        digest = run["sha256"].get(role)
+        if digest is None or not path.is_file():
+            continue
+        try:
+            same = file_sha256(path) == digest
+        except OSError:
+            continue
+        if not same:
+            mismatched.append(path)
+    return mismatched
 
 
 def new_run_id() -> str:

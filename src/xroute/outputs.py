@@ -18,8 +18,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from xroute.atomic_files import atomic_write_text, pid_alive
-from xroute.output_set import clean_leftovers, file_sha256, make_stage, new_run_id, publish
+from xroute.atomic_files import atomic_write_text, owner_gone, pid_alive
+from xroute.output_set import clean_leftovers, publish, run_record, staging
 
 if TYPE_CHECKING:
     from xroute.design import Design
@@ -36,21 +36,23 @@ def peak_rss_mb() -> float:
 
 
 def clean_stale_temporaries(folder: Path) -> list[Path]:
-    """Removes the temporary files that a killed run left in ``folder`` (``.NAME.PID.XXXX.tmp``
-    from :func:`xroute.atomic_files.atomic_write_text`, ``NAME.tmp.PID`` from the engine's DEF writer) when their
-    process is gone; returns the removed paths."""
+    """Removes what a killed run left in ``folder``: staging folders and interrupted publishes
+    (:func:`xroute.output_set.clean_leftovers`), temporary files ``.NAME.PID.XXXX.tmp`` of
+    :func:`xroute.atomic_files.atomic_write_text` whose run has ended (their lock is free, whatever
+    the process id: :func:`xroute.atomic_files.owner_gone`) and ``NAME.tmp.PID`` of the engine's
+    DEF writer whose process is gone; returns the removed paths."""
     removed: list[Path] = []
     if not folder.is_dir():
         return removed
     removed += clean_leftovers(folder)  # staging folders and incomplete output sets (xroute.output_set)
     for p in folder.iterdir():
         parts = p.name.split(".")
-        pid = None
+        stale = False
         if p.name.startswith(".") and p.name.endswith(".tmp") and len(parts) >= 5 and parts[-3].isdigit():
-            pid = int(parts[-3])  # .NAME.PID.HEX.tmp
+            stale = owner_gone(p, int(parts[-3]))  # .NAME.PID.HEX.tmp
         elif len(parts) >= 3 and parts[-2] == "tmp" and parts[-1].isdigit():
-            pid = int(parts[-1])  # NAME.tmp.PID
-        if pid is not None and pid != os.getpid() and not pid_alive(pid) and p.is_file():
+            stale = int(parts[-1]) != os.getpid() and not pid_alive(int(parts[-1]))  # NAME.tmp.PID
+        if stale and p.is_file() and not p.is_symlink():
             try:
                 p.unlink()
                 removed.append(p)
@@ -133,17 +135,12 @@ def write_route_outputs(
     ``started`` is the ``time.perf_counter()`` of the start of the whole run (loading included),
     for the runtime figure; by default the routing time is used.
     """
-    import shutil
-
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     def_path, metrics_path, drc_path = output_paths(out, design.name)
     # Everything is written and checked in a fresh staging folder, then published as one set.
-    stage = make_stage(out)
-    try:
+    with staging(out) as stage:
         return _write_staged(design, result, out, stage, started, (def_path, metrics_path, drc_path))
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
 
 
 def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, started: float | None,
@@ -212,7 +209,7 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
         },
     }
     # The metrics JSON is the run's manifest (published last): its DEF and DRC report, by hash.
-    metrics["run"] = {"id": new_run_id(), "sha256": {"def": file_sha256(staged_def), "drc_report": file_sha256(staged_drc)}}
+    metrics["run"] = run_record({"def": staged_def, "drc_report": staged_drc})
     atomic_write_text(staged_metrics, json.dumps(metrics, indent=2) + "\n")
     publish(out, stage, [(staged_def, def_path), (staged_drc, drc_path), (staged_metrics, metrics_path)])
     return RouteOutputs(def_path=def_path, metrics_path=metrics_path, drc_report_path=drc_path, metrics=metrics)

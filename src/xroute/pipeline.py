@@ -70,9 +70,13 @@ def route_to_outputs(
     """Routes a prepared design and writes the routed DEF, metrics JSON and DRC report into
     ``out_dir`` (created if needed; leftovers of a killed run cleaned first), checked on the
     written DEF. ``started`` (a ``time.perf_counter()`` value) counts loading in the run time."""
+    from xroute.outputs import output_paths
+    from xroute.regular_files import check_output, make_output_folder
+
     started = time.perf_counter() if started is None else started
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = make_output_folder(out_dir)
+    for path in output_paths(out, design.name):
+        check_output(path)  # a folder, FIFO or device there: refused before routing
     clean_stale_temporaries(out)
     result = route(design, settings, policy, progress, schedule_policy)
     return write_route_outputs(design, result, out, started=started)

@@ -1,11 +1,15 @@
 """Guards around calls into a user's net-order policy: failures named, hangs ended.
 
-* :func:`call_policy` runs ``policy.order`` for the router. A ``SystemExit`` raised inside it
-  becomes a :class:`PolicyCallError` (a policy cannot end the run with a "success"); any other
-  exception propagates unchanged (library callers see their own exception) but is tagged with
-  where in the policy it was raised, so the command line prints one line
-  ``error: <policy file>:<line>: policy '<name>' raised <Type>: <message>`` (see
-  :func:`policy_failure_line`; the traceback only with ``--debug``).
+* :func:`call_policy` runs ``policy.order`` for the router. A ``SystemExit``, ``GeneratorExit`` or
+  any other ``BaseException`` that is not an ``Exception`` raised inside it becomes a
+  :class:`PolicyCallError` (a policy cannot end the run with a "success", nor slip past the
+  command's error handling); an ``Exception`` propagates unchanged (library callers see their own
+  exception) but is tagged with where in the policy it was raised, so the command line prints one
+  line ``error: <policy file>:<line>: policy '<name>' raised <Type>: <message>`` (see
+  :func:`policy_failure_line`; the traceback only with ``--debug``). A message whose ``__str__``
+  fails is shown as ``<Type: unprintable>``. Only ``KeyboardInterrupt`` passes as it is.
+* :func:`kept_cwd` puts the working directory back after user code ran: a policy that calls
+  ``os.chdir`` cannot move where the run reads and writes.
 * :class:`Watchdog` enforces a per-call time limit (``policy.call_timeout`` in the config,
   :data:`DEFAULT_CALL_TIMEOUT` by default). When a call runs past it, the watchdog raises
   :class:`PolicyTimeout` inside the policy's thread (delivered at the policy's next Python
@@ -16,6 +20,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import os
 import sys
@@ -23,8 +28,9 @@ import threading
 import time
 import traceback
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
+from xroute.errors import safe_text
 from xroute.net_order import PolicyError
 
 DEFAULT_CALL_TIMEOUT = 300.0  # seconds per order() call: generous (the built-in policies take milliseconds)
@@ -81,9 +87,54 @@ def policy_failure_line(exc: BaseException) -> str | None:
     if tag is None:
         return None
     name, file, line = tag
+    return _raised_line(exc, name, file, line)
+
+
+def _raised_line(exc: BaseException, name: str, file: str, line: int) -> str:
     where = f"{file}:{line}" if line else file
-    message = " ".join(str(exc).split())
+    message = safe_text(exc)
     return f"{where}: policy '{name}' raised {type(exc).__name__}" + (f": {message}" if message else "")
+
+
+def user_failure(exc: BaseException, policy: Any, method: str) -> BaseException:
+    """What to raise for ``exc``, raised by ``policy``'s ``method`` (user code): KeyboardInterrupt
+    and PolicyError as they are; SystemExit and any other BaseException that is not an Exception
+    (GeneratorExit, a user's subclass) as a PolicyCallError naming the file and line; an Exception
+    as it is, tagged for :func:`policy_failure_line`."""
+    if isinstance(exc, (KeyboardInterrupt, PolicyError)):
+        return exc
+    name = safe_text(getattr(policy, "name", "policy"))
+    if isinstance(exc, Exception):
+        tag_failure(exc, policy)
+        return exc
+    file, line = _where(exc, policy_source(policy))
+    if isinstance(exc, SystemExit):
+        where = f"{file}:{line}" if line else file
+        return PolicyCallError(f"{where}: policy '{name}' called sys.exit({safe_text(exc.code)}) inside {method}(): "
+                               "a policy cannot end the run")
+    return PolicyCallError(_raised_line(exc, name, file, line) + f" inside {method}()")
+
+
+@contextlib.contextmanager
+def kept_cwd() -> Iterator[None]:
+    """Runs the block (user code) and puts the working directory back as it was, even if the block
+    called ``os.chdir``: relative paths of the run keep meaning what the command printed."""
+    try:
+        fd: int | None = os.open(".", os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | getattr(os, "O_CLOEXEC", 0))
+        saved = None
+    except OSError:  # a folder we may not read: go back by name
+        fd, saved = None, os.getcwd()
+    try:
+        yield
+    finally:
+        try:
+            if fd is not None:
+                os.fchdir(fd)
+            else:
+                os.chdir(saved)  # type: ignore[arg-type]
+        finally:
+            if fd is not None:
+                os.close(fd)
 
 
 class Watchdog:
@@ -91,6 +142,8 @@ class Watchdog:
 
     def __init__(self, limit: float, policy: Any) -> None:
         self.limit = float(limit)
+        if not 0 < self.limit < float("inf"):  # NaN or infinity would never fire
+            raise ValueError(f"policy call time limit must be a finite number of seconds > 0, got {limit!r}")
         self.policy = policy
         self.name = str(getattr(policy, "name", "policy"))
         self._lock = threading.Lock()
@@ -151,19 +204,15 @@ def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | No
         watchdog.begin()
     try:
         try:
-            return getattr(policy, method)(region, features)
+            with kept_cwd():
+                return getattr(policy, method)(region, features)
         finally:
             if watchdog is not None:
                 watchdog.end()
     except PolicyTimeout:
         raise
-    except SystemExit as exc:
-        file, line = _where(exc, policy_source(policy))
-        where = f"{file}:{line}" if line else file
-        raise PolicyCallError(f"{where}: policy '{getattr(policy, 'name', 'policy')}' called sys.exit({exc.code!r}) "
-                              f"inside {method}(): a policy cannot end the run") from None
-    except KeyboardInterrupt:
-        raise
-    except Exception as exc:
-        tag_failure(exc, policy)
-        raise
+    except BaseException as exc:  # noqa: BLE001 - the user's code: named, see user_failure
+        failure = user_failure(exc, policy, method)
+        if failure is exc:
+            raise
+        raise failure from None

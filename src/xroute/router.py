@@ -109,6 +109,10 @@ class RouteSettings:
             raise RouteArgumentError(f"threads must be at most {MAX_THREADS}, got {self.threads}")
         if not 0 <= self.seed < 2**64:
             raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {self.seed}")
+        t = self.policy_timeout
+        if t is not None and (isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 <= t < float("inf")):
+            # NaN would switch the watchdog off silently (every comparison with it is false)
+            raise RouteArgumentError(f"policy_timeout must be a finite number of seconds >= 0 (0: no limit), got {t!r}")
 
 
 @dataclass(frozen=True)

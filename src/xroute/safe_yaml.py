@@ -11,11 +11,17 @@ and refuses, with ``<file>:<line>: <problem>``:
 * documents whose aliases expand to more than :data:`MAX_NODES` nodes ("billion laughs");
 * several documents in one file.
 
+Numbers are read as YAML 1.2 reads them: ``1:30`` is the text "1:30", not YAML 1.1's base-60
+number 90 (a seed or a time written that way would silently become another value); a setting
+that expects a number then says so (:data:`SEXAGESIMAL_HINT`).
+
 The composer never constructs Python objects; the schema layer
 (:mod:`xroute.config_schema`) turns the checked scalars into values.
 """
 
 from __future__ import annotations
+
+import re
 
 import yaml
 
@@ -37,8 +43,21 @@ class YamlProblem(ValueError):
         self.line = line
 
 
+_INT = "tag:yaml.org,2002:int"
+_FLOAT = "tag:yaml.org,2002:float"
+_SEXAGESIMAL = re.compile(r"[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+(?:\.[0-9_]*)?")
+SEXAGESIMAL_HINT = (" (YAML 1.1 would read this as a base-60 number; xroute does not: write the number itself, "
+                    "e.g. 90 for 1:30)")
+
+
+def looks_sexagesimal(text: str) -> bool:
+    """Whether ``text`` is a YAML 1.1 base-60 number (``1:30``, ``-2:05:00``, ``1:30.5``)."""
+    return _SEXAGESIMAL.fullmatch(text.strip()) is not None
+
+
 class _DepthLimitedLoader(yaml.SafeLoader):
-    """SafeLoader whose composer counts nesting and stops at MAX_DEPTH."""
+    """SafeLoader whose composer counts nesting and stops at MAX_DEPTH; its resolver has no
+    base-60 integers or floats (see the module doc)."""
 
     def __init__(self, stream: str) -> None:
         super().__init__(stream)
@@ -53,6 +72,20 @@ class _DepthLimitedLoader(yaml.SafeLoader):
             return super().compose_node(parent, index)
         finally:
             self._depth -= 1
+
+
+# SafeLoader's implicit resolvers less the sexagesimal forms: ints and floats re-added without them.
+_DepthLimitedLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag not in (_INT, _FLOAT)]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+_DepthLimitedLoader.add_implicit_resolver(
+    _INT, re.compile(r"""^(?:[-+]?0b[0-1_]+|[-+]?0[0-7_]+|[-+]?(?:0|[1-9][0-9_]*)|[-+]?0x[0-9a-fA-F_]+)$"""),
+    list("-+0123456789"))
+_DepthLimitedLoader.add_implicit_resolver(
+    _FLOAT, re.compile(r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+][0-9]+)?|\.[0-9][0-9_]*(?:[eE][-+][0-9]+)?
+        |[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN))$""", re.X),
+    list("-+0123456789."))
 
 
 def _code(character: object) -> str:
@@ -88,10 +121,12 @@ def check_tree(root: yaml.Node) -> None:
 
 
 def read_text_limited(path: str) -> str:
-    """The UTF-8 text of a file, read up to MAX_BYTES + 1 bytes (a huge file or a device is an
-    error, not a hang). Raises OSError, UnicodeDecodeError or YamlProblem."""
-    with open(path, "rb") as f:
-        data = f.read(MAX_BYTES + 1)
+    """The UTF-8 text of a regular file, read up to MAX_BYTES + 1 bytes (a huge file is an error;
+    a FIFO or a device is refused without blocking). Raises InputError, UnicodeDecodeError or
+    YamlProblem."""
+    from xroute.regular_files import read_regular_bytes
+
+    data = read_regular_bytes(path, MAX_BYTES, "file")
     if len(data) > MAX_BYTES:
         raise YamlProblem(f"YAML file too large: more than {MAX_BYTES:,} bytes")
     return data.decode("utf-8")
