@@ -1,7 +1,7 @@
 """The settings menu of issue 33 beside a learned schedule, one design at a time, in one run.
 
     python bench/schedule_menu.py [DESIGN ...] [--learned MODEL.json ...] [--only NAME,...] [--skip NAME,...]
-                                  [--threads 2] [--jsonl OUT] [--cutoff S]
+                                  [--threads 2] [--jsonl OUT] [--cutoff S] [--table-from JSONL]
 
 Per design (default: ispd18_test1, ispd19_test1, ispd19_test3), one fresh process per setting,
 sequentially: `xroute route DESIGN --quiet --threads T FLAGS`. The menu: default; victims at budgets
@@ -128,7 +128,19 @@ def main() -> int:
     ap.add_argument("--jsonl", default=None, help="append one JSON line per run to this file")
     ap.add_argument("--cutoff", type=float, default=None, help="seconds per design after which settings are skipped")
     ap.add_argument("--runs", default="/tmp/xroute_schedule_menu", help="folder for the runs' outputs")
+    ap.add_argument("--table-from", default=None, metavar="JSONL",
+                    help="route nothing: print the tables of the runs a --jsonl file holds (the last run of each "
+                         "design and setting)")
     args = ap.parse_args()
+    if args.table_from:
+        rows: dict[tuple[str, str], dict] = {}
+        for line in Path(args.table_from).read_text().splitlines():
+            row = json.loads(line)
+            rows[(row["design"], row["setting"])] = row
+        for design in dict.fromkeys(d for d, _ in rows):
+            ordered = sorted((r for (d, _), r in rows.items() if d == design), key=lambda r: r["setting"] != "default")
+            print("\n".join(table(design, ordered)))
+        return 0
     settings = list(MENU) + [(Path(m).stem, ["--schedule-policy", str(Path(m).resolve())]) for m in args.learned]
     only = {s for s in args.only.split(",") if s}
     skip = {s for s in args.skip.split(",") if s}

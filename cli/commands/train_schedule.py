@@ -3,7 +3,8 @@
 Training designs: generated ones (``--lef TECH.lef`` per technology, ``--cells N``, ``--seeds 1,2``: a
 placed design per technology and seed, as ``make-testcase --lef`` writes it) and testcases by name
 (``--testcase NAME``). Every design is routed with the default and with each candidate of the grid
-(:func:`xroute.schedule_train.default_grid`, 20 candidates), ``--jobs`` routes at once. Everything goes
+(:func:`xroute.schedule_train.default_grid`, 20 candidates, or the ``--candidate`` ones), ``--jobs``
+routes at once. Everything goes
 under ``--out DIR``: the designs (``DIR/designs``), the runs (``DIR/runs``) and the model
 (``DIR/schedule.json``), which ``xroute route --schedule-policy DIR/schedule.json`` uses.
 """
@@ -12,11 +13,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from xroute.cli.console import stdout_console
+
+if TYPE_CHECKING:
+    from xroute.schedule_model import SwitchSchedule
 
 
 def _seeds(text: str) -> list[int]:
@@ -27,6 +31,21 @@ def _seeds(text: str) -> list[int]:
     if not seeds:
         raise typer.BadParameter("give at least one seed", param_hint="--seeds")
     return seeds
+
+
+def _candidate(text: str) -> SwitchSchedule:
+    from xroute.schedule_model import SwitchSchedule
+
+    parts = text.split(":")
+    try:
+        if len(parts) != 4:
+            raise ValueError("four fields")
+        size, ratio, patience, budget = int(parts[0]), float(parts[1]), int(parts[2]), int(parts[3])
+        return SwitchSchedule(size, ratio, patience, late_budget=budget)
+    except ValueError as exc:
+        detail = f": {exc}" if str(exc) else ""
+        raise typer.BadParameter(f"expected SIZE:RATIO:PATIENCE:BUDGET (e.g. 5:0.1:0:4), got '{text}'{detail}",
+                                 param_hint="--candidate") from None
 
 
 def train_schedule(
@@ -45,6 +64,11 @@ def train_schedule(
     utilization: Annotated[
         float | None, typer.Option("--utilization", help="Row utilisation of the generated designs \\[default: 0.75].",
                                    show_default=False)
+    ] = None,
+    candidate: Annotated[
+        list[str] | None,
+        typer.Option("--candidate", help="A candidate SIZE:RATIO:PATIENCE:BUDGET (late region size, switch ratio, "
+                     "patience, late search budget; repeatable) instead of the default grid of 20.", show_default=False),
     ] = None,
     jobs: Annotated[int, typer.Option("--jobs", help="Routes at once (child processes).", min=1, max=256)] = 2,
     threads: Annotated[int, typer.Option("--threads", help="Threads of each route.", min=1, max=256)] = 1,
@@ -67,6 +91,7 @@ def train_schedule(
     if not lef and not testcase:
         raise typer.BadParameter("give at least one --lef or --testcase", param_hint="--lef/--testcase")
     seed_list = _seeds(seeds)
+    grid = [_candidate(c) for c in candidate] if candidate else None
     cases = generate_cases(lef or [], cells, seed_list, utilization, out / "designs") if lef else []
     for name in testcase or []:
         found = find_testcase(name)
@@ -74,7 +99,7 @@ def train_schedule(
                                str(found.guide) if found.guide else None))
     console.print(f"training on {len(cases)} design(s): {', '.join(c.name for c in cases)}")
     route_args = ["--iterations", str(iterations)] if iterations is not None else []
-    doc = train(cases, out, jobs=jobs, threads=threads, band=band, time_weight=time_weight, route_args=route_args,
+    doc = train(cases, out, grid=grid, jobs=jobs, threads=threads, band=band, time_weight=time_weight, route_args=route_args,
                 progress=lambda line: console.print(f"  {line}", markup=False, highlight=False))
     model = out / "schedule.json"
     atomic_write_text(model, json.dumps(doc, indent=1) + "\n")
