@@ -95,7 +95,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
         assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
                            "wirelength_um", "vias", "violations", "violations_by_type", "seconds", "plan"}
         assert set(it["plan"]) == {"region_size", "offset", "repair_rounds", "marker_penalty", "history_penalty",
-                                   "use_penalty", "stop"}
+                                   "use_penalty", "stop", "search_budget"}
         assert (it["plan"]["region_size"], it["plan"]["offset"]) == (it["region_size"], it["offset"])
         assert list(it["violations_by_type"]) == list(VIOLATION_TYPES)
         assert it["violations"] == sum(it["violations_by_type"].values())

@@ -1,4 +1,4 @@
-"""Training a schedule model (xroute.schedule_train) on generated designs and using it on another.
+"""Training a schedule model (xroute.policies.schedule_train) on generated designs and using it on another.
 
 The designs come from our own generator (800 cells, seeds 1 and 2 to train, seed 4 held out) and
 are routed with an iteration limit of 3, where the default flow still leaves violations: the model
@@ -16,7 +16,7 @@ import pytest
 
 from xroute.errors import XrouteError
 from xroute.schedule_model import SwitchSchedule, load_schedule_model
-from xroute.schedule_train import RunFigures, TrainCase, default_grid, feasible, score, train
+from xroute.policies.schedule_train import RunFigures, TrainCase, default_grid, feasible, score, train
 
 ITERATIONS = 3
 CELLS = 800

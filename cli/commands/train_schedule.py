@@ -3,7 +3,7 @@
 Training designs: generated ones (``--lef TECH.lef`` per technology, ``--cells N``, ``--seeds 1,2``: a
 placed design per technology and seed, as ``make-testcase --lef`` writes it) and testcases by name
 (``--testcase NAME``). Every design is routed with the default and with each candidate of the grid
-(:func:`xroute.schedule_train.default_grid`, 20 candidates, or the ``--candidate`` ones), ``--jobs``
+(:func:`xroute.policies.schedule_train.default_grid`, 20 candidates, or the ``--candidate`` ones), ``--jobs``
 routes at once. Everything goes
 under ``--out DIR``: the designs (``DIR/designs``), the runs (``DIR/runs``) and the model
 (``DIR/schedule.json``), which ``xroute route --schedule-policy DIR/schedule.json`` uses.
@@ -84,7 +84,7 @@ def train_schedule(
     """Fit a schedule model: the rule's plans until the run converges, then smaller regions, and a stop on a
     stall, with the switch point, region size and patience that do best on the training designs."""
     from xroute.atomic_files import atomic_write_text
-    from xroute.schedule_train import TrainCase, generate_cases, train
+    from xroute.policies.schedule_train import TrainCase, generate_cases, train
     from xroute.testcases.registry import find_testcase
 
     console = stdout_console()

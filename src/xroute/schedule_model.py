@@ -7,7 +7,7 @@ regions are ``late_size`` GCells a side (offset shifted by a third of a region e
 rule shifts its own), with ``late_repair`` repair rounds and, when ``late_budget`` > 0, each region's
 nets ordered by the victims search with that many trial routings (where few regions are left to
 mend, the search is cheap). With ``patience`` > 0 the run stops once
-that many iterations in a row found no new lowest violation count. :mod:`xroute.schedule_train`
+that many iterations in a row found no new lowest violation count. :mod:`xroute.policies.schedule_train`
 chooses the parameters on training designs; the result is a JSON file (``--schedule-policy
 FILE.json``)::
 
