@@ -3,8 +3,8 @@
 ``reset()`` loads ``testcase_name`` afresh and starts the router's flow (as ``xroute route``) in a
 background thread with a schedule policy (:mod:`xroute.schedule`) that hands every decision to this
 env: before each iteration the agent picks one entry of ``menu`` - a change to the rule's plan for
-that iteration (the rule itself, another region size, repair rounds, other weights, or stopping the
-run) - and the iteration runs with it. The episode ends when the flow ends (the iteration limit,
+that iteration (the rule itself, another region size, repair rounds, other weights, the victims
+search in that iteration, or stopping the run) - and the iteration runs with it. The episode ends when the flow ends (the iteration limit,
 zero violations, or a stop).
 
 Spaces:
@@ -20,7 +20,9 @@ Spaces:
 
 Reward after each iteration: the drop of the paper's cost (0.5 per µm + 4 per via + 500 per
 violation; from 0 before the first iteration) divided by 1,000, minus ``work_weight`` times the
-iteration's net routes per net of the design (a deterministic stand-in for its time); an episode's
+iteration's net routes per net of the design, times 1 + the iteration's search budget (a
+deterministic stand-in for its time: a searched region routes its nets once more per trial at
+most); an episode's
 return is so minus the final cost / 1,000 minus the weighted work. Stopping earns 0 and ends the
 episode. The flow is deterministic, so same actions, same episode; ``reset(seed=)`` only
 seeds ``self.np_random`` (the env draws nothing from it).
@@ -44,6 +46,7 @@ DEFAULT_MENU: tuple[tuple[str, dict[str, Any]], ...] = (
     ("size 7", {"region_size": 7}),
     ("repair 1", {"repair_rounds": 1}),
     ("double weights", {"marker_penalty": 6000, "history_penalty": 2000}),
+    ("victims 4", {"search_budget": 4}),
     ("stop", {"stop": True}),
 )
 
@@ -186,6 +189,13 @@ class ScheduleIterationEnv(gym.Env):
                 mask[i] = False
         return mask
 
+    @staticmethod
+    def _work(report: Any) -> float:
+        """The iteration's net routes, times 1 + its search budget: each searched region routes its nets
+        once more per trial at most (the deterministic stand-in for the search's time)."""
+        budget = report.plan.search_budget if report.plan is not None else 0
+        return float(report.net_routes * (1 + budget))
+
     def _info(self, **extra: Any) -> dict[str, Any]:
         # The reports' figures without their wall times, so that same actions give the same info.
         history = [{k: v for k, v in r.to_dict().items() if k != "seconds"} for r in self._history]
@@ -226,7 +236,7 @@ class ScheduleIterationEnv(gym.Env):
         reward = 0.0
         if len(self._history) > done_before:  # the iteration ran (a stop ends the run without it)
             report = self._history[done_before]
-            reward = (before - self._cost(report)) / 1000.0 - self.work_weight * report.net_routes / self._nets
+            reward = (before - self._cost(report)) / 1000.0 - self.work_weight * self._work(report) / self._nets
         terminated = final is not None
         info = self._info(**({"result": final} if final is not None else {}), masked_action=masked)
         return self._observation(), float(reward), terminated, False, info

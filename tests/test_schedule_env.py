@@ -89,6 +89,20 @@ def test_a_size_action_sets_that_iterations_region_size(env: Any) -> None:
     assert sizes[0] == (SIZE, 0) and sizes[1] == (5, 1) and all(s == (SIZE, 0) for s in sizes[2:])
 
 
+def test_a_search_action_runs_the_victims_search_and_costs_its_trials(env: Any) -> None:
+    """'victims 4' in the second iteration: that iteration's plan has search budget 4 and its reward
+    charges five times its net routes (each searched region routes its nets once more per trial at most)."""
+    search = [name for name, _ in env.menu].index("victims 4")
+    _, info = env.reset(seed=0)
+    env.step(0)
+    before = env._cost(env._history[-1])
+    _, reward, _, _, info = env.step(search)
+    report = info["result"].iterations[1] if "result" in info else env._history[1]
+    assert report.plan.search_budget == 4
+    expected = (before - env._cost(report)) / 1000.0 - 5 * report.net_routes / env._nets
+    assert reward == pytest.approx(expected)
+
+
 def test_masked_and_unknown_actions_and_a_reset_mid_episode(env: Any) -> None:
     """A masked action (stop before the first iteration) runs the rule's plan and says so; an action
     outside the menu is an error; a reset drops the unfinished run."""
