@@ -68,7 +68,7 @@ void bump(uint16_t& counter) {
 void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed) {
   const Layer& layer = *rules.layers[z];
   const Dbu half = rules.wireHalf[z];
-  const Dbu width = std::min(r.width(), r.height());
+  const Dbu width = r.minSide();
   const bool hz = rules.horizontal[z] != 0;
   // Spacing depends on the parallel run length. A wire along the preferred
   // direction beside the shape runs parallel at most the shape's extent in
@@ -78,7 +78,7 @@ void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r,
   const Dbu sSide = requiredSpacing(layer, width, 2 * half, hz ? r.width() : r.height());
   const Dbu sEnd = requiredSpacing(layer, width, 2 * half, 2 * half);
   const Rect& m = rules.viaLanding[z];
-  const Dbu sVia = requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height()));
+  const Dbu sVia = requiredSpacing(layer, width, m.minSide(), std::max(m.width(), m.height()));
   // A wire through the node: its square [x-half, x+half] must stay away.
   const Rect wireEnd{r.xlo - sEnd - half, r.ylo - sEnd - half, r.xhi + sEnd + half, r.yhi + sEnd + half};
   const Rect wireSide = hz ? Rect{r.xlo - half, r.ylo - sSide - half, r.xhi + half, r.yhi + sSide + half}
