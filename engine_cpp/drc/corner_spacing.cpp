@@ -95,7 +95,7 @@ void checkCornerSpacing(const LayerShapes& ls, MarkerSink& out) {
           const Rect& r = ls.rects[j];
           if (ls.comp[j] != c) return;
           if ((k.sx > 0 ? r.xhi : r.xlo) == k.x && (k.sy > 0 ? r.yhi : r.ylo) == k.y)
-            width = std::max(width, std::min(r.width(), r.height()));
+            width = std::max(width, r.minSide());
         });
         Dbu space = rule.spacings.front();
         for (size_t i = 0; i < rule.widths.size(); ++i)

@@ -100,7 +100,7 @@ void checkEndOfLine(const LayerShapes& ls, MarkerSink& out) {
     bool candidate = false;
     for (int32_t k = ls.compStart[c]; k < ls.compStart[c + 1] && !candidate; ++k) {
       const Rect& r = ls.rects[ls.compMembers[k]];
-      candidate = std::min(r.width(), r.height()) < maxEolWidth;
+      candidate = r.minSide() < maxEolWidth;
     }
     if (!candidate) continue;
     for (const Edge& e : componentEdges(ls, c)) {

@@ -43,7 +43,7 @@ inline Dbu eolNeed(const Layer& layer, const Rect& a, const Rect& b) {
 // a short side of either faces the other (`aEnds`/`bEnds`: whether that side
 // of a / b may be a line end).
 inline Dbu metalNeed(const Layer& layer, const Rect& a, const Rect& b, bool aEnds = true, bool bEnds = true) {
-  Dbu need = requiredSpacing(layer, std::min(a.width(), a.height()), std::min(b.width(), b.height()), runLength(a, b));
+  Dbu need = requiredSpacing(layer, a.minSide(), b.minSide(), runLength(a, b));
   if (aEnds) need = std::max(need, eolNeed(layer, a, b));
   if (bEnds) need = std::max(need, eolNeed(layer, b, a));
   return need;

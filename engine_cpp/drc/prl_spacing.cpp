@@ -63,7 +63,7 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
 
   auto widthOf = [&](int32_t i) {
     if (ls.isObs(i) && options.obsAsMinWidth) return minWidth;
-    return std::min(ls.rects[i].width(), ls.rects[i].height());
+    return ls.rects[i].minSide();
   };
 
   for (size_t i = 0; i < ls.size(); ++i) {

@@ -39,7 +39,7 @@ bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i,
 int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& routedMetal, int32_t net, int z,
                    const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
-  const Dbu pw = std::min(r.width(), r.height());
+  const Dbu pw = r.minSide();
   const Dbu own = ctx.netRules.spacing(net, z);  // the patch's net's NONDEFAULTRULE spacing
   const Dbu widest = ctx.netRules.maxSpacing(z);  // any net's on the layer
   const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], own});

@@ -11,6 +11,17 @@ namespace xroute {
 using Dbu = int32_t;    // a coordinate or length in DBU
 using Area = int64_t;   // an area in DBU^2
 
+// The largest magnitude of a coordinate or length the engine takes from a file, and of any shape it
+// places from them (DBU). 2^28 - 1 leaves a factor of eight below int32: a coordinate expanded by
+// up to seven lengths (half widths, spacings, extensions, search ranges), or the distance between
+// two coordinates each expanded by up to three, still fits a Dbu, and any product of two such
+// values fits int64. It is 134 mm at 2,000 DBU per micron (the ISPD contests' unit), 13.4 mm at
+// 20,000 (the largest LEF unit). The readers refuse anything beyond it, naming file and line.
+inline constexpr Dbu kMaxDbu = (Dbu(1) << 28) - 1;
+
+// Whether |v| <= kMaxDbu.
+inline constexpr bool withinDbuRange(int64_t v) { return v >= -int64_t(kMaxDbu) && v <= int64_t(kMaxDbu); }
+
 struct Point {
   Dbu x = 0;  // DBU
   Dbu y = 0;  // DBU
@@ -24,8 +35,11 @@ struct Rect {
   static Rect fromCorners(Point a, Point b) {
     return {std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
   }
-  Dbu width() const { return xhi - xlo; }
-  Dbu height() const { return yhi - ylo; }
+  // 64-bit: the span of two coordinates near the ends of int32 overflows a Dbu.
+  int64_t width() const { return int64_t(xhi) - xlo; }
+  int64_t height() const { return int64_t(yhi) - ylo; }
+  // The shorter side (DBU), capped at the largest Dbu.
+  Dbu minSide() const { return Dbu(std::min<int64_t>(std::min(width(), height()), INT32_MAX)); }
   Area area() const { return Area(width()) * Area(height()); }
   bool contains(Point p) const { return p.x >= xlo && p.x <= xhi && p.y >= ylo && p.y <= yhi; }
   bool overlaps(const Rect& o) const {

@@ -68,7 +68,7 @@ void bump(uint16_t& counter) {
 MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace,
                       const Rect* landing) {
   const Layer& layer = *rules.layers[z];
-  const Dbu width = std::min(r.width(), r.height());
+  const Dbu width = r.minSide();
   const bool hz = rules.horizontal[z] != 0;
   // Spacing depends on the parallel run length. A wire along the preferred
   // direction beside the shape runs parallel at most the shape's extent in
@@ -80,7 +80,7 @@ MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu hal
   const Dbu sEnd = std::max(minSpace, requiredSpacing(layer, width, 2 * half, 2 * half));
   const Rect& m = landing != nullptr ? *landing : rules.viaLanding[z];
   const Dbu sVia = std::max(
-      minSpace, requiredSpacing(layer, width, std::min(m.width(), m.height()), std::max(m.width(), m.height())));
+      minSpace, requiredSpacing(layer, width, m.minSide(), std::max(m.width(), m.height())));
   MetalReach out;
   // A wire through the node: its square [x-half, x+half] must stay away.
   const Rect wireEnd{r.xlo - sEnd - half, r.ylo - sEnd - half, r.xhi + sEnd + half, r.yhi + sEnd + half};

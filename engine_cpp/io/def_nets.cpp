@@ -87,6 +87,21 @@ LayerId DefParser::layerAfterVia(const Token& viaTok, ViaRef ref, LayerId layer)
                           quoteToken(tech_.layer(layer).name));
 }
 
+void DefParser::requireInRange(int line, const Rect& r, std::string_view what) const {
+  if (withinDbuRange(r.xlo) && withinDbuRange(r.ylo) && withinDbuRange(r.xhi) && withinDbuRange(r.yhi)) return;
+  lex_.fail(line, std::string(what) + " (" + std::to_string(r.xlo) + " " + std::to_string(r.ylo) + " " +
+                      std::to_string(r.xhi) + " " + std::to_string(r.yhi) + ") reaches beyond the engine's range, " +
+                      dbuRangeText());
+}
+
+void DefParser::requireViaInRange(int line, ViaRef ref, Point at) const {
+  const std::vector<ViaShape>& shapes = design_.via(tech_, ref).shapes;
+  if (shapes.empty()) return;
+  Rect box = shapes.front().rect;
+  for (const ViaShape& s : shapes) box.expandToInclude(s.rect);
+  requireInRange(line, box.translated(at), "via");  // each term is within kMaxDbu: the sum fits
+}
+
 // ---------------------------------------------------------------------------
 // SPECIALNETS
 
@@ -180,7 +195,14 @@ void DefParser::readSpecialViaArray(SpecialNet& net, ViaRef ref, Point at, const
     lex_.expect("STEP");
     stepX = lex_.dbu();
     stepY = lex_.dbu();
+    const int64_t lastX = at.x + (nx - 1) * stepX, lastY = at.y + (ny - 1) * stepY;
+    if (!withinDbuRange(lastX) || !withinDbuRange(lastY)) {
+      lex_.failAt(nt, "via array ends at (" + std::to_string(lastX) + " " + std::to_string(lastY) +
+                          "), beyond the engine's range, " + dbuRangeText());
+    }
   }
+  requireViaInRange(lex_.line(), ref, Point{at.x + (numX - 1) * stepX, at.y + (numY - 1) * stepY});
+  requireViaInRange(lex_.line(), ref, at);
   for (int i = 0; i < numX; ++i) {
     for (int j = 0; j < numY; ++j) net.vias.push_back({ref, Point{at.x + i * stepX, at.y + j * stepY}, shape});
   }
@@ -377,8 +399,9 @@ void DefParser::readRegularWiring(Net& net) {
         lex_.expect("(");
         const Dbu x1 = lex_.dbu(), y1 = lex_.dbu(), x2 = lex_.dbu(), y2 = lex_.dbu();
         lex_.expect(")");
-        const Point a{cur.at.x + x1, cur.at.y + y1}, b{cur.at.x + x2, cur.at.y + y2};
+        const Point a{cur.at.x + x1, cur.at.y + y1}, b{cur.at.x + x2, cur.at.y + y2};  // each term within kMaxDbu
         r.patches.push_back({cur.layer, Rect::fromCorners(a, b)});
+        requireInRange(rectTok.line, r.patches.back().rect, "RECT");
         cur.emitted = true;
       } else if (is(t, "VIRTUAL")) {
         lex_.next();
@@ -394,6 +417,7 @@ void DefParser::readRegularWiring(Net& net) {
       } else {
         const Token viaTok = lex_.next();
         const ViaRef ref = readPathVia(viaTok, cur.havePoint, "NETS");
+        requireViaInRange(viaTok.line, ref, cur.at);
         r.vias.push_back({ref, cur.at});
         cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         width = 0;

@@ -84,6 +84,10 @@ class DefParser {
   static bool is(const Token& t, std::string_view w) { return !t.quoted && isKeyword(t.text, w); }
   bool peekIs(std::string_view w) { return !lex_.atEnd() && is(lex_.peek(), w); }
   Point readPoint();                      // "( x y )"
+  // Fails at `line` unless every corner of `r` (a shape placed from values read) is within kMaxDbu.
+  void requireInRange(int line, const Rect& r, std::string_view what) const;
+  // The bounding box of a via's shapes placed at `at`, checked as requireInRange does.
+  void requireViaInRange(int line, ViaRef ref, Point at) const;
   // POLYGON points "( x y ) ..." after `kw`, "*" repeating the previous point's coordinate; >= 3.
   std::vector<Point> readPolygonPoints(const Token& kw);
   // A warning "file:line: message" in Design::warnings (and warningCount).

@@ -81,6 +81,7 @@ void DefParser::readPin() {
       if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
       if (lex_.accept("MASK")) lex_.integer();
       const Point at = readPoint();
+      requireViaInRange(viaTok.line, ref, at);
       for (const ViaShape& s : design_.via(tech_, ref).shapes) {
         ports.back().shapes.push_back({s.layer, s.rect.translated(at)});
       }
@@ -98,6 +99,9 @@ void DefParser::readPin() {
     countSkip("PINS.PORT.PLACEMENT");
     ++design_.warningCount;
   }
+  // Placed shapes (location plus rect: each term within kMaxDbu, the sum fits) within the range too.
+  const Transform t{pin.location, pin.orient, 0, 0};
+  for (const IoPinShape& s : pin.shapes) requireInRange(nameTok.line, t.apply(s.rect), "pin shape");
   design_.ioPins.push_back(std::move(pin));
 }
 
@@ -113,8 +117,10 @@ IoPinShape DefParser::readPinRect() {
       unexpected(opt, "'(' or MASK, SPACING, DESIGNRULEWIDTH");
     }
   }
+  const int line = lex_.peek().line;
   const Point a = readPoint();
   const Point b = readPoint();
+  if (a.x == b.x || a.y == b.y) warn(line, "pin RECT without area");  // any two opposite corners are fine
   return {layer, Rect::fromCorners(a, b)};
 }
 

@@ -364,6 +364,10 @@ void DefParser::readRow() {
       row.stepX = lex_.dbu();
       row.stepY = lex_.dbu();
     }
+    if (!withinDbuRange(row.origin.x + int64_t(row.stepX) * (x - 1)) ||
+        !withinDbuRange(row.origin.y + int64_t(row.stepY) * (y - 1))) {
+      lex_.failAt(nx, "ROW runs beyond the engine's range, " + dbuRangeText());
+    }
   }
   while (lex_.accept("+")) {
     const Token kw = lex_.next();
@@ -393,9 +397,8 @@ void DefParser::readTracks() {
   const Token stepTok = lex_.peek();
   pat.step = lex_.dbu();
   if (pat.step <= 0) lex_.failAt(stepTok, "TRACKS STEP must be positive, found " + quoteToken(stepTok.text));
-  if (static_cast<int64_t>(pat.start) + static_cast<int64_t>(pat.step) * (pat.count - 1) >
-      std::numeric_limits<Dbu>::max()) {
-    lex_.failAt(stepTok, "TRACKS run past the largest coordinate");
+  if (!withinDbuRange(static_cast<int64_t>(pat.start) + static_cast<int64_t>(pat.step) * (pat.count - 1))) {
+    lex_.failAt(stepTok, "TRACKS run beyond the engine's range, " + dbuRangeText());
   }
   if (lex_.accept("MASK")) {
     lex_.integer();
@@ -433,9 +436,8 @@ void DefParser::readGCellGrid() {
   const Token stepTok = lex_.peek();
   g.step = lex_.dbu();
   if (g.step <= 0) lex_.failAt(stepTok, "GCELLGRID STEP must be positive, found " + quoteToken(stepTok.text));
-  if (static_cast<int64_t>(g.start) + static_cast<int64_t>(g.step) * (g.count - 1) >
-      std::numeric_limits<Dbu>::max()) {
-    lex_.failAt(stepTok, "GCELLGRID runs past the largest coordinate");
+  if (!withinDbuRange(static_cast<int64_t>(g.start) + static_cast<int64_t>(g.step) * (g.count - 1))) {
+    lex_.failAt(stepTok, "GCELLGRID runs beyond the engine's range, " + dbuRangeText());
   }
   lex_.expect(";");
   design_.gcellGrid.push_back(g);
@@ -466,6 +468,9 @@ void DefParser::readComponent() {
   for (Token kw; nextOption(kw);) {
     if (is(kw, "PLACED") || is(kw, "FIXED") || is(kw, "COVER")) {
       c.status = readPlacement(kw, c.location, c.orient);
+      const Macro& m = tech_.macros[*macro];
+      const Transform t{c.location, c.orient, m.width, m.height};
+      requireInRange(kw.line, t.apply(Rect{0, 0, m.width, m.height}), "placed component");
     } else if (is(kw, "UNPLACED")) {
       c.status = PlaceStatus::Unplaced;
     } else if (is(kw, ";")) {

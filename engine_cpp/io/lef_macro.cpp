@@ -79,9 +79,10 @@ void LefParser::parseMacro(const Token& opener) {
       macro.origin = point();
       endStatement();
     } else if (k == "SIZE") {
-      macro.width = dist();
+      // A negative size would mirror the placed geometry: refused.
+      macro.width = nonNegativeDist("MACRO SIZE width");
       expect("BY");
-      macro.height = dist();
+      macro.height = nonNegativeDist("MACRO SIZE height");
       endStatement();
     } else if (k == "SYMMETRY") {
       macro.symmetry = restOfStatement();

@@ -157,8 +157,11 @@ Point LefParser::point() {
 
 Rect LefParser::rect() {
   if (accept("MASK")) integer();
+  const int line = peek().line;
   const Point a = point();
   const Point b = point();
+  // Any two opposite corners, as DEF; a rect without area is kept (it touches, as a line) but warned.
+  if (a.x == b.x || a.y == b.y) warn(line, "RECT without area");
   return Rect::fromCorners(a, b);
 }
 
@@ -267,7 +270,12 @@ void LefParser::parse() {
       (k == "BUSBITCHARS" ? tech_.busBitChars : tech_.dividerChar) = std::string(v.text);
       endStatement();
     } else if (k == "MANUFACTURINGGRID") {
+      const Token t = peek();
       tech_.manufacturingGrid = dist();
+      if (tech_.manufacturingGrid <= 0) {  // LEF asks for a positive grid; none is the safe reading
+        warn(t.line, "MANUFACTURINGGRID " + std::string(t.text) + " is not a positive length in DBU: ignored");
+        tech_.manufacturingGrid = 0;
+      }
       endStatement();
     } else if (k == "CLEARANCEMEASURE") {
       const Token v = name("EUCLIDEAN or MAXXY");

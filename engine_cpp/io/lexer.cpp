@@ -235,11 +235,18 @@ double Lexer::number() {
   return v;
 }
 
+std::string dbuRangeText() { return "|v| <= " + std::to_string(kMaxDbu) + " DBU"; }
+
 Dbu Lexer::microns(int dbuPerMicron) {
   const Token copy = peek();
   const double v = number() * dbuPerMicron;
   if (!(std::fabs(v) < 2.0e9)) failAt(copy, "length out of range: " + quoteToken(copy.text));
-  return static_cast<Dbu>(std::llround(v));
+  const int64_t d = std::llround(v);
+  if (!withinDbuRange(d)) {
+    failAt(copy, "length " + quoteToken(copy.text) + " (" + std::to_string(d) + " DBU) is beyond the engine's range, " +
+                     dbuRangeText());
+  }
+  return static_cast<Dbu>(d);
 }
 
 Dbu Lexer::dbu() {
@@ -249,16 +256,12 @@ Dbu Lexer::dbu() {
     failAt(copy, "coordinate " + quoteToken(copy.text) + " is not a multiple of " + std::to_string(scaleDiv_) +
                      ": it has no exact value in the LEF's database units");
   }
-  if (scaleMul_ != 1 || scaleDiv_ != 1) {
-    if (v > std::numeric_limits<Dbu>::max() || v < std::numeric_limits<Dbu>::min()) {
-      failAt(copy, "coordinate out of range: " + quoteToken(copy.text));
-    }
-    v = v / scaleDiv_ * scaleMul_;
+  // Bounded before rescaling, so that the product cannot overflow either.
+  const bool inRange = withinDbuRange(v) && withinDbuRange(v / scaleDiv_ * scaleMul_);
+  if (!inRange) {
+    failAt(copy, "coordinate " + quoteToken(copy.text) + " is beyond the engine's range, " + dbuRangeText());
   }
-  if (v > std::numeric_limits<Dbu>::max() || v < std::numeric_limits<Dbu>::min()) {
-    failAt(copy, "coordinate out of range: " + quoteToken(copy.text));
-  }
-  return static_cast<Dbu>(v);
+  return static_cast<Dbu>(v / scaleDiv_ * scaleMul_);
 }
 
 int Lexer::skipStatement() {

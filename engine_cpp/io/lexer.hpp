@@ -81,6 +81,9 @@ class Lexer {
 // True when `text` is the keyword `word` (upper case) written in any case.
 bool isKeyword(std::string_view text, std::string_view word);
 
+// "|v| <= 268435455 DBU": the engine's range (kMaxDbu), for error messages.
+std::string dbuRangeText();
+
 // Quotes a token for an error message, shortened if long.
 std::string quoteToken(std::string_view text);
 

@@ -58,6 +58,29 @@ bool placedBox(const Tech& tech, const Design& design, Rect& box) {
 
 bool outside(const Rect& die, Point p) { return p.x < die.xlo || p.x > die.xhi || p.y < die.ylo || p.y > die.yhi; }
 
+// Routed wires, vias and patches of NETS with a point outside the die: checked and drawn as read
+// (a routed DEF from elsewhere may have them), but worth a word.
+void warnRoutingOutsideDie(Design& design, const std::string& defPath, const std::string& dieText) {
+  if (design.dieLine <= 0) return;
+  const Rect& die = design.dieArea;
+  int64_t count = 0;
+  std::string firstNet;
+  for (const Net& n : design.nets) {
+    const NetRouting& r = n.routing;
+    int64_t here = 0;
+    for (const RouteWire& w : r.wires) here += (outside(die, w.from) || outside(die, w.to)) ? 1 : 0;
+    for (const RouteVia& v : r.vias) here += outside(die, v.at) ? 1 : 0;
+    for (const RoutePatch& p : r.patches) here += outside(die, {p.rect.xlo, p.rect.ylo}) || outside(die, {p.rect.xhi, p.rect.yhi});
+    if (here > 0 && count == 0) firstNet = n.name;
+    count += here;
+  }
+  if (count > 0) {
+    warn(design, defPath, design.dieLine,
+         std::to_string(count) + " routed wire(s), via(s) or patch(es) reach outside the die area " + dieText +
+             ", e.g. in net '" + firstNet + "'");
+  }
+}
+
 }  // namespace
 
 void validateDesign(const Tech& tech, Design& design, const std::string& defPath) {
@@ -101,6 +124,7 @@ void validateDesign(const Tech& tech, Design& design, const std::string& defPath
     warn(design, defPath, design.dieLine,
          std::to_string(pins) + " IO pin(s) placed outside the die area " + dieText + ", e.g. '" + firstPin + "'");
   }
+  warnRoutingOutsideDie(design, defPath, dieText);
   int tracks = 0;
   for (const TrackPattern& t : design.tracks) {
     const Dbu lo = t.isX ? die.xlo : die.ylo;

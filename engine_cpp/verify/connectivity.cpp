@@ -38,6 +38,7 @@ class NetChecker {
 
  private:
   void collect(NetId net, int32_t pins);
+  size_t mergeStrips(size_t begin, size_t end, bool alongX);
   void connectLayer(size_t begin, size_t end);
 
   const Tech& tech_;
@@ -70,6 +71,35 @@ void NetChecker::collect(NetId net, int32_t pins) {
   sets_.reset(size_t(node));
 }
 
+// Along x (alongX) or y: merges shapes_[begin, end) (one layer) that have the same span across and
+// overlap or abut along (a zero-width strip needs an overlap of positive length), uniting their
+// nodes; the merged rect touches exactly what its pieces touch. Repeated or overlapping collinear
+// wires become one shape, so the contact search below stays near linear. Returns the new end.
+size_t NetChecker::mergeStrips(size_t begin, size_t end, bool alongX) {
+  auto across = [&](const Rect& r) { return alongX ? std::make_pair(r.ylo, r.yhi) : std::make_pair(r.xlo, r.xhi); };
+  auto lo = [&](const Rect& r) { return alongX ? r.xlo : r.ylo; };
+  std::sort(shapes_.begin() + begin, shapes_.begin() + end, [&](const NetShape& a, const NetShape& b) {
+    return std::make_pair(across(a.rect), lo(a.rect)) < std::make_pair(across(b.rect), lo(b.rect));
+  });
+  size_t out = begin;
+  for (size_t i = begin; i < end; ++i) {
+    const NetShape& s = shapes_[i];
+    if (out > begin) {
+      NetShape& last = shapes_[out - 1];
+      const auto span = across(s.rect);
+      Dbu& lastHi = alongX ? last.rect.xhi : last.rect.yhi;
+      const bool joins = span.first < span.second ? lo(s.rect) <= lastHi : lo(s.rect) < lastHi;
+      if (across(last.rect) == span && joins) {
+        sets_.unite(last.node, s.node);
+        lastHi = std::max(lastHi, alongX ? s.rect.xhi : s.rect.yhi);
+        continue;
+      }
+    }
+    shapes_[out++] = s;
+  }
+  return out;
+}
+
 // Unites the nodes of touching shapes in shapes_[begin, end) (one layer,
 // sorted by xlo).
 void NetChecker::connectLayer(size_t begin, size_t end) {
@@ -100,12 +130,14 @@ NetConnectivity NetChecker::check(NetId net) {
   out.net = net;
   out.pinCount = design_.pinCount(net);
   collect(net, out.pinCount);
-  std::sort(shapes_.begin(), shapes_.end(), [](const NetShape& a, const NetShape& b) {
-    return a.layer != b.layer ? a.layer < b.layer : a.rect.xlo < b.rect.xlo;
-  });
+  std::stable_sort(shapes_.begin(), shapes_.end(), [](const NetShape& a, const NetShape& b) { return a.layer < b.layer; });
   for (size_t b = 0, e = 0; b < shapes_.size(); b = e) {
     for (e = b + 1; e < shapes_.size() && shapes_[e].layer == shapes_[b].layer;) ++e;
-    connectLayer(b, e);
+    size_t end = mergeStrips(b, e, true);
+    end = mergeStrips(b, end, false);
+    std::sort(shapes_.begin() + b, shapes_.begin() + end,
+              [](const NetShape& x, const NetShape& y) { return x.rect.xlo < y.rect.xlo; });
+    connectLayer(b, end);
   }
   // Groups in the order of their first pin; then routing-only components.
   label_.assign(sets_.size(), -1);
