@@ -86,7 +86,7 @@ def verdict(learned: dict, rows: list[dict], ref: dict) -> list[str]:
         dominating = [r["setting"] for r in menu
                       if r["violations"] <= learned["violations"] and r[clock] <= learned[clock]]
         ratio = learned[clock] / ref[clock]
-        a = learned["violations"] <= 0.7 * ref["violations"] and ratio <= 1.2
+        a = ref["violations"] > 0 and learned["violations"] <= 0.7 * ref["violations"] and ratio <= 1.2
         b = learned["violations"] <= ref["violations"] and ratio <= 0.75
         lines.append(f"    by {clock[:-2]} time ({ratio:.2f}x the default's): dominated by in-band menu settings: "
                      f"{', '.join(dominating) or 'none'}; (a) <= 70% of the default's violations at <= 1.2x: "
