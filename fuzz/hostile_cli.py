@@ -381,6 +381,7 @@ def main() -> int:
     ap.add_argument("--keep", type=Path, default=REPO / "build" / "hostile_cli", help="folder for failing cases")
     ap.add_argument("--only", choices=sorted(CATEGORIES), help="one category only")
     ap.add_argument("--json", type=Path, help="also write the counts as JSON here")
+    ap.add_argument("--seconds", type=float, default=0, help="stop starting cases after this long (0: no limit)")
     args = ap.parse_args()
     rng = random.Random(args.seed)
     routed = routed_demo()
@@ -389,8 +390,11 @@ def main() -> int:
     counts = {n: dict.fromkeys(("cases", *verdicts), 0) for n in names_}
     if args.keep.exists():
         shutil.rmtree(args.keep)
-    started, failures = time.perf_counter(), 0
+    started, failures, ran = time.perf_counter(), 0, 0
     for i in range(args.cases):
+        if args.seconds and time.perf_counter() - started > args.seconds:
+            break
+        ran += 1
         category = rng.choices(names_, weights)[0]
         case = CATEGORIES[category][0](rng, routed)
         verdict, log, root = run_case(case, args.timeout)
@@ -405,7 +409,7 @@ def main() -> int:
             (dest / "case.txt").write_text(f"{case.label}\n{case.argv}\n{case.env}\n{log}\n", errors="replace")
         shutil.rmtree(root, ignore_errors=True)
     took = time.perf_counter() - started
-    print(f"\n{args.cases} cases in {took:.0f} s (seed {args.seed})")
+    print(f"\n{ran} cases in {took:.0f} s (seed {args.seed})")
     print(f"{'category':15s} " + " ".join(f"{h:>12s}" for h in ("cases", *verdicts)))
     for n, c in counts.items():
         print(f"{n:15s} " + " ".join(f"{c[h]:>12d}" for h in ("cases", *verdicts)))
