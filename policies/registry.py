@@ -4,7 +4,7 @@ the iteration plans (``"rule"`` or a ``.py`` file defining ``plan(history, rule)
 
 A ``.py`` file is loaded with importlib from its path (it need not be on ``sys.path``) and must
 define ``order(region, features)`` (see :mod:`xroute.net_order`); it may also set ``NAME`` (default:
-the file's stem). A ``.onnx`` file is an :class:`~xroute.policies.onnx_policy.OnnxPolicy` (onnxruntime
+the file's stem) and ``NEEDS_REGION = True`` (the region being routed is lent to ``order``). A ``.onnx`` file is an :class:`~xroute.policies.onnx_policy.OnnxPolicy` (onnxruntime
 loaded then, not before).
 """
 
@@ -84,7 +84,11 @@ def load_policy_file(path: str | Path) -> CallablePolicy | CallableSequentialPol
     fn: Any = getattr(module, "order", None)
     if not callable(fn):
         raise PolicyError(f"policy file {p} defines no function order(region, features) or next_net(region, features)")
-    return CallablePolicy(fn, name=str(name))
+    policy = CallablePolicy(fn, name=str(name))
+    # NEEDS_REGION = True: region["engine_region"] is the region being routed, lent for the call (e.g. to
+    # run a built-in search in this region only: region["engine_region"].route_rest("victims", search_budget=4)).
+    policy.needs_region = bool(getattr(module, "NEEDS_REGION", False))  # type: ignore[attr-defined]
+    return policy
 
 
 def get_policy(spec: str, seed: int = 1, search_budget: int | None = None) -> NetOrderPolicy:

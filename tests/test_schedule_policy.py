@@ -220,3 +220,28 @@ def test_the_metrics_log_every_iterations_plan_as_transitions(tmp_path: Path) ->
     old = dict(metrics, iterations=[{k: v for k, v in it.items() if k != "plan"} for it in metrics["iterations"]])
     with pytest.raises(ValueError, match="do not record their plans"):
         logged_transitions(old)
+
+
+def test_a_policy_file_may_decide_the_search_region_by_region(tmp_path: Path) -> None:
+    """NEEDS_REGION = True lends each region to a policy file's order(): one that runs the victims
+    search in every region routes as --policy victims; the example that searches only regions with
+    three nets or more from the second iteration on routes without opens."""
+    from xroute.net_order import VictimsPolicy
+    from xroute.policies import load_policy_file
+
+    always = tmp_path / "always.py"
+    always.write_text("from xroute.net_order import heuristic_order\nNEEDS_REGION = True\n\n"
+                      "def order(region, features):\n"
+                      "    region['engine_region'].route_rest('victims', search_budget=4)\n"
+                      "    return heuristic_order(features)\n")
+    policy = load_policy_file(always)
+    assert policy.needs_region
+    text, _ = routed(size=2, policy=policy)
+    assert text == routed(size=2, policy=VictimsPolicy(4))[0] != routed(size=2)[0]
+    example = load_policy_file(Path(__file__).resolve().parent.parent / "examples" / "region_search.py")
+    assert example.needs_region and example.name == "region-search"
+    from xroute.design import load_design
+
+    design = load_design(SAMPLE4)
+    route_design(design, region_size=2, policy=example)
+    assert design.engine.check_connectivity()["open_nets"] == 0
