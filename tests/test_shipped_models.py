@@ -40,11 +40,19 @@ def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(alg
 
 
 def test_every_shipped_model_has_a_short_card_and_the_package_ships_no_log() -> None:
-    """One card per model (STYLE.md habit 13): <model>.card.md beside <model>.onnx, at most 100 lines,
-    with its intended use, data, protocol and figures; nothing else in the folder but models and cards
-    (research logs live in experiments/)."""
-    models = sorted(p.stem for p in MODELS.glob("*.onnx"))
-    assert models == ["dqn", "net_router_dqn", "ppo", "set_imitation"]
+    """One card per model (STYLE.md habit 13): <model>.card.md beside <model>.onnx (a net-order or
+    net-router network) or <model>.json (a schedule model), at most 100 lines, with its intended use,
+    data, protocol and figures; nothing else in the folder but models and cards (research logs live
+    in experiments/). Every schedule model loads as one."""
+    from xroute.schedule_model import SwitchSchedule, load_schedule_model
+
+    onnx = sorted(p.stem for p in MODELS.glob("*.onnx"))
+    schedules = sorted(p.stem for p in MODELS.glob("*.json"))
+    assert onnx == ["dqn", "net_router_dqn", "ppo", "set_imitation"]
+    assert schedules == ["schedule_switch", "schedule_switch_no19t3"]
+    for name in schedules:
+        assert isinstance(load_schedule_model(MODELS / f"{name}.json"), SwitchSchedule), name
+    models = onnx + schedules
     for name in models:
         card = MODELS / f"{name}.card.md"
         text = card.read_text()
@@ -52,5 +60,5 @@ def test_every_shipped_model_has_a_short_card_and_the_package_ships_no_log() -> 
         for heading in ("## Intended use", "## Training data", "## Evaluation protocol", "## Figures"):
             assert heading in text, (card, heading)
         assert "2026-" in text.split("## Figures")[1], f"{card}: figures without a date"
-    assert sorted(p.name for p in MODELS.iterdir()) == sorted([f"{m}.onnx" for m in models] +
-                                                               [f"{m}.card.md" for m in models])
+    assert sorted(p.name for p in MODELS.iterdir()) == sorted([f"{m}.onnx" for m in onnx] + [f"{m}.json" for m in schedules]
+                                                               + [f"{m}.card.md" for m in models])
