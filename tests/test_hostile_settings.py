@@ -137,3 +137,16 @@ def test_safe_text_survives_a_failing_str() -> None:
 
     assert safe_text(Nasty()) == "<Nasty: unprintable>"
     assert safe_text(ValueError("a\nb")) == "a b"
+
+
+def test_a_value_with_a_line_break_stays_on_the_errors_one_line(tmp_path: Path) -> None:
+    """Found by fuzz/fuzz_yaml.py (seed default, 124,424 runs): a policy name holding a newline was
+    quoted raw into the message. Line breaks are now written as \\n."""
+    from xroute.cli.batch_config import load_batch_config
+
+    f = tmp_path / "b.yaml"
+    f.write_text('testcases: [demo]\npolicies: ["heuristic\\n- random"]\n')
+    with pytest.raises(InputError) as err:
+        load_batch_config(f)
+    assert "\n" not in str(err.value) and "heuristic\\n- random" in str(err.value)
+    assert all("\n" not in m for _, m in getattr(err.value, "problems", ()))

@@ -26,7 +26,7 @@ from typing import Any, Callable, Literal, Union
 
 import yaml
 
-from xroute.errors import InputError, did_you_mean
+from xroute.errors import InputError, did_you_mean, one_line
 from xroute.safe_yaml import SEXAGESIMAL_HINT, looks_sexagesimal
 
 _NUMBER_TYPES = (int, float)
@@ -60,7 +60,7 @@ class Context:
 
     def problem(self, node: yaml.Node | None, key: str, message: str) -> None:
         line = node.start_mark.line + 1 if node is not None else 0
-        self.problems.append((line, f"{key}: {message}" if key else message))
+        self.problems.append((line, one_line(f"{key}: {message}" if key else message)))
 
     def resolve(self, value: str) -> Path:
         """A path from the file: ``~`` expanded, relative to the file's folder."""

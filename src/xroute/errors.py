@@ -40,6 +40,12 @@ class XrouteError(Exception):
     """Base class of the errors xroute reports to users as one line (exit code 2)."""
 
 
+def one_line(text: str) -> str:
+    """``text`` with line breaks written as ``\\n`` / ``\\r``: a value quoted from a file (a YAML string
+    may hold a newline) must not break an error's one line."""
+    return text.replace("\r", "\\r").replace("\n", "\\n")
+
+
 class InputError(XrouteError, ValueError):
     """A malformed, truncated or inconsistent input file.
 
@@ -48,6 +54,7 @@ class InputError(XrouteError, ValueError):
     """
 
     def __init__(self, message: str, path: str = "", line: int = 0) -> None:
+        message = one_line(message)
         self.message = message
         self.path = path
         self.line = line
