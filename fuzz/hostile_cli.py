@@ -38,7 +38,6 @@ import shutil
 import signal
 import socket
 import stat
-import subprocess
 import sys
 import tempfile
 import time
@@ -46,7 +45,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mutate_cli import DEMO, REPO, snapshot  # noqa: E402 - the sibling harness's helpers
+from mutate_cli import DEMO, REPO, run_process, snapshot  # noqa: E402 - the sibling harness's helpers
 
 KINDS = ("fifo", "dir", "socket", "devnull", "devzero")
 DEMO_ARGS = ["--lef", str(DEMO / "demo.lef"), "--def", str(DEMO / "demo.def")]
@@ -298,16 +297,7 @@ def inconsistent_sets(out: Path) -> list[str]:
 def execute(argv: list[str], work: Path, env: dict[str, str], timeout: float) -> tuple[int | None, str, str]:
     full = {**os.environ, "CI": "true", "PYTHONPATH": str(REPO), "COLUMNS": "200", **env}
     full = {k: v for k, v in full.items() if v != ""}
-    proc = subprocess.Popen([sys.executable, "-m", "xroute", *argv], cwd=work, env=full, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, start_new_session=True)
-    try:
-        so, se = proc.communicate(timeout=timeout)
-        rc: int | None = proc.returncode
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        so, se = proc.communicate()
-        rc = None
-    return rc, so.decode("utf-8", "replace"), se.decode("utf-8", "replace")
+    return run_process([sys.executable, "-m", "xroute", *argv], work, full, timeout)
 
 
 def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:

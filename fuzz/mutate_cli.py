@@ -447,6 +447,21 @@ def snapshot(root: Path, skip: tuple[Path, ...]) -> dict[str, tuple[int, int]]:
     return out
 
 
+def run_process(cmd: list[str], cwd: Path, env: dict[str, str], timeout: float) -> tuple[int | None, str, str]:
+    """(exit status, stdout, stderr) of ``cmd`` in a session of its own; the status is None when it ran
+    past ``timeout`` (the whole session is killed then: a hang)."""
+    proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            start_new_session=True)
+    try:
+        so, se = proc.communicate(timeout=timeout)
+        rc: int | None = proc.returncode
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        so, se = proc.communicate()
+        rc = None
+    return rc, so.decode("utf-8", "replace"), se.decode("utf-8", "replace")
+
+
 def run_case(case: Case, timeout: float, python: str) -> tuple[Outcome, Path]:
     root = Path(tempfile.mkdtemp(prefix="xroute-mutate-"))
     inp, work = root / "in", root / "work"
@@ -462,17 +477,8 @@ def run_case(case: Case, timeout: float, python: str) -> tuple[Outcome, Path]:
     before = snapshot(root, (out, inp))
     env = {**os.environ, "CI": "true", "PYTHONPATH": str(REPO), "COLUMNS": "200"}
     start = time.perf_counter()
-    proc = subprocess.Popen([python, "-m", "xroute", case.command, *args], cwd=work, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
-    try:
-        so, se = proc.communicate(timeout=timeout)
-        rc: int | None = proc.returncode
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        so, se = proc.communicate()
-        rc = None
-    seconds = time.perf_counter() - start
-    o = Outcome(case, rc, seconds, so.decode("utf-8", "replace"), se.decode("utf-8", "replace"))
+    rc, so, se = run_process([python, "-m", "xroute", case.command, *args], work, env, timeout)
+    o = Outcome(case, rc, time.perf_counter() - start, so, se)
     after = snapshot(root, (out, inp))
     escaped = sorted(set(after) - set(before)) + sorted(k for k in before if k in after and after[k] != before[k])
     if rc is None:

@@ -28,7 +28,9 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Callable, Sequence
 
+from xroute.atomic_files import atomic_write_text
 from xroute.errors import XrouteError
+from xroute.json_files import read_json
 from xroute.schedule_model import SwitchSchedule, model_document
 
 LATE_SIZES = (5, 10)  # 10: the rule's own size (its offsets too)
@@ -106,7 +108,7 @@ def _route(case: TrainCase, model: Path | None, threads: int, out: Path, route_a
     metrics_files = list(out.glob("*.metrics.json"))
     if len(metrics_files) != 1:
         raise XrouteError(f"training run on {case.name} wrote no metrics JSON in {out}")
-    m = json.loads(metrics_files[0].read_text())
+    m = read_json(metrics_files[0], what="metrics JSON")
     f = m["final"]
     return RunFigures(int(f["violations"]), int(f["open_nets"]), float(f["wirelength_um"]), int(f["vias"]),
                       round(usage.ru_utime + usage.ru_stime, 2), len(m["iterations"]))
@@ -159,7 +161,7 @@ def train(cases: Sequence[TrainCase], folder: Path, grid: Sequence[SwitchSchedul
     models = []
     for k, cand in enumerate(grid):
         path = folder / f"candidate{k:02d}.json"
-        path.write_text(json.dumps(model_document(cand)))
+        atomic_write_text(path, json.dumps(model_document(cand)))
         models.append(path)
     work = [(c, None, -1) for c in cases] + [(c, models[k], k) for k in range(len(grid)) for c in cases]
 

@@ -231,3 +231,16 @@ def make_runner() -> CliRunner:
 def runner() -> CliRunner:
     """See :func:`make_runner`."""
     return make_runner()
+
+
+def one_error(result: Any, *needles: str) -> str:
+    """The one ``error:`` line of a CliRunner result that failed with exit 2 and no traceback, holding
+    every needle (asserted)."""
+    text = result.output + (result.stderr or "")
+    assert "Traceback" not in text, text
+    assert result.exit_code == 2, text
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), lines
+    for needle in needles:
+        assert needle in lines[0], (lines[0], needle)
+    return lines[0]

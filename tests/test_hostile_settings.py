@@ -19,19 +19,9 @@ from xroute.config import load_config
 from xroute.config_schema import ConfigError
 from xroute.errors import InputError, RouteArgumentError, safe_text
 from xroute.router import RouteSettings
+from conftest import one_error
 
 DEEP = "[" * 200_000 + "]" * 200_000
-
-
-def one_error(result, *needles: str) -> str:
-    text = result.output + (result.stderr or "")
-    assert "Traceback" not in text, text
-    assert result.exit_code == 2, text
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    for needle in needles:
-        assert needle in lines[0], (lines[0], needle)
-    return lines[0]
 
 
 def config_problem(tmp_path: Path, text: str) -> ConfigError:

@@ -18,6 +18,7 @@ import pytest
 from typer.testing import CliRunner
 
 from xroute.cli.app import app
+from conftest import one_error
 
 BAD_STR = "class Bad({base}):\n    def __str__(self):\n        raise RuntimeError('no text')\n"
 ORDER = "def order(region, features):\n    {body}\n    return list(range(len(features)))\n"
@@ -31,17 +32,6 @@ RAISES = {  # what the file's function raises -> the text the error line holds
 }
 PRELUDE = ("class Boom(BaseException):\n    pass\n" + BAD_STR.format(base="Exception")
            + BAD_STR.format(base="BaseException").replace("class Bad(", "class BadBase("))
-
-
-def one_error(result, *needles: str) -> str:
-    text = result.output + (result.stderr or "")
-    assert "Traceback" not in text, text
-    assert result.exit_code == 2, text
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    for needle in needles:
-        assert needle in lines[0], (lines[0], needle)
-    return lines[0]
 
 
 def policy_file(tmp_path: Path, text: str, name: str = "pol.py") -> Path:

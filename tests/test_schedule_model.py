@@ -93,7 +93,7 @@ def test_bad_parameters_are_one_error_naming_the_file(tmp_path: Path, params: di
 
 
 @pytest.mark.parametrize("text,message", [
-    ("{", ":1: not valid JSON"),
+    ("{", ":1: schedule model is not valid JSON"),
     ("[1, 2]", "not a schedule model"),
     ('{"format": "xroute-schedule-switch", "version": 7, "parameters": null}', "version 7 is not supported"),
     ('{"format": "xroute-schedule-switch", "version": 1, "parameters": [5]}', "must be an object or null"),

@@ -17,20 +17,10 @@ from typer.testing import CliRunner
 from xroute.cli.app import app
 from xroute.errors import InputError
 from xroute.regular_files import check_input, check_output, read_regular_bytes
+from conftest import one_error
 
 DEMO = Path(__file__).resolve().parents[1] / "testcases" / "data" / "demo"
 NOT_UTF8 = os.fsdecode(b"out\xff")  # what the shell passes for a name with a stray byte
-
-
-def one_error(result, *needles: str) -> str:
-    text = result.output + (result.stderr or "")
-    assert "Traceback" not in text, text
-    assert result.exit_code == 2, text
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), lines
-    for needle in needles:
-        assert needle in lines[0], (lines[0], needle)
-    return lines[0]
 
 
 @pytest.fixture

@@ -16,6 +16,7 @@ OUT/menu.jsonl when it ends. Jobs start longest-first while free cores allow; no
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import subprocess
@@ -23,20 +24,20 @@ import sys
 import time
 from pathlib import Path
 
-TEN_THEN_FIVE = "10:0,5:1,5:3,5:0,5:1,5:3,5:0,5:1,5:3,5:0"
-# (name, flags, cost relative to the default at one thread)
-MENU = [
-    ("default", [], 1.0),
-    ("victims2", ["--policy", "victims", "--search-budget", "2"], 1.8),
-    ("victims4", ["--policy", "victims", "--search-budget", "4"], 2.5),
-    ("victims8", ["--policy", "victims", "--search-budget", "8"], 4.0),
-    ("bestof4", ["--policy", "bestof", "--search-budget", "4"], 3.0),
-    ("repair1", ["--repair-rounds", "1"], 2.0),
-    ("repair3", ["--repair-rounds", "3"], 4.8),
-    ("size5", ["--region-size", "5"], 0.65),
-    ("size7", ["--region-size", "7"], 0.7),
-    ("size10then5", ["--schedule", TEN_THEN_FIVE], 0.7),
-]
+def _bench_menu() -> list[tuple[str, list[str]]]:
+    """The menu of bench/schedule_menu.py (one list of settings for both runners)."""
+    path = Path(__file__).resolve().parents[2] / "bench" / "schedule_menu.py"
+    spec = importlib.util.spec_from_file_location("xroute_bench_schedule_menu", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.MENU
+
+
+# Cost of each setting relative to the default at one thread (orders the parallel jobs).
+COST = {"default": 1.0, "victims2": 1.8, "victims4": 2.5, "victims8": 4.0, "bestof4": 3.0, "repair1": 2.0,
+        "repair3": 4.8, "size5": 0.65, "size7": 0.7, "size10then5": 0.7}
+MENU = [(name, flags, COST[name]) for name, flags in _bench_menu()]
 EXTRA = [
     ("size5_victims4", ["--region-size", "5", "--policy", "victims", "--search-budget", "4"], 2.0),
     ("size5_repair1", ["--region-size", "5", "--repair-rounds", "1"], 1.5),

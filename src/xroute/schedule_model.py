@@ -20,7 +20,6 @@ A file whose ``parameters`` is null keeps the rule (training found nothing bette
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
@@ -136,17 +135,14 @@ def schedule_from_document(doc: Any, source: str) -> SwitchSchedule | RuleKept:
 
 def load_schedule_model(path: str | Path) -> SwitchSchedule | RuleKept:
     """The schedule policy of a model file (PolicyError, one line naming the file, when it is not one)."""
+    from xroute.errors import InputError
+    from xroute.json_files import read_json
+
     p = Path(path)
+    if not p.exists():
+        raise PolicyError(f"schedule model not found: {p}")
     try:
-        text = p.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise PolicyError(f"schedule model not found: {p}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise PolicyError(f"schedule model {p} is not readable: {exc}") from None
-    try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise PolicyError(f"{p}:{exc.lineno}: not valid JSON: {exc.msg}") from None
-    except RecursionError:
-        raise PolicyError(f"{p}: nested too deeply to be a schedule model") from None
+        doc = read_json(p, what="schedule model")
+    except InputError as exc:
+        raise PolicyError(str(exc)) from None
     return schedule_from_document(doc, str(p))
