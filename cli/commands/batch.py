@@ -136,6 +136,10 @@ def batch(
         check_output(write_baseline, "baseline file")  # refused before any job runs
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
+    if backend == "ray" and ray_address:
+        from xroute.ray_backend import check_address
+
+        check_address(ray_address)  # an unreachable cluster fails at once, before OUT is made
     job_list = _checked_jobs(cfg)
     out_root = out if out is not None else Path(cfg.batch.out_dir)
     _prepare_out(out_root)

@@ -29,6 +29,8 @@ def start(workers: int, address: str | None) -> bool:
         raise XrouteError("running on Ray needs Ray: pip install 'xroute[ray]'") from exc
     if ray.is_initialized():
         return False
+    if address:
+        check_address(address)
     try:
         if address:
             ray.init(address=address, log_to_driver=False)
@@ -37,6 +39,21 @@ def start(workers: int, address: str | None) -> bool:
     except Exception as exc:  # noqa: BLE001 - connection problems are user errors
         raise XrouteError(f"cannot start or reach Ray{' at ' + address if address else ''}: {exc}") from exc
     return True
+
+
+def check_address(address: str, timeout: float = 10.0) -> None:
+    """A one-line error at once when nothing listens at ``host:port`` (``ray.init`` retries for minutes)."""
+    import socket
+
+    host, sep, port = address.removeprefix("ray://").rpartition(":")
+    if not sep or not port.isdigit() or not host:
+        return  # "auto", a bare host: left to Ray
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout):
+            pass
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise XrouteError(f"cannot start or reach Ray at {address}: nothing answers there ({reason.lower()})") from exc
 
 
 def package_root(address: str | None) -> str | None:
