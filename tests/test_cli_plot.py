@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+from conftest import available
 from png import distinct_colours, read_png
 from test_cli_plot_region import need_matplotlib
 from xroute.cli.app import app
@@ -66,3 +67,22 @@ def test_plot_errors_are_one_line(runner: CliRunner, marked: Path, tmp_path: Pat
     result = runner.invoke(app, ["plot", str(marked), "--out", str(tmp_path / "a.pdf")])
     assert result.exit_code == 2 and result.stderr == "error: --out must be a .png or .svg file, got 'a.pdf'\n"
     assert not list(tmp_path.glob("a.*"))
+
+
+@pytest.mark.slow
+def test_plot_of_ispd19_test1_shows_its_violations(runner: CliRunner, testcase, tmp_path: Path) -> None:
+    """The contest design after its first iteration (hundreds of markers; the stand-in without the data)."""
+    need_matplotlib()
+    name = available("ispd19_test1")[0]
+    testcase(name)
+    run = tmp_path / "run"
+    result = runner.invoke(app, ["route", name, "--iterations", "1", "--threads", "2", "--quiet", "--out", str(run)])
+    assert result.exit_code == 0, result.stderr
+    counts = Counter(m.kind for m in read_drc_report(run / f"{name}.drc.rpt"))
+    assert sum(counts.values()) > 0
+    svg = tmp_path / "design.svg"
+    assert runner.invoke(app, ["plot", str(run), "--out", str(svg)]).exit_code == 0
+    text = svg.read_text()
+    for kind, n in counts.items():
+        assert f"{kind} ({n:,})" in text and re.search(rf">\s*{n:,}\s*<", text)
+    assert text.count("<use ") >= sum(counts.values())
