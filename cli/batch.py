@@ -5,14 +5,18 @@ Layout of the output folder ``OUT``::
     OUT/jobs/<job id>/            one folder per finished job: <design>.routed.def, .metrics.json,
                                   .drc.rpt and job.json (the job's record)
     OUT/jobs/.<job id>.tmp-<pid>  a job being run (renamed into place when complete)
-    OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute.cli.batch_summary`)
+    OUT/summary.{json,csv,md}, OUT/junit.xml   one set, summary.json its manifest
+                                  (see :mod:`xroute.cli.batch_summary`)
 
 A job writes everything into its temporary folder (locked while the job runs) and renames it to
 ``jobs/<job id>`` as its last step, so an interrupted batch leaves no partial job folder; the
 next run removes the temporary folders whose lock is free, whatever the process id in their name
 (:func:`xroute.atomic_files.owner_gone`). On Linux the worker processes end with the batch
 process, even when it is killed, so none of them goes on writing into a folder a rerun cleans. A job whose folder holds a ``job.json`` with status ``done`` and the
-same fingerprint (testcase, settings, policy file content) is skipped.
+same fingerprint (testcase, settings, policy file content) is skipped. The summary files are
+published as one set (:mod:`xroute.output_set`): a batch killed between their renames leaves a
+staging folder that the next batch finishes or undoes first, so the folder holds the old set or
+the new one.
 """
 
 from __future__ import annotations
