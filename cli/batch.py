@@ -204,7 +204,14 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
 
 def end_with_parent(parent: int) -> None:
     """Pool worker initializer: on Linux the kernel kills the worker when the batch process ends,
-    however it ends (``PR_SET_PDEATHSIG``), so a killed batch leaves no worker behind."""
+    however it ends (``PR_SET_PDEATHSIG``), so a killed batch leaves no worker behind; and a
+    thread a user's policy left running does not keep the worker alive at the pool's shutdown
+    (:func:`end_despite_threads`)."""
+    import multiprocessing.util
+
+    # Run when the worker's loop has returned (every result sent), before the process waits for its
+    # threads; the lowest priority, so after the other exit finalizers.
+    multiprocessing.util.Finalize(None, end_despite_threads, exitpriority=-100)
     if sys.platform.startswith("linux"):
         import ctypes
 
@@ -214,6 +221,24 @@ def end_with_parent(parent: int) -> None:
             return
     if os.getppid() != parent:  # the batch ended before the signal was set up
         os._exit(1)
+
+
+def end_despite_threads() -> None:
+    """Ends a pool worker at once (``os._exit(0)``, streams flushed) when a thread that is neither
+    a daemon nor the main thread is still running: a process waits for such threads before it
+    exits, and the pool's shutdown waits for the process, so a policy's endless thread would hang
+    the batch. The worker's results were all sent before this runs (as ``xroute route`` does,
+    :func:`xroute.cli.app.finish`)."""
+    from xroute.policy_guard import stray_threads
+
+    if not stray_threads():
+        return
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (ValueError, OSError):
+            pass
+    os._exit(0)
 
 
 @dataclass
