@@ -31,28 +31,29 @@ struct Run {
   int32_t rep;  // one rect of the run (they are joined in the union-find)
 };
 
-// Joins the collinear runs of `runs` along x (same net and y-interval) or along y.
-std::vector<Run> joinRuns(std::vector<Run> runs, bool alongX, UnionFind& uf) {
+// Joins the collinear runs of `runs` along x (same net and y-interval) or along y, in place.
+void joinRuns(std::vector<Run>& runs, bool alongX, UnionFind& uf) {
   auto key = [&](const Run& r) {
     const Rect& b = r.rect;
     return alongX ? std::make_tuple(r.net, b.ylo, b.yhi, b.xlo, b.xhi) : std::make_tuple(r.net, b.xlo, b.xhi, b.ylo, b.yhi);
   };
   std::sort(runs.begin(), runs.end(), [&](const Run& a, const Run& b) { return key(a) < key(b); });
-  std::vector<Run> out;
-  for (const Run& r : runs) {
-    if (!out.empty() && r.net >= 0 && out.back().net == r.net) {
-      Rect& b = out.back().rect;
+  size_t kept = 0;
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const Run& r = runs[k];
+    if (kept > 0 && r.net >= 0 && runs[kept - 1].net == r.net) {
+      Rect& b = runs[kept - 1].rect;
       const bool sameSection = alongX ? (b.ylo == r.rect.ylo && b.yhi == r.rect.yhi)
                                       : (b.xlo == r.rect.xlo && b.xhi == r.rect.xhi);
       if (sameSection && (alongX ? r.rect.xlo <= b.xhi : r.rect.ylo <= b.yhi)) {
-        uf.unite(out.back().rep, r.rep);
+        uf.unite(runs[kept - 1].rep, r.rep);
         b.expandToInclude(r.rect);
         continue;
       }
     }
-    out.push_back(r);
+    runs[kept++] = r;
   }
-  return out;
+  runs.resize(kept);
 }
 
 }  // namespace
@@ -61,7 +62,8 @@ void joinSameNet(const LayerShapes& ls, UnionFind& uf) {
   std::vector<Run> runs;
   runs.reserve(ls.size());
   for (size_t i = 0; i < ls.size(); ++i) runs.push_back({ls.rects[i], ls.nets[i], int32_t(i)});
-  runs = joinRuns(joinRuns(std::move(runs), true, uf), false, uf);
+  joinRuns(runs, true, uf);
+  joinRuns(runs, false, uf);
   // A run touches another along a segment when it does so with one of the other's rects.
   for (const Run& r : runs) {
     if (r.net < 0) continue;
