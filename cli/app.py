@@ -36,6 +36,7 @@ from xroute.cli.commands import (
 )
 from xroute.cli.console import USER_ERRORS, print_error
 from xroute.errors import safe_text
+from xroute.policy_guard import stray_threads
 
 EXIT_USER_ERROR = 2
 
@@ -142,13 +143,6 @@ def _thread_failure(args: threading.ExceptHookArgs) -> None:
     name = args.thread.name if args.thread is not None else "a thread"
     sys.stderr.write(f"warning: thread {name} (started by a policy?) ended with {args.exc_type.__name__}: "
                      f"{safe_text(args.exc_value)}\n")
-
-
-def stray_threads() -> list[threading.Thread]:
-    """Threads still running that are neither the main thread nor daemons (a user's policy may
-    start one and leave it running)."""
-    main = threading.main_thread()
-    return [t for t in threading.enumerate() if t is not main and not t.daemon and t.is_alive()]
 
 
 def finish(code: object) -> None:

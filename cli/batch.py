@@ -5,14 +5,18 @@ Layout of the output folder ``OUT``::
     OUT/jobs/<job id>/            one folder per finished job: <design>.routed.def, .metrics.json,
                                   .drc.rpt and job.json (the job's record)
     OUT/jobs/.<job id>.tmp-<pid>  a job being run (renamed into place when complete)
-    OUT/summary.{json,csv,md}, OUT/junit.xml   (see :mod:`xroute.cli.batch_summary`)
+    OUT/summary.{json,csv,md}, OUT/junit.xml   one set, summary.json its manifest
+                                  (see :mod:`xroute.cli.batch_summary`)
 
 A job writes everything into its temporary folder (locked while the job runs) and renames it to
 ``jobs/<job id>`` as its last step, so an interrupted batch leaves no partial job folder; the
 next run removes the temporary folders whose lock is free, whatever the process id in their name
 (:func:`xroute.atomic_files.owner_gone`). On Linux the worker processes end with the batch
 process, even when it is killed, so none of them goes on writing into a folder a rerun cleans. A job whose folder holds a ``job.json`` with status ``done`` and the
-same fingerprint (testcase, settings, policy file content) is skipped.
+same fingerprint (testcase, settings, policy file content) is skipped. The summary files are
+published as one set (:mod:`xroute.output_set`): a batch killed between their renames leaves a
+staging folder that the next batch finishes or undoes first, so the folder holds the old set or
+the new one.
 """
 
 from __future__ import annotations
@@ -200,7 +204,14 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
 
 def end_with_parent(parent: int) -> None:
     """Pool worker initializer: on Linux the kernel kills the worker when the batch process ends,
-    however it ends (``PR_SET_PDEATHSIG``), so a killed batch leaves no worker behind."""
+    however it ends (``PR_SET_PDEATHSIG``), so a killed batch leaves no worker behind; and a
+    thread a user's policy left running does not keep the worker alive at the pool's shutdown
+    (:func:`end_despite_threads`)."""
+    import multiprocessing.util
+
+    # Run when the worker's loop has returned (every result sent), before the process waits for its
+    # threads; the lowest priority, so after the other exit finalizers.
+    multiprocessing.util.Finalize(None, end_despite_threads, exitpriority=-100)
     if sys.platform.startswith("linux"):
         import ctypes
 
@@ -210,6 +221,24 @@ def end_with_parent(parent: int) -> None:
             return
     if os.getppid() != parent:  # the batch ended before the signal was set up
         os._exit(1)
+
+
+def end_despite_threads() -> None:
+    """Ends a pool worker at once (``os._exit(0)``, streams flushed) when a thread that is neither
+    a daemon nor the main thread is still running: a process waits for such threads before it
+    exits, and the pool's shutdown waits for the process, so a policy's endless thread would hang
+    the batch. The worker's results were all sent before this runs (as ``xroute route`` does,
+    :func:`xroute.cli.app.finish`)."""
+    from xroute.policy_guard import stray_threads
+
+    if not stray_threads():
+        return
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (ValueError, OSError):
+            pass
+    os._exit(0)
 
 
 @dataclass

@@ -1,5 +1,9 @@
 """What a batch leaves for people and CI: gates, summary.{json,csv,md}, junit.xml, baseline files.
 
+The four summary files are one set (:func:`write_summary`): summary.json, written last, records
+the SHA-256 of the other three, so a set mixed from two batches can be told
+(:func:`xroute.output_set.set_mismatches`).
+
 Gates (``gates:`` in the batch YAML) are checked on each job's final figures (those of the
 written DEF). ``max_wirelength_increase_pct`` / ``max_vias_increase_pct`` compare with a baseline
 file (JSON written by ``xroute batch --write-baseline``): the entry of the same job id, else the
@@ -91,22 +95,36 @@ def job_row(record: dict[str, Any], resumed: bool) -> dict[str, Any]:
     return row
 
 
-def write_summary(out_root: Path, doc: dict[str, Any]) -> dict[str, Path]:
-    """Writes summary.json, summary.csv, summary.md and junit.xml (each atomically)."""
-    rows = doc["jobs"]
-    paths = {k: out_root / n for k, n in (("json", "summary.json"), ("csv", "summary.csv"), ("md", "summary.md"),
-                                          ("junit", "junit.xml"))}
-    atomic_write_text(paths["json"], json.dumps(doc, indent=2) + "\n")
+SUMMARY_FILES = (("csv", "summary.csv"), ("md", "summary.md"), ("junit", "junit.xml"), ("json", "summary.json"))
 
+
+def summary_paths(out_root: Path) -> dict[str, Path]:
+    """The summary files of a batch in ``out_root``, by role, in publishing order (the manifest last)."""
+    return {role: out_root / name for role, name in SUMMARY_FILES}
+
+
+def write_summary(out_root: Path, doc: dict[str, Any]) -> dict[str, Path]:
+    """Publishes summary.csv, summary.md, junit.xml and summary.json as one set, like a route's
+    outputs (:mod:`xroute.output_set`): written in a staging folder, then renamed into place,
+    summary.json last; it is the set's manifest (``"run"``: the SHA-256 of the other three). A
+    batch killed between the renames leaves the staging folder, which the next batch in the same
+    folder finishes (or undoes) before anything else."""
+    from xroute.output_set import publish, run_record, staging
+
+    paths = summary_paths(out_root)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(CSV_COLUMNS)
-    for r in rows:
+    for r in doc["jobs"]:
         w.writerow([_csv_value(r, c) for c in CSV_COLUMNS])
-    atomic_write_text(paths["csv"], buf.getvalue())
-
-    atomic_write_text(paths["md"], markdown_table(doc))
-    atomic_write_text(paths["junit"], junit_xml(doc))
+    texts = {"csv": buf.getvalue(), "md": markdown_table(doc), "junit": junit_xml(doc)}
+    with staging(out_root) as stage:
+        staged = {role: stage / path.name for role, path in paths.items()}
+        for role, text in texts.items():
+            atomic_write_text(staged[role], text)
+        manifest = {**doc, "run": run_record({role: staged[role] for role in texts})}
+        atomic_write_text(staged["json"], json.dumps(manifest, indent=2) + "\n")
+        publish(out_root, stage, [(staged[role], path) for role, path in paths.items()])
     return paths
 
 

@@ -12,14 +12,16 @@ categories:
   writes a file (or its output folder), or /dev/null as the output;
 * ``policy``: policy files (net order and schedule) that raise GeneratorExit, BaseException
   subclasses, SystemExit, exceptions whose ``__str__`` fails, or that call os.chdir or start a
-  thread that never ends, at import or per call, with a relative ``--out``;
+  thread that never ends, at import or per call, with a relative ``--out``; also in a ``batch``
+  of two jobs in two worker processes;
 * ``yaml-number``: NaN, infinities and YAML 1.1 base-60 numbers in every numeric setting of
   route and batch files;
 * ``deep-json``: metrics JSON (report, plot), baselines and job records nested up to 300,000 deep
   or holding the wrong types;
 * ``names``: bytes that are not UTF-8 in output and input names; an ascii terminal;
-* ``kill``: route, check or batch killed just before a random rename (XROUTE_TEST_KILL_AT), then
-  run again: the set must be consistent (hashes agree) and no leftover remain.
+* ``kill``: route, check or batch (a job's renames, or, its job resumed from a first batch, the
+  summary set's) killed just before a random rename (XROUTE_TEST_KILL_AT), then run again: the
+  set must be consistent (hashes agree, summary.json's too) and no leftover remain.
 
 Verdicts: crash (a signal other than the kill asked for), traceback, hang, escape (a file written
 outside ``work/out``), replaced (a special file no longer special), not-one-line (a failing exit
@@ -62,6 +64,7 @@ class Case:
     env: dict[str, str] = field(default_factory=dict)
     prefill: dict[str, bytes] = field(default_factory=dict)  # files under the case root before the run
     kill: bool = False  # a kill case: SIGKILL expected, then a rerun and the consistency check
+    setup: list[list[str]] = field(default_factory=list)  # commands run first (no kill), e.g. a batch to resume
     must_refuse: bool = False  # the input is invalid: exit 2 expected
 
 
@@ -170,6 +173,10 @@ def policy_case(rng: random.Random, root_hint: str = "{root}/elsewhere") -> Case
         text = PRELUDE + f"def order(region, features):\n    {body}\n    return list(range(len(features)))\n"
     else:
         text = PRELUDE + f"def plan(history, rule):\n    {body}\n    return None\n"
+    if where != "plan" and rng.random() < 0.3:  # in a batch: the policy also runs in the pool's workers
+        batch = "testcases: [demo]\npolicies: [{root}/in/p.py, heuristic]\nsettings:\n  - {name: one, iteration_count: 1}\n"
+        return Case("policy", f"batch {where}: {body[:44]}", ["batch", "{in}/b.yaml", "--out", "out", "--quiet",
+                                                             "--jobs", "2"], {"p.py": text.encode(), "b.yaml": batch.encode()})
     flag = "--schedule-policy" if where == "plan" else "--policy"
     return Case("policy", f"{where}: {body[:50]}", ["route", flag, "{in}/p.py", "--out", "out", "--quiet",
                                                     "--iterations", "2"], {"p.py": text.encode()})
@@ -253,14 +260,18 @@ def names(rng: random.Random, routed: dict[str, bytes]) -> Case:
 
 
 def kill_case(rng: random.Random, routed: dict[str, bytes]) -> Case:
-    command = rng.choice(["route", "check", "batch"])
-    at = rng.randint(1, {"route": 6, "check": 7, "batch": 9}[command])
+    command = rng.choice(["route", "check", "batch", "batch-summary"])
+    # batch: the worker's renames (its job); batch-summary: the job resumed from a first batch, so the
+    # batch process's own renames are the summary set's (4 staged, the note, 4 into place).
+    at = rng.randint(1, {"route": 6, "check": 7, "batch": 9, "batch-summary": 10}[command])
     files = {f"run/{n}": d for n, d in routed.items()}
+    batch = ["batch", "{in}/b.yaml", "--out", "{out}", "--quiet", "--jobs", "1"]
     argv = {"route": ["route", "--out", "{out}", "--quiet", "--policy", rng.choice(["random", "heuristic"])],
             "check": ["check", "demo", "--def", "{in}/run/demo.routed.def", "--out", "{out}", "--quiet"],
-            "batch": ["batch", "{in}/b.yaml", "--out", "{out}", "--quiet", "--jobs", "1", "--force"]}[command]
+            "batch": batch + ["--force"], "batch-summary": batch}[command]
     files["b.yaml"] = BATCH.encode()
-    return Case("kill", f"{command} at rename {at}", argv, files, env={"XROUTE_TEST_KILL_AT": str(at)}, kill=True)
+    return Case("kill", f"{command} at rename {at}", argv, files, env={"XROUTE_TEST_KILL_AT": str(at)}, kill=True,
+                setup=[batch] if command == "batch-summary" else [])
 
 
 CATEGORIES = {"special-input": (special_input, 3), "special-output": (special_output, 3),
@@ -291,6 +302,12 @@ def inconsistent_sets(out: Path) -> list[str]:
                 f = m.with_name(stem + suffix)
                 if f.is_file() and run.get("sha256", {}).get(role) != sha256(f):
                     bad.append(str(f.relative_to(out)))
+    for m in out.rglob("summary.json"):  # a batch's summary set
+        run = json.loads(m.read_text()).get("run") or {}
+        for role, name in (("csv", "summary.csv"), ("md", "summary.md"), ("junit", "junit.xml")):
+            f = m.with_name(name)
+            if not f.is_file() or run.get("sha256", {}).get(role) != sha256(f):
+                bad.append(str(f.relative_to(out)))
     return bad
 
 
@@ -314,7 +331,12 @@ def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
     held: list[socket.socket] = []
     for name, kind in case.specials.items():
         make_special(root / name, kind, held)
-    argv = [a.replace("{in}", str(inp)).replace("{out}", str(out)).replace("{root}", str(root)) for a in case.argv]
+    def fill(args: list[str]) -> list[str]:
+        return [a.replace("{in}", str(inp)).replace("{out}", str(out)).replace("{root}", str(root)) for a in args]
+
+    argv = fill(case.argv)
+    for setup in case.setup:
+        execute(fill(setup), work, {}, timeout)
     before = snapshot(root, (out, inp))
     rc, so, se = execute(argv, work, case.env, timeout)
     verdict: list[str] = []
@@ -338,7 +360,8 @@ def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
             verdict.append("not-one-line")
     if case.must_refuse and rc in (0, 1):
         verdict.append("accepted")
-    if case.category == "policy" and rc in (0, 1) and not (out / "demo.routed.def").is_file():
+    if case.category == "policy" and rc in (0, 1) and not (out / "demo.routed.def").is_file() and not any(
+            out.glob("jobs/*/demo.routed.def")):
         verdict.append("escape")  # a run that went well must have written into work/out
     if case.kill and not verdict:
         env = {k: v for k, v in case.env.items() if k != "XROUTE_TEST_KILL_AT"}

@@ -4,12 +4,13 @@
     python fuzz/mutate_hostile.py extremes [--cases N] [--seed S] [--route-share 0.5] ...
 
 * ``check``: the demo routed once (``xroute route``), then its NETS section mutated and given to
-  ``xroute check``: a routing line repeated up to 200,000 times, shifted overlapping copies of a
-  wire, numbers of the routing replaced by values at the ends of int32 or of the engine's range
+  ``xroute check``: a routing line repeated up to 200,000 times, up to 50,000 overlapping copies
+  of a wire (often the longest) shifted across it or along it, numbers of the routing replaced by values at the ends of int32 or of the engine's range
   (2^28 - 1), patches and vias at those values, lines dropped, duplicated or swapped.
 * ``extremes``: the demo's or the tiny design's LEF, DEF or guide with one to three numbers set to
-  such values (for the LEF also in microns, so that they reach them once converted), given to
-  ``xroute info`` or ``xroute route``.
+  such values (for the LEF also in microns, so that they reach them once converted), or a
+  component placed near +-(2^28 - 1) in any orientation, its macro given an OBS reaching beyond
+  its SIZE; given to ``xroute info`` or ``xroute route``.
 
 Each case runs in a fresh folder as its own process; a crash (signal), a traceback, a hang, a
 write outside ``--out``, or a failing exit without exactly one ``error:`` line is counted. Prints
@@ -65,11 +66,16 @@ def routed_demo(python: str) -> bytes:
         return (Path(tmp) / "demo.routed.def").read_bytes()
 
 
+def wire_length(m: re.Match) -> int:
+    pts = re.findall(rb"\( (-?\d+) (-?\d+) \) \( (-?\d+) (-?\d+) \)", m.group(0))
+    return abs(int(pts[0][2]) - int(pts[0][0])) + abs(int(pts[0][3]) - int(pts[0][1])) if pts else 0
+
+
 def mutate_routing(rng: random.Random, routed: bytes) -> tuple[str, bytes]:
     """One hostile change inside the NETS section of a routed DEF."""
     lo, hi = routed.index(b"\nNETS "), routed.index(b"\nEND NETS")
     paths = [m for m in re.finditer(rb"\n    NEW [^\n]*|\n  \+ ROUTED [^\n]*", routed[lo:hi])]
-    m = rng.choice(paths)
+    m = rng.choice(paths) if rng.random() < 0.7 else max(paths, key=wire_length)  # the longest wire: the worst band
     at = lo + m.end()
     line = m.group(0).replace(b"+ ROUTED", b"  NEW")
     r = rng.random()
@@ -82,10 +88,11 @@ def mutate_routing(rng: random.Random, routed: bytes) -> tuple[str, bytes]:
             x1, y1, x2, y2 = map(int, pts[0])
             layer = line.split()[1]
             step, n = rng.choice([1, 3, 17]), rng.choice([100, 5000, 50000])
-            dx, dy = (step, 0) if y1 == y2 else (0, step)
+            across = rng.random() < 0.5  # overlapping into a band as wide as n * step, or along the wire
+            dx, dy = (step, 0) if (y1 == y2) != across else (0, step)
             extra = b"".join(b"\n    NEW %s ( %d %d ) ( %d %d )" % (layer, x1 + i * dx, y1 + i * dy, x2 + i * dx, y2 + i * dy)
                              for i in range(n))
-            return f"shifted x{n}", routed[:at] + extra + routed[at:]
+            return f"shifted {'across' if across else 'along'} x{n}", routed[:at] + extra + routed[at:]
     if r < 0.65:
         return "extreme numbers", set_numbers(rng, routed, rng.randint(1, 3), False, lo, hi)
     if r < 0.8:
@@ -107,8 +114,42 @@ def check_case(rng: random.Random, routed: bytes) -> base.Case:
     return base.Case(kind, "check", files, args)
 
 
+ORIENTS = [b"N", b"S", b"E", b"W", b"FN", b"FS", b"FE", b"FW"]
+COMPONENT = re.compile(rb"- (\S+) (\S+) \+ (PLACED|FIXED) \( (-?\d+) (-?\d+) \) (\w+)")
+
+
+def macro_near_bound(rng: random.Random, files: dict[str, bytes]) -> str:
+    """One component placed near +-(2^28 - 1) in x or y with any orientation, its macro given (most
+    times) a pin or OBS rect reaching up to 20 um beyond its SIZE on some side."""
+    comps = list(COMPONENT.finditer(files["d.def"]))
+    m = rng.choice(comps)
+    macro = m.group(2)
+    x, y = int(m.group(4)), int(m.group(5))
+    far = rng.choice([1, -1]) * (LIMIT - rng.choice([0, 500, 3000, 12000, 40000, 100000]))
+    x, y = (far, y) if rng.random() < 0.5 else (x, far)
+    orient = rng.choice(ORIENTS)
+    line = b"- %s %s + %s ( %d %d ) %s" % (m.group(1), macro, m.group(3), x, y, orient)
+    files["d.def"] = files["d.def"][:m.start()] + line + files["d.def"][m.end():]
+    label = f"{macro.decode(errors='replace')} at ({x} {y}) {orient.decode()}"
+    end = files["d.lef"].find(b"\nEND " + macro + b"\n")
+    if end >= 0 and rng.random() < 0.8:
+        a, b = rng.uniform(-20, 0), rng.uniform(0, 20)
+        rect = rng.choice([b"%.3f 0 0 0.1" % a, b"0 0 %.3f 0.1" % b, b"0 %.3f 0.1 0" % a, b"0 0 0.1 %.3f" % b])
+        layer = re.search(rb"LAYER (\S+) ;", files["d.lef"][files["d.lef"].rfind(b"\nMACRO ", 0, end):end])
+        if layer:
+            obs = b"\n  OBS\n    LAYER %s ;\n      RECT %s ;\n  END" % (layer.group(1), rect)
+            files["d.lef"] = files["d.lef"][:end] + obs + files["d.lef"][end:]
+            label += f", OBS RECT {rect.decode()}"
+    return label
+
+
 def extremes_case(rng: random.Random, route_share: float) -> base.Case:
     files, src = base.base_files(rng)
+    if rng.random() < 0.25:
+        label = macro_near_bound(rng, files)
+        command = "route" if rng.random() < route_share else "info"
+        args = base.design_args(files, True) + (base.route_args() if command == "route" else [])
+        return base.Case(f"macro near the bound: {label}", command, files, args, note=src)
     target = rng.choice(["d.lef", "d.def", "d.def", "d.guide"])
     files[target] = set_numbers(rng, files[target], rng.randint(1, 3), target == "d.lef")
     command = "route" if rng.random() < route_share else "info"

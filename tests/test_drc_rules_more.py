@@ -226,3 +226,37 @@ def test_random_rects_match_a_brute_force_pair_check(db):
     got = {(m[0], m[3]) for m in check(db, [("M1", *r, n) for n, r in enumerate(rects)]) if m[0] != "MinArea"}
     assert len(expected) > 50
     assert got == expected
+
+
+# ------------------------------------------- overlapping shifted copies --
+# Thousands of copies of one wire, each shifted by 1 DBU, overlap into a band
+# (issue 32: `check` took 46 s on 50,000 of them). They are checked as the
+# rects they are (each copy its own width and run length), through the
+# crowded-layer index, the boundary sweep and the collinear joins; the
+# markers are those of the geometry, in any order.
+
+def test_copies_shifted_across_a_wire(db):
+    #  +--N2--+                     N2 = (500,2149)-(1100,2249): 50 above the band
+    #  ====band====                 2,000 copies of (0,i)-(1000,100+i), net 1: (0,0)-(1000,2099)
+    #     [N3]                      N3 = (200,1000)-(800,1100): inside the band
+    band = [("M1", 0, i, 1000, 100 + i, 1) for i in range(2000)]
+    shapes = band + [("M1", 500, 2149, 1100, 2249, 2), ("M1", 200, 1000, 800, 1100, 3)]
+    expected = [
+        ("Short", "M1", (200, 1000, 800, 1100), (1, 3)),
+        # Per rect (drc/README.md): the copies just below and above N3 that do not touch it are
+        # closer than the 100 the table asks for 100-wide metal; so are copies i >= 1950 to N2.
+        ("MetalSpacing", "M1", (200, 901, 800, 1000), (1, 3)),
+        ("MetalSpacing", "M1", (200, 1100, 800, 1199), (1, 3)),
+        ("MetalSpacing", "M1", (500, 2050, 1000, 2149), (1, 2)),
+    ]
+    assert check(db, shapes) == expected
+    assert check(db, random.Random(7).sample(shapes, len(shapes))) == expected
+
+
+def test_copies_shifted_along_a_wire(db):
+    # 2,000 copies of (0,i)-(100,1000+i) on M2, net 1: one wire (0,0)-(100,2999) whose top is a
+    # line end (100 < 150) with B in its window (as test_eol_window_outward, 1,999 higher).
+    band = [("M2", 0, i, 100, 1000 + i, 1) for i in range(2000)]
+    b = ("M2", -500, 3118, 600, 3218, 2)
+    assert check(db, band + [b]) == [("EndOfLine", "M2", (-50, 3118, 150, 3119), (1, 2))]
+    assert check(db, band + [b[:2] + (3119,) + b[3:]]) == []  # 120 away: legal

@@ -99,6 +99,22 @@ def test_a_disjoint_copy_is_still_a_floating_piece(routed_demo: Path, tmp_path: 
     assert conn["open_nets"] == 0 and conn["floating_pieces"] == 1
 
 
+def test_a_band_of_shifted_copies_is_checked_in_time(routed_demo: Path, tmp_path: Path) -> None:
+    """50,000 copies of a 25,000 DBU wire, each 1 DBU above the last, overlap into a band across
+    the design (issue 32: the DRC scanned the band once per copy, 84 s; now about 1 s). The
+    subprocess timeout is the failure detector; the markers are the drawn tests' business."""
+    import subprocess
+    import sys
+
+    band = [f"NEW Metal3 ( 1000 {840 + i} ) ( 26000 {840 + i} )" for i in range(50000)]
+    path = add_routing(routed_demo, tmp_path / "band.def", band)
+    proc = subprocess.run([sys.executable, "-m", "xroute", "check", "demo", "--def", str(path), "--out",
+                           str(tmp_path / "o"), "--json"], capture_output=True, text=True, timeout=30)
+    assert proc.returncode in (0, 1) and "Traceback" not in proc.stderr, proc.stderr
+    doc = json.loads(proc.stdout)
+    assert doc["violations_by_type"]["Short"] > 0 and doc["opens"] == 0
+
+
 # ----------------------------------------------------------------------------- int32 extremes in routed DEFs
 @pytest.mark.parametrize(
     "line",
@@ -165,6 +181,47 @@ def test_info_and_route_refuse_values_beyond_the_range_alike(tmp_path: Path, kin
     out = tmp_path / "out"
     assert_one_error(runner.invoke(app, ["route", *args, "--out", str(out), "--quiet"]), prefix, message)
     assert not out.exists() or not any(out.iterdir())
+
+
+# A macro whose pin or OBS shapes stick out of its SIZE (2,280 DBU wide): the LEF change, u13's placement.
+PIN_Y = "RECT 1.0100 0.2450 1.0800 1.0150 ;"  # XOR2_X1's pin Y
+OBS = "  OBS\n    LAYER Metal1 ;\n      RECT -5.0000 0.0000 0.0000 0.1000 ;\n  END\nEND XOR2_X1"
+STICKING_OUT = {
+    "pin": ((PIN_Y, PIN_Y.replace("1.0800", "6.0800")), f"PLACED ( {LIMIT - 3000} 0 ) N"),  # to x + 12,160
+    "obs flipped": (("END XOR2_X1", OBS), f"PLACED ( {LIMIT - 5000} 0 ) FN"),  # mirrored: to x + 2,280 + 10,000
+}
+
+
+def macro_inputs(tmp_path: Path, lef_change: tuple[str, str], placement: str) -> tuple[Path, Path]:
+    lef = tmp_path / "demo.lef"
+    text = (DEMO / "demo.lef").read_text()
+    assert lef_change[0] in text
+    lef.write_text(text.replace(*lef_change, 1))
+    def_ = tmp_path / "demo.def"
+    text = (DEMO / "demo.def").read_text()
+    assert "- u13 XOR2_X1 + PLACED ( 42180 0 ) N" in text
+    def_.write_text(text.replace("- u13 XOR2_X1 + PLACED ( 42180 0 ) N", f"- u13 XOR2_X1 + {placement}"))
+    return lef, def_
+
+
+@pytest.mark.parametrize("case", list(STICKING_OUT))
+def test_placed_macro_shapes_beyond_the_range_are_refused(tmp_path: Path, case: str) -> None:
+    """The placed component's SIZE box is within the range, its pin or OBS shapes are not."""
+    lef, def_ = macro_inputs(tmp_path, *STICKING_OUT[case])
+    args = ["--lef", str(lef), "--def", str(def_)]
+    prefix = f"{def_}:{line_of(def_, '- u13 ')}: "
+    message = "component 'u13' of macro 'XOR2_X1': its pin and OBS shapes placed here span ("
+    runner = make_runner()
+    assert_one_error(runner.invoke(app, ["info", *args]), prefix, message)
+    out = tmp_path / "out"
+    assert_one_error(runner.invoke(app, ["route", *args, "--out", str(out), "--quiet"]), prefix, message)
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_placed_macro_shapes_up_to_the_range_are_read(tmp_path: Path) -> None:
+    lef, def_ = macro_inputs(tmp_path, STICKING_OUT["pin"][0], f"PLACED ( {LIMIT - 12160} 0 ) N")  # ends at LIMIT
+    result = make_runner().invoke(app, ["info", "--lef", str(lef), "--def", str(def_)])
+    assert result.exit_code == 0 and "placed outside the die area" in result.output + result.stderr
 
 
 # ----------------------------------------------------------------------------- odd values: warned or refused

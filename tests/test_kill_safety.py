@@ -1,6 +1,6 @@
-"""Issue 32: ``route``, ``check`` and ``batch`` killed (SIGKILL) just before each rename that
-publishes their outputs leave, after the next run's clean-up, a consistent set (its files' SHA-256
-agree with its manifest) or the previous one; ``report`` warns about a mixed set meanwhile; the
+"""Issue 32: ``route``, ``check`` and ``batch`` (its jobs and its summary) killed (SIGKILL) just
+before each rename that publishes their outputs leave, after the next run's clean-up, a
+consistent set (its files' SHA-256 agree with its manifest) or the previous one; ``report`` warns about a mixed set meanwhile; the
 next run removes every leftover, whatever the process id in its name.
 
 The kill comes from the test hook ``XROUTE_TEST_KILL_AT=N`` (the process kills itself just before
@@ -21,12 +21,14 @@ from typer.testing import CliRunner
 
 from xroute.atomic_files import KILL_AT_VARIABLE
 from xroute.cli.app import app
-from xroute.output_set import file_sha256
+from xroute.output_set import NOTE, STAGE_PREFIX, file_sha256
 from xroute.outputs import clean_stale_temporaries
 
 ROUTE_RENAMES = 5  # staged metrics JSON, the publishing note, then DEF, DRC report, metrics JSON into place
 CHECK_RENAMES = 6  # staged marker database and check JSON, the note, then DRC report, lyrdb, check JSON
 BATCH_RENAMES = 8  # in the worker: the route's 5, the job's metrics JSON and job.json, the job folder
+SUMMARY_RENAMES = 9  # in the batch process: 4 staged summary files, the note, then the 4 into place
+SUMMARY_FILES = ("summary.csv", "summary.md", "junit.xml", "summary.json")  # publishing order
 
 
 def xroute(args: list[str], kill_at: int | None = None, cwd: Path | None = None) -> subprocess.CompletedProcess:
@@ -136,6 +138,50 @@ def test_batch_killed_at_each_rename_of_its_job(tmp_path: Path) -> None:
     assert proc.returncode == 0, proc.stderr
     assert leftovers(out / "jobs") == [] and leftovers(job) == []
     assert route_set_state(job) == "consistent"
+
+
+def summary_state(out: Path) -> str:
+    """"consistent" when summary.json's hashes match the other three summary files, else "mixed"."""
+    run = json.loads((out / "summary.json").read_text())["run"]
+    same = all(run["sha256"][role] == file_sha256(out / name)
+               for role, name in (("csv", "summary.csv"), ("md", "summary.md"), ("junit", "junit.xml")))
+    return "consistent" if same else "mixed"
+
+
+def test_batch_killed_at_each_rename_of_its_summary(tmp_path: Path) -> None:
+    """The batch process itself killed before each rename of its summary: the job is resumed
+    (no worker runs), so the process's renames are the summary's alone."""
+    batch = tmp_path / "b.yaml"
+    batch.write_text("testcases: [demo]\nsettings:\n  - {name: one, iteration_count: 1}\n")
+    out = tmp_path / "out"
+    args = ["batch", str(batch), "--out", str(out), "--quiet", "--jobs", "1"]
+    assert xroute(args).returncode == 0
+    for at in range(1, SUMMARY_RENAMES + 2):  # one killed run after another in the same folder
+        before = {name: file_sha256(out / name) for name in SUMMARY_FILES}
+        proc = xroute(args, kill_at=at)
+        if at > SUMMARY_RENAMES:  # the count above is every rename of the run
+            assert proc.returncode == 0, proc.stderr
+            assert leftovers(out) == [] and summary_state(out) == "consistent"
+            break
+        assert proc.returncode == -signal.SIGKILL, proc.stderr
+        stages = [p for p in out.iterdir() if p.name.startswith(STAGE_PREFIX)]
+        assert leftovers(out) == [stages[0].name]  # the killed run's staging folder, nothing else
+        moved = max(0, at - (SUMMARY_RENAMES - len(SUMMARY_FILES)) - 1)  # files renamed into place before the kill
+        if at > SUMMARY_RENAMES - len(SUMMARY_FILES):  # the note is written: each file is the old one or the new
+            note = json.loads((stages[0] / NOTE).read_text())
+            assert sorted(p.name for p in stages[0].iterdir()) == sorted([NOTE, *SUMMARY_FILES[moved:]])
+            now = {name: file_sha256(out / name) for name in SUMMARY_FILES}
+            assert all(now[name] == note["sha256"][name] for name in SUMMARY_FILES[:moved])  # the new ones
+            assert all(now[name] == before[name] for name in SUMMARY_FILES[moved:])  # the old ones
+        clean_stale_temporaries(out)  # what the next batch does first: finishes or undoes the publish
+        assert leftovers(out) == [] and summary_state(out) == "consistent"
+        assert sorted(p.name for p in out.iterdir()) == ["jobs", "junit.xml", "summary.csv", "summary.json",
+                                                        "summary.md"]
+        if not moved:  # killed before the first file moved: the previous set, untouched
+            assert {name: file_sha256(out / name) for name in SUMMARY_FILES} == before
+    proc = xroute(args)
+    assert proc.returncode == 0, proc.stderr
+    assert leftovers(out) == [] and summary_state(out) == "consistent"
 
 
 def test_leftovers_go_whatever_their_process_id(tmp_path: Path) -> None:

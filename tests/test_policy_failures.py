@@ -4,11 +4,12 @@ Any ``BaseException`` that is not ``KeyboardInterrupt`` (``GeneratorExit``, a us
 ``SystemExit``), raised when the file is loaded or inside ``order()`` / ``plan()``, is one line
 naming the file and line; so is an exception whose ``__str__`` fails. A policy that calls
 ``os.chdir`` does not move where the outputs go, and one that leaves a thread running does not
-keep the process alive after the outputs are written.
+keep the process alive after the outputs are written, nor a ``batch`` worker at the pool's shutdown.
 """
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -95,6 +96,27 @@ def test_a_thread_left_running_does_not_keep_the_process_alive(tmp_path: Path, w
     assert proc.returncode == 0, proc.stderr
     assert "-> " in proc.stdout and "Traceback" not in proc.stderr
     assert (tmp_path / "o" / "demo.routed.def").is_file()
+
+
+@pytest.mark.parametrize("where", ["import", "order"])
+def test_a_thread_left_running_does_not_hang_a_batch(tmp_path: Path, where: str) -> None:
+    """In a batch the policy runs in pool workers too: a thread it leaves running must not keep a
+    worker (so the pool's shutdown, so the batch) alive. A hang is the subprocess timeout."""
+    start = "import threading, time\nthreading.Thread(target=time.sleep, args=(3600,), daemon=False).start()"
+    text = (start + "\n" + ORDER.format(body="pass") if where == "import"
+            else ORDER.format(body=start.replace("\n", "\n    ")))
+    pol = policy_file(tmp_path, text)
+    batch = tmp_path / "b.yaml"
+    batch.write_text(f"testcases: [demo]\npolicies: [{pol}, heuristic]\n"
+                     "settings:\n  - {name: one, iteration_count: 1}\n")
+    out = tmp_path / "o"
+    proc = subprocess.run([sys.executable, "-m", "xroute", "batch", str(batch), "--out", str(out), "--jobs", "2",
+                           "--quiet"], capture_output=True, text=True, timeout=240)
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    doc = json.loads((out / "summary.json").read_text())
+    assert doc["counts"] == {"jobs": 2, "failed": 0, "errors": 0, "resumed": 0}
+    assert [r["status"] for r in doc["jobs"]] == ["done", "done"]
+    assert (out / "jobs" / "demo__pol__one" / "demo.routed.def").is_file()
 
 
 def test_a_thread_that_fails_is_one_warning_line(tmp_path: Path) -> None:

@@ -30,13 +30,6 @@ Dbu interactionRange(const Layer& l) {
 
 namespace {
 
-// Same-net rects are connected when they share a segment, not just a point.
-bool connected(const Rect& a, const Rect& b) {
-  const Dbu ox = std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
-  const Dbu oy = std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo);
-  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
-}
-
 struct Entry {
   Rect rect;
   int32_t net;
@@ -59,7 +52,7 @@ void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& 
     ls.fixed.push_back(entries[i].fixed);
   }
   const size_t n = ls.rects.size();
-  ls.index = BoxIndex(ls.rects);
+  ls.index = ShapeIndex(ls.rects, ls.nets);
 
   ls.seed.assign(n, 1);
   if (options.window) {
@@ -68,12 +61,7 @@ void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& 
   }
 
   UnionFind uf(n);
-  for (size_t i = 0; i < n; ++i) {
-    if (ls.nets[i] < 0) continue;
-    ls.index.query(ls.rects[i], [&](int32_t j) {
-      if (j > int32_t(i) && ls.nets[j] == ls.nets[i] && connected(ls.rects[i], ls.rects[j])) uf.unite(int32_t(i), j);
-    });
-  }
+  joinSameNet(ls, uf);
   // Components numbered by their smallest member.
   ls.comp.assign(n, -1);
   int32_t count = 0;

@@ -103,7 +103,7 @@ void checkCornerSpacing(const LayerShapes& ls, MarkerSink& out) {
         // Conductors of other nets with metal in the quadrant.
         const Rect quadrant = Rect::fromCorners({k.x, k.y}, {k.x + k.sx * space, k.y + k.sy * space});
         others.clear();
-        ls.index.query(quadrant, [&](int32_t j) {
+        ls.index.queryExcept(quadrant, ls.nets[first], [&](int32_t j) {  // other nets only
           if (ls.comp[j] == c || (!ls.isObs(j) && ls.nets[j] == ls.nets[first])) return;
           others.push_back(ls.comp[j]);
         });

@@ -39,9 +39,8 @@ void subtract(Dbu lo, Dbu hi, std::vector<std::pair<Dbu, Dbu>>& cover, Side side
   if (at < hi) out.push_back({side, coord, at, hi});
 }
 
-}  // namespace
-
-std::vector<Edge> componentEdges(const LayerShapes& ls, int32_t c) {
+// The edges (convexity not set yet) by one index query per side of each member.
+std::vector<Edge> edgesByQuery(const LayerShapes& ls, int32_t c) {
   std::vector<Piece> pieces;
   std::vector<std::pair<Dbu, Dbu>> cover;
   for (int32_t k = ls.compStart[c]; k < ls.compStart[c + 1]; ++k) {
@@ -78,6 +77,14 @@ std::vector<Edge> componentEdges(const LayerShapes& ls, int32_t c) {
     }
     edges.push_back({p.side, p.coord, p.lo, p.hi, false, false});
   }
+  return edges;
+}
+
+}  // namespace
+
+std::vector<Edge> componentEdges(const LayerShapes& ls, int32_t c) {
+  std::vector<Edge> edges = ls.compStart[c + 1] - ls.compStart[c] > kSweepMembers ? componentEdgesBySweep(ls, c)
+                                                                                  : edgesByQuery(ls, c);
   // A corner is concave when the metal continues diagonally inside it.
   for (Edge& e : edges) {
     const int64_t c2 = 2 * int64_t(e.coord), lo2 = 2 * int64_t(e.lo) - 1, hi2 = 2 * int64_t(e.hi) + 1;

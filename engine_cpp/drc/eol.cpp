@@ -114,7 +114,7 @@ void checkEndOfLine(const LayerShapes& ls, MarkerSink& out) {
         }
         const Rect window = eolWindow(e, rule.space, rule.within);
         const bool fixedEdge = edgeFixed(ls, c, e);
-        ls.index.query(window, [&](int32_t j) {
+        ls.index.queryExcept(window, ls.nets[first], [&](int32_t j) {  // the same net is not checked
           if (ls.comp[j] == c || !overlapsOpen(ls.rects[j], window)) return;
           if (!ls.isObs(j) && ls.nets[j] == ls.nets[first]) return;  // same net: not checked
           if (touchesComponent(ls, c, ls.rects[j])) return;           // a short

@@ -7,8 +7,56 @@
 
 #include "drc/drc.hpp"
 #include "geom/box_index.hpp"
+#include "geom/rect_tree.hpp"
+#include "geom/union_find.hpp"
 
 namespace xroute::drc {
+
+// The spatial index of one layer's shapes: BoxIndex's uniform grid (the fastest on routed
+// designs), or a RectTree when the grid is crowded (many long shapes over one place, such as
+// thousands of overlapping copies of a wire: the grid would scan them all for every query).
+// Both report the same rects; the rules do not depend on the order.
+class ShapeIndex {
+ public:
+  // BoxIndex::crowding() above this: the tree. Measured on layers of routed designs: at most 28
+  // (TritonRoute's ispd18_test1 and ispd19_test1), 57 (a 191-shape layer of ispd18_sample3); 2,371
+  // with 50,000 copies of a wire shifted by 1 DBU. Either index gives the same markers.
+  static constexpr double kMaxCrowding = 256;
+
+  ShapeIndex() = default;
+  ShapeIndex(const std::vector<Rect>& rects, const std::vector<int32_t>& nets) : grid_(rects) {
+    if (grid_.crowding() > kMaxCrowding) {
+      tree_ = RectTree(rects, nets);
+      grid_ = BoxIndex();
+      useTree_ = true;
+    } else {
+      nets_ = nets;
+    }
+  }
+  // Every rect intersecting `window` (closed: touching counts), once each.
+  template <class Visit>
+  void query(const Rect& window, Visit&& visit) const {
+    if (useTree_) tree_.query(window, visit);
+    else grid_.query(window, visit);
+  }
+  // The same, leaving out the rects of net `net` (obstructions: -1).
+  template <class Visit>
+  void queryExcept(const Rect& window, int32_t net, Visit&& visit) const {
+    if (useTree_) {
+      tree_.queryExcept(window, net, visit);
+    } else {
+      grid_.query(window, [&](int32_t j) {
+        if (nets_[j] != net) visit(j);
+      });
+    }
+  }
+
+ private:
+  BoxIndex grid_;
+  RectTree tree_;
+  std::vector<int32_t> nets_;  // by rect, for the grid's queryExcept (the tree keeps its own)
+  bool useTree_ = false;
+};
 
 struct LayerShapes {
   LayerId layer;
@@ -18,7 +66,7 @@ struct LayerShapes {
   std::vector<int32_t> nets;      // per shape; < 0 = obstruction
   std::vector<uint8_t> fixed;     // per shape: 1 = pin / OBS / special net
   std::vector<uint8_t> seed;      // per shape: 1 = near the window (pairs start here)
-  BoxIndex index;
+  ShapeIndex index;               // over rects (queryExcept: the other nets' only)
   // Connectivity: same-net shapes touching along a segment (not just a
   // corner point) form one component; an obstruction is its own component.
   std::vector<int32_t> comp;        // per shape: component id
@@ -41,6 +89,10 @@ struct RawMarker {
   bool fixed = false;  // every shape involved is fixed
 };
 using MarkerSink = std::vector<RawMarker>;
+
+// Joins in `uf` the rects of one net that share a segment (not just a corner point):
+// same-net connectivity (same_net_links.cpp).
+void joinSameNet(const LayerShapes& ls, UnionFind& uf);
 
 // A marker about two shapes: nets ordered (obstruction last), fixed if both are.
 void addPairMarker(MarkerSink& out, const LayerShapes& ls, MarkerType type, const Rect& box, int32_t a, int32_t b);
@@ -86,6 +138,11 @@ struct Edge {
   bool convexHi = false;
 };
 std::vector<Edge> componentEdges(const LayerShapes& ls, int32_t c);
+// The same edges (convexity not set) by a sweep over the members (edge_sweep.cpp): used for
+// components of more than kSweepMembers members, where a query per member side would scan the
+// overlapping members over and over.
+inline constexpr int32_t kSweepMembers = 32;
+std::vector<Edge> componentEdgesBySweep(const LayerShapes& ls, int32_t c);
 
 // The rule families (one file each).
 void checkShorts(const LayerShapes& ls, MarkerType type, MarkerSink& out);

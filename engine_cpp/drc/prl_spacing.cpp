@@ -70,7 +70,7 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
     if (!ls.seed[i]) continue;
     const int32_t a = int32_t(i);
     const Rect& ra = ls.rects[a];
-    ls.index.query(expanded(ra, maxSpace), [&](int32_t b) {
+    ls.index.queryExcept(expanded(ra, maxSpace), ls.nets[a], [&](int32_t b) {  // same net never conflicts
       if (b == a || (ls.seed[b] && b < a) || !ls.conflicting(a, b)) return;
       const Rect& rb = ls.rects[b];
       const Dbu dx = gapX(ra, rb), dy = gapY(ra, rb);

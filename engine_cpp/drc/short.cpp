@@ -9,7 +9,7 @@ void checkShorts(const LayerShapes& ls, MarkerType type, MarkerSink& out) {
   for (size_t i = 0; i < ls.size(); ++i) {
     if (!ls.seed[i]) continue;
     const int32_t a = int32_t(i);
-    ls.index.query(ls.rects[a], [&](int32_t b) {
+    ls.index.queryExcept(ls.rects[a], ls.nets[a], [&](int32_t b) {  // other nets only: same net never conflicts
       if (b == a || (ls.seed[b] && b < a) || !ls.conflicting(a, b)) return;
       addPairMarker(out, ls, type, gapBox(ls.rects[a], ls.rects[b]), a, b);
     });

@@ -54,6 +54,16 @@ BoxIndex::BoxIndex(std::vector<Rect> rects) : rects_(std::move(rects)) {
   }
 }
 
+double BoxIndex::crowding() const {
+  if (rects_.empty()) return 0;
+  double scans = 0;  // sum over listed items of their cell's occupancy
+  for (size_t c = 0; c + 1 < cellStart_.size(); ++c) {
+    const double k = cellStart_[c + 1] - cellStart_[c];
+    scans += k * k;
+  }
+  return scans / double(rects_.size()) + double(big_.size());
+}
+
 std::vector<int32_t> BoxIndex::query(const Rect& window) const {
   std::vector<int32_t> out;
   query(window, [&](int32_t id) { out.push_back(id); });

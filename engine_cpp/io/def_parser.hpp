@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 
 #include <string>
 #include <string_view>
@@ -88,6 +89,9 @@ class DefParser {
   void requireInRange(int line, const Rect& r, std::string_view what) const;
   // The bounding box of a via's shapes placed at `at`, checked as requireInRange does.
   void requireViaInRange(int line, ViaRef ref, Point at) const;
+  // The pin and OBS shapes of component `c` (which may stick out of its macro's SIZE) placed by
+  // `t`, checked as requireInRange does; the message names the component and the macro.
+  void requireMacroShapesInRange(int line, const Component& c, const Transform& t);
   // POLYGON points "( x y ) ..." after `kw`, "*" repeating the previous point's coordinate; >= 3.
   std::vector<Point> readPolygonPoints(const Token& kw);
   // A warning "file:line: message" in Design::warnings (and warningCount).
@@ -124,6 +128,7 @@ class DefParser {
   Lexer& lex_;
   const Tech& tech_;
   Design& design_;
+  std::vector<std::optional<Rect>> macroShapeBox_;  // DBU, by macro id: its pin and OBS shapes' box, once
 };
 
 }  // namespace xroute

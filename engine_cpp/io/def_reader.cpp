@@ -471,6 +471,7 @@ void DefParser::readComponent() {
       const Macro& m = tech_.macros[*macro];
       const Transform t{c.location, c.orient, m.width, m.height};
       requireInRange(kw.line, t.apply(Rect{0, 0, m.width, m.height}), "placed component");
+      requireMacroShapesInRange(kw.line, c, t);
     } else if (is(kw, "UNPLACED")) {
       c.status = PlaceStatus::Unplaced;
     } else if (is(kw, ";")) {
@@ -480,6 +481,29 @@ void DefParser::readComponent() {
       countSkip("COMPONENTS." + std::string(kw.text));
     }
   }
+}
+
+void DefParser::requireMacroShapesInRange(int line, const Component& c, const Transform& t) {
+  if (macroShapeBox_.size() != tech_.macros.size()) macroShapeBox_.assign(tech_.macros.size(), std::nullopt);
+  std::optional<Rect>& box = macroShapeBox_[*c.macro];
+  if (!box) {
+    const Macro& m = tech_.macros[*c.macro];
+    Rect b{0, 0, 0, 0};  // the SIZE box's corner: already checked, so never a false alarm
+    auto add = [&](const MacroShape& s) {
+      if (s.polygon.empty()) b.expandToInclude(s.rect);
+      for (const Point& p : s.polygon) b.expandToInclude(Rect{p.x, p.y, p.x, p.y});
+    };
+    for (const MacroPin& pin : m.pins)
+      for (const MacroShape& s : pin.shapes) add(s);
+    for (const MacroShape& s : m.obstructions) add(s);
+    box = b;
+  }
+  const Rect r = t.apply(*box);  // LEF values and the location are each within kMaxDbu: the sums fit
+  if (withinDbuRange(r.xlo) && withinDbuRange(r.ylo) && withinDbuRange(r.xhi) && withinDbuRange(r.yhi)) return;
+  lex_.fail(line, "component " + quoteToken(c.name) + " of macro " + quoteToken(tech_.macros[*c.macro].name) +
+                      ": its pin and OBS shapes placed here span (" + std::to_string(r.xlo) + " " +
+                      std::to_string(r.ylo) + " " + std::to_string(r.xhi) + " " + std::to_string(r.yhi) +
+                      "), beyond the engine's range, " + dbuRangeText());
 }
 
 // ---------------------------------------------------------------------------

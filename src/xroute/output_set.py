@@ -1,14 +1,15 @@
 """One run, one consistent set of output files.
 
 A run (``route``: routed DEF, DRC report, metrics JSON; ``check``: DRC report, marker database,
-check JSON) writes its files into a fresh staging folder inside the output folder,
+check JSON; ``batch``: summary.csv, summary.md, junit.xml, summary.json) writes its files into a
+fresh staging folder inside the output folder,
 ``.xroute-stage.<pid>.<hex>`` (created exclusively and locked while in use, :func:`staging`),
 checks them there, and only then publishes them (:func:`publish`):
 
 1. a note ``publishing.json`` in the staging folder names the final files and the SHA-256 of
    each new one;
 2. each staged file is renamed over its final name (each file whole), the manifest last: the
-   metrics JSON (or check JSON) holds the run id and the SHA-256 of the other files of its set
+   metrics JSON (check JSON, batch summary.json) holds the run id and the SHA-256 of the other files of its set
    (``"run"``), so a reader can tell a set whose files come from different runs
    (:func:`set_problems`, used by ``report``);
 3. the staging folder is removed.

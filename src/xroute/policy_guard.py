@@ -47,6 +47,13 @@ class PolicyTimeout(PolicyCallError):
     """A policy's order() call ran past the time limit."""
 
 
+def stray_threads() -> list[threading.Thread]:
+    """Threads still running that are neither the main thread nor daemons (a user's policy may
+    start one and leave it running)."""
+    main = threading.main_thread()
+    return [t for t in threading.enumerate() if t is not main and not t.daemon and t.is_alive()]
+
+
 def policy_source(policy: Any) -> str | None:
     """The file that defines a policy's order function (None for built-ins and C++)."""
     fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None)
