@@ -183,6 +183,28 @@ def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Pa
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
+def test_a_min_area_patch_leaves_the_landing_of_another_nets_access_via_free(tmp_path: Path) -> None:
+    # As the via-stack case, with n2's pin right above n1's left stack, at (500, 1300), boxed in
+    # on M1 by blockages (west ending 70 from its via's M1 metal, north, and the one east), so
+    # its only way out is its access via, whose M2 landing is 470..530 x 1250..1350. n1 is
+    # routed first. Its centred patch (y 933..1267) would overlap that landing, and n2 had to
+    # short it; the patch now pays for crowding another net's access landing and grows all
+    # towards low: y 1050 - 2 * 117 = 816 .. 1150, 100 below the landing.
+    comps = {**ROW, "u3": (400, 1200), "u4": (400, 2400)}
+    rects = [("M1", (640, 0, 2360, 4000)), ("M1", (0, 1200, 380, 1400)), ("M1", (0, 1400, 640, 1600))]
+    extra = f"BLOCKAGES {len(rects)} ;\n" + "".join(
+        f"- LAYER {layer} RECT ( {a} {b} ) ( {c} {e} ) ;\n" for layer, (a, b, c, e) in rects) + "END BLOCKAGES\n"
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]}, extra, m2_area=True)
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    region.route_net(0)  # n1 first: its patches are placed before n2's via is there
+    region.route_net(1)
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert d.net_routing(0)["patches"] == [("M2", 470, 816, 530, 1150), ("M2", 2470, 933, 2530, 1267)]
+    assert ("V12", 500, 1300) in d.net_routing(1)["vias"]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
 def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path: Path) -> None:
     # As the via-stack case, with M2 blockages around the left stack: on its track below and
     # above it (y 800..900 and 1300..1400), so a wire-wide patch along the track (334 long)
