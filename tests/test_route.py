@@ -309,9 +309,10 @@ def test_progress_events() -> None:
         if not e.iteration_done:
             assert e.report.seconds == 0 and e.report.violations == 0  # figures are final only at the end
     # Batches report growing counts within an iteration; each iteration ends with an event.
-    # (ispd19_sample4 reaches 0 violations after iteration 1 and the flow stops there)
+    # (ispd19_sample4 reaches 0 violations after iteration 0 and the flow stops there; it took
+    # two iterations before open line ends across the tracks were in the footprint)
     assert [e.report.iteration for e in done] == list(range(len(result.iterations)))
-    assert 2 <= len(result.iterations) <= 3
+    assert 1 <= len(result.iterations) <= 3
 
 
 @pytest.mark.slow

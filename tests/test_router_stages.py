@@ -183,6 +183,57 @@ def test_a_min_area_patch_beside_another_nets_wire_at_legal_spacing(tmp_path: Pa
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
+def test_a_min_area_patch_leaves_the_landing_of_another_nets_access_via_free(tmp_path: Path) -> None:
+    # As the via-stack case, with n2's pin right above n1's left stack, at (500, 1300), boxed in
+    # on M1 by blockages (west ending 70 from its via's M1 metal, north, and the one east), so
+    # its only way out is its access via, whose M2 landing is 470..530 x 1250..1350. n1 is
+    # routed first. Its centred patch (y 933..1267) would overlap that landing, and n2 had to
+    # short it; the patch now pays for crowding another net's access landing and grows all
+    # towards low: y 1050 - 2 * 117 = 816 .. 1150, 100 below the landing.
+    comps = {**ROW, "u3": (400, 1200), "u4": (400, 2400)}
+    rects = [("M1", (640, 0, 2360, 4000)), ("M1", (0, 1200, 380, 1400)), ("M1", (0, 1400, 640, 1600))]
+    extra = f"BLOCKAGES {len(rects)} ;\n" + "".join(
+        f"- LAYER {layer} RECT ( {a} {b} ) ( {c} {e} ) ;\n" for layer, (a, b, c, e) in rects) + "END BLOCKAGES\n"
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]}, extra, m2_area=True)
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    region.route_net(0)  # n1 first: its patches are placed before n2's via is there
+    region.route_net(1)
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert d.net_routing(0)["patches"] == [("M2", 470, 816, 530, 1150), ("M2", 2470, 933, 2530, 1267)]
+    assert ("V12", 500, 1300) in d.net_routing(1)["vias"]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
+def test_a_wire_keeps_out_of_the_end_of_line_window_of_a_patch_across_the_tracks(tmp_path: Path) -> None:
+    # M2 (vertical) end-of-line spacing 0.25 um for line ends under 0.07 um. n1's left via stack
+    # (M2 landing 470..530 x 1050..1150) has M2 blockages on its track (y 700..800, 1400..1500): a
+    # patch along the track would end 133 from them, too close for its line ends, so it lies
+    # across: 333..667 x 1070..1130, whose left end (60 tall) needs 250, down to x = 83, 47
+    # into the metal of the M2 track x = 100. n2 (pins at
+    # (100, 300) and (100, 1900)) is routed after n1; its straight M2 wire on x = 100 broke that
+    # rule: the footprint modelled line ends along the tracks only. Open line ends across them
+    # now claim the nodes in their window, and n2 keeps out.
+    eol = "SPACING 0.25 ENDOFLINE 0.07 WITHIN 0.025 ;"
+    comps = {**ROW, "u3": (0, 200), "u4": (0, 1800)}
+    rects = [("M1", (640, 0, 2360, 4000)), ("M2", (460, 700, 540, 800)), ("M2", (460, 1400, 540, 1500))]
+    extra = f"BLOCKAGES {len(rects)} ;\n" + "".join(
+        f"- LAYER {layer} RECT ( {a} {b} ) ( {c} {e} ) ;\n" for layer, (a, b, c, e) in rects) + "END BLOCKAGES\n"
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]}, extra, m2_area=True, m2_rules=eol)
+    region = _engine.RoutingSession(d.engine).open_region((0, 0, 4000, 4000))
+    region.route_net(0)
+    g = region.grid()
+    xs, ys = list(g["xs"]), list(g["ys"])
+    assert g["wire_use"][1, ys.index(1100), xs.index(100)] == 1  # in front of the patch's left end
+    assert g["wire_use"][1, ys.index(900), xs.index(100)] == 0
+    region.route_net(1)
+    assert region.metrics()["violations"] == 0
+    region.commit()
+    assert ("M2", 333, 1070, 667, 1130) in d.net_routing(0)["patches"]
+    assert ("M2", 100, 300, 100, 1900, 0, -1, -1) not in d.net_routing(1)["wires"]
+    assert d.engine.check_drc(skip_fixed_pairs=False) == []
+
+
 def test_a_via_stack_boxed_in_on_its_track_gets_a_thicker_shorter_patch(tmp_path: Path) -> None:
     # As the via-stack case, with M2 blockages around the left stack: on its track below and
     # above it (y 800..900 and 1300..1400), so a wire-wide patch along the track (334 long)

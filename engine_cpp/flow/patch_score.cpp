@@ -12,6 +12,7 @@ namespace xroute {
 namespace {
 
 constexpr int64_t kPatchConflict = 1000;  // a minimum-area patch score meaning "would break a spacing rule"
+constexpr int64_t kBlocksAccess = 100;     // per other net's access via whose landing the patch would crowd
 
 // True when another rect of the same net continues the edge of metal[i]
 // that faces `r` (the merged edge is longer than the rect's side there), so
@@ -65,7 +66,24 @@ int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMet
       judge(metal[i].first, metal[i].second, !edgeContinues(metal, i, r));
     }
   }
+  // Another net's pin access via lands above its access point (the grid's
+  // reserved nodes): a patch breaking the rules with that landing metal takes
+  // the place the pin needs, and that net, routed later, has to break them.
+  const Rect& m = ctx.rules.viaLanding[z];
+  const Rect landings{r.xlo - s - m.xhi, r.ylo - s - m.yhi, r.xhi + s - m.xlo, r.yhi + s - m.ylo};
+  int64_t crowded = 0;
   int x0, x1, y0, y1;
+  g.xRangeOpen(landings.xlo, landings.xhi, x0, x1);
+  g.yRangeOpen(landings.ylo, landings.yhi, y0, y1);
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const int32_t v = g.index(x, y, z);
+      const int32_t owner = g.reservedNet[v];
+      if (owner == kOwnerNone || owner == net) continue;
+      const Rect landing = m.translated(g.point(v));
+      if (drc::rectGap(landing, r) < drc::metalNeed(layer, r, landing)) crowded += kBlocksAccess;
+    }
+  bad += std::min(crowded, kPatchConflict / 2);  // never a conflict: a patch still beats a MinArea marker
   g.xRangeOpen(grown.xlo, grown.xhi, x0, x1);
   g.yRangeOpen(grown.ylo, grown.yhi, y0, y1);
   for (int y = y0; y <= y1; ++y)

@@ -35,14 +35,35 @@ void markFixed(const RouteContext& ctx, const Rect& box, RegionGrid& g) {
   });
 }
 
+namespace {
+
+// The CrossEnd bits of shapes[i] (routing layer z) that no other shape of the net continues;
+// 0 unless it is narrower across than the layer's EOL width.
+uint8_t crossEnds(const RouteContext& ctx, const std::vector<NetShape>& shapes, size_t i, int z,
+                  std::vector<Rect>& others) {
+  const Rect& r = shapes[i].rect;
+  const bool hz = ctx.rules.horizontal[z] != 0;
+  if (ctx.rules.eolSpace[z] <= 0 || (hz ? r.width() : r.height()) >= ctx.rules.eolWidth[z]) return 0;
+  others.clear();
+  for (size_t j = 0; j < shapes.size(); ++j) {
+    if (j != i && shapes[j].layer == shapes[i].layer && shapes[j].rect.overlaps(r)) others.push_back(shapes[j].rect);
+  }
+  return openCrossEnds(r, hz, others);
+}
+
+}  // namespace
+
 void markShapes(const RouteContext& ctx, int32_t net, const std::vector<NetShape>& shapes, const Rect& win,
                 RegionGrid& g, RoutedMetal& metal) {
-  for (const NetShape& s : shapes) {
+  std::vector<Rect> others;
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    const NetShape& s = shapes[i];
     if (!s.rect.overlaps(win)) continue;
     const Layer& l = ctx.tech.layer(s.layer);
     if (l.routingIndex >= 0) {
       const int z = l.routingIndex;
-      markMetal(g, ctx.rules, z, s.rect, net, false, ctx.netRules.spacing(net, z));
+      const uint8_t ends = crossEnds(ctx, shapes, i, z, others);
+      markMetal(g, ctx.rules, z, s.rect, net, false, ctx.netRules.spacing(net, z), ends);
       metal[l.routingIndex].emplace_back(s.rect, net);
     } else if (l.cutIndex >= 0) {
       const int z = cutBelow(ctx, s.layer);

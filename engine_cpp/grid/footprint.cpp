@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <utility>
 
 #include "drc/drc.hpp"
 
@@ -19,6 +20,7 @@ FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, cons
   r.cutSpacing.assign(nz, 0);
   r.eolSpace.assign(nz, 0);
   r.eolWithin.assign(nz, 0);
+  r.eolWidth.assign(nz, 0);
   r.horizontal.assign(nz, 0);
   for (size_t z = 0; z < nz; ++z) {
     r.layers[z] = &tech.layer(tracks.layers[z].layer);
@@ -27,6 +29,7 @@ FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, cons
     for (const EolRule& e : r.layers[z]->eolRules) {
       r.eolSpace[z] = std::max(r.eolSpace[z], e.space);
       r.eolWithin[z] = std::max(r.eolWithin[z], e.within);
+      r.eolWidth[z] = std::max(r.eolWidth[z], e.eolWidth);
     }
   }
   for (size_t z = 0; z + 1 < nz; ++z) {
@@ -65,8 +68,26 @@ void bump(uint16_t& counter) {
 
 }  // namespace
 
+uint8_t openCrossEnds(const Rect& r, bool horizontal, const std::vector<Rect>& others) {
+  // Along the cross axis (y on a horizontal layer, x on a vertical one): [lo, hi]; the ends'
+  // edges span [a, b] along the other axis.
+  const Dbu lo = horizontal ? r.ylo : r.xlo, hi = horizontal ? r.yhi : r.xhi;
+  const Dbu a = horizontal ? r.xlo : r.ylo, b = horizontal ? r.xhi : r.yhi;
+  uint8_t open = kCrossLow | kCrossHigh;
+  for (const Rect& q : others) {
+    const Dbu qlo = horizontal ? q.ylo : q.xlo, qhi = horizontal ? q.yhi : q.xhi;
+    const Dbu qa = horizontal ? q.xlo : q.ylo, qb = horizontal ? q.xhi : q.yhi;
+    if (qa >= b || qb <= a || qhi < lo || qlo > hi) continue;  // apart (or a corner only)
+    const bool wider = qa < a || qb > b;  // the end's edge goes on along q
+    // q goes on past the end, or holds it and its edge goes on along q.
+    if ((qlo < lo && qhi >= lo) || (qlo <= lo && qhi > lo && wider)) open &= ~kCrossLow;
+    if ((qhi > hi && qlo <= hi) || (qhi >= hi && qlo < hi && wider)) open &= ~kCrossHigh;
+  }
+  return open;
+}
+
 MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace,
-                      const Rect* landing) {
+                      const Rect* landing, uint8_t crossEnds) {
   const Layer& layer = *rules.layers[z];
   const Dbu width = r.minSide();
   const bool hz = rules.horizontal[z] != 0;
@@ -109,8 +130,31 @@ MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu hal
       viaEol = {r.xlo - w - m.xhi, r.ylo - ev - m.yhi, r.xhi + w - m.xlo, r.yhi + ev - m.ylo};
     }
   }
-  out.wire = {wireEnd, wireSide, wireEol};
-  out.via = {viaRegion, viaEol};
+  // Open line ends of `r` across the preferred direction (a wrong-way stub's
+  // end, a patch across the tracks): a wire or via metal in their EOL window,
+  // on the next track or end to end on the same line, breaks the rule.
+  Rect wireCross{0, 0, 0, 0}, viaCross{0, 0, 0, 0};
+  if (crossEnds != 0 && rules.eolSpace[z] > 0 && (hz ? r.width() : r.height()) < rules.eolWidth[z]) {
+    const Dbu ev = std::max(rules.eolSpace[z], sVia);
+    const bool low = (crossEnds & kCrossLow) != 0, high = (crossEnds & kCrossHigh) != 0;
+    // Cross axis c: the node's metal [c - below, c + above] meets [r's end, e beyond it).
+    auto span = [&](Dbu lo, Dbu hi, Dbu below, Dbu above, Dbu reach) {
+      return std::pair<Dbu, Dbu>{low ? lo - reach - above : hi - above, high ? hi + reach + below : lo + below};
+    };
+    if (hz) {
+      const auto [w0, w1] = span(r.ylo, r.yhi, half, half, e);
+      const auto [v0, v1] = span(r.ylo, r.yhi, -m.ylo, m.yhi, ev);
+      wireCross = {r.xlo - w - half, w0, r.xhi + w + half, w1};
+      viaCross = {r.xlo - w - m.xhi, v0, r.xhi + w - m.xlo, v1};
+    } else {
+      const auto [w0, w1] = span(r.xlo, r.xhi, half, half, e);
+      const auto [v0, v1] = span(r.xlo, r.xhi, -m.xlo, m.xhi, ev);
+      wireCross = {w0, r.ylo - w - half, w1, r.yhi + w + half};
+      viaCross = {v0, r.ylo - w - m.yhi, v1, r.yhi + w - m.ylo};
+    }
+  }
+  out.wire = {wireEnd, wireSide, wireEol, wireCross};
+  out.via = {viaRegion, viaEol, viaCross};
   return out;
 }
 
@@ -139,8 +183,8 @@ void forMetalReach(const RegionGrid& g, const MetalReach& reach, int z, const st
 }
 
 void markMetal(RegionGrid& g, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed,
-               Dbu minSpace) {
-  const MetalReach reach = metalReach(rules, z, r, rules.wireHalf[z], minSpace);
+               Dbu minSpace, uint8_t crossEnds) {
+  const MetalReach reach = metalReach(rules, z, r, rules.wireHalf[z], minSpace, nullptr, crossEnds);
   const int32_t owner = net < 0 ? kOwnerMixed : net;
   if (fixed) {
     eachNodeOnce(g, z, reach.wire, [&](int32_t n) { claimOwner(g.fixedOwner[n], owner); });

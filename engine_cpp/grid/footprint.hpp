@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -28,30 +29,42 @@ struct FootprintRules {
   std::vector<Dbu> cutSpacing;       // DBU, smallest plain cut spacing of cut z -> z+1 (0 = none)
   std::vector<Dbu> eolSpace;         // DBU, largest end-of-line spacing of layer z (0 = no EOL rule)
   std::vector<Dbu> eolWithin;        // DBU, its sideways reach
+  std::vector<Dbu> eolWidth;         // DBU, largest line-end width of layer z's EOL rules
   std::vector<uint8_t> horizontal;   // per z: preferred direction
 };
 
 FootprintRules makeFootprintRules(const Tech& tech, const TrackSet& tracks, const ViaSet& vias);
 
+// The ends of a rect across its layer's preferred direction (left and right on a vertical
+// layer, bottom and top on a horizontal one) that no other metal of its net continues: where a
+// wrong-way stub or a patch across the tracks ends in a line end. Bit set = open.
+enum CrossEnd : uint8_t { kCrossLow = 1, kCrossHigh = 2 };
+// `r`'s open cross ends among `others`, the other rects of its net on the same layer (DBU):
+// an end is closed by a rect that overlaps `r` and covers the end's edge or continues it.
+uint8_t openCrossEnds(const Rect& r, bool horizontal, const std::vector<Rect>& others);
+
 // Where metal `r` on routing layer z forbids a wire `half` wide through a node (wire: its line
-// end, its side, its end of line) and a via's landing metal at a node (via: beside, end of line),
-// DBU. minSpace (a NONDEFAULTRULE's SPACING of either net; 0 = none) raises the layer's spacing;
-// landing: the via metal landing on z relative to the via origin (nullptr: rules.viaLanding[z]).
+// end, its side, its end of line, the end of line of `r`'s open cross ends) and a via's landing
+// metal at a node (via: beside, end of line, cross ends), DBU; an unused rect is empty.
+// minSpace (a NONDEFAULTRULE's SPACING of either net; 0 = none) raises the layer's spacing;
+// landing: the via metal landing on z relative to the via origin (nullptr: rules.viaLanding[z]);
+// crossEnds: CrossEnd bits of `r` (0: its cross ends are not modelled).
 struct MetalReach {
-  std::array<Rect, 3> wire;
-  std::array<Rect, 2> via;
+  std::array<Rect, 4> wire;
+  std::array<Rect, 3> via;
 };
 MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace = 0,
-                      const Rect* landing = nullptr);
+                      const Rect* landing = nullptr, uint8_t crossEnds = 0);
 // Each node of layer z inside the reach: fn(node, false) once for the wire rects, fn(node, true)
 // once for the via rects.
 void forMetalReach(const RegionGrid& grid, const MetalReach& reach, int z,
                    const std::function<void(int32_t, bool)>& fn);
 
 // Metal `r` on routing layer z owned by `net` (-1 = obstruction), marked for default-width
-// wires; minSpace: the owner's NONDEFAULTRULE spacing on the layer (0 = none).
+// wires; minSpace: the owner's NONDEFAULTRULE spacing on the layer (0 = none); crossEnds: as
+// metalReach (routed metal only: a pin's short sides mostly lie inside its outline).
 void markMetal(RegionGrid& grid, const FootprintRules& rules, int z, const Rect& r, int32_t net, bool fixed,
-               Dbu minSpace = 0);
+               Dbu minSpace = 0, uint8_t crossEnds = 0);
 // A cut `r` on the cut layer between z and z+1, owned by `net`.
 void markCut(RegionGrid& grid, const FootprintRules& rules, int z, const Rect& r, int32_t net);
 
