@@ -170,14 +170,49 @@ def finish(code: object) -> None:
     os._exit(status)
 
 
+def _click_exceptions() -> tuple[tuple[type[BaseException], ...], tuple[type[BaseException], ...]]:
+    """The usage-error and abort classes of click and of the copy of click that newer typer
+    releases carry (``typer._click``), whichever are installed."""
+    import importlib
+
+    errors: list[type[BaseException]] = []
+    aborts: list[type[BaseException]] = [typer.Abort]
+    for name in ("click.exceptions", "typer._click.exceptions"):
+        try:
+            module = importlib.import_module(name)
+        except ImportError:
+            continue
+        for kind, found in (("ClickException", errors), ("Abort", aborts)):
+            cls = getattr(module, kind, None)
+            if isinstance(cls, type) and issubclass(cls, BaseException) and cls not in found:
+                found.append(cls)
+    return tuple(errors), tuple(aborts)
+
+
 def main() -> None:
     """Console-script entry point (``xroute``): text that the terminal's encoding cannot show is
     escaped, and threads a policy left running do not outlive the command (:func:`finish`)."""
     tolerant_streams()
     threading.excepthook = _thread_failure
+    usage_errors, aborts = _click_exceptions()
+    code: object = 0
     try:
-        app(prog_name="xroute")
-        code: object = 0
+        # standalone_mode=False: a usage error comes here as an exception and is printed as one
+        # line, instead of the usage text and a boxed message over several lines.
+        returned = app(prog_name="xroute", standalone_mode=False)
+        if isinstance(returned, int) and not isinstance(returned, bool):
+            code = returned  # typer.Exit(code) comes back as its code
+    except usage_errors as exc:
+        code = exc.exit_code
+        if type(exc).__name__ != "NoArgsIsHelpError":  # that one's help text is printed already
+            ctx = getattr(exc, "ctx", None)
+            command = ctx.command_path if ctx is not None else "xroute"
+            hint = f" (see '{command} --help')" if ctx is not None else ""
+            message = " ".join(safe_text(exc.format_message()).split())
+            sys.stderr.write(f"error: {command}: {message}{hint}\n")
+    except aborts:
+        sys.stderr.write("Aborted!\n")
+        code = 1
     except SystemExit as exc:
         code = exc.code
     finish(code)

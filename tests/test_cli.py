@@ -294,3 +294,18 @@ def test_help_keeps_the_extras_name(runner, command: str) -> None:
 
     res = runner.invoke(app, [command, "--help"], terminal_width=200)
     assert res.exit_code == 0 and "pip install 'xroute[plot]'" in res.output
+
+
+@pytest.mark.parametrize("args, start", [
+    (["route", "--iterations", "1.5"], "error: xroute route: Invalid value for '--iterations': "),
+    (["route", "--bogus"], "error: xroute route: No such option: --bogus"),
+    (["nope"], "error: xroute: No such command 'nope'."),
+])
+def test_usage_errors_are_one_line(args: list[str], start: str, tmp_path) -> None:
+    """Found by fuzz/mutate_cli.py (seed 3601): a bad option value gave Click's usage text and a boxed
+    message over five lines."""
+    done = subprocess.run([sys.executable, "-m", "xroute", *args], capture_output=True, text=True, timeout=120,
+                          cwd=tmp_path)
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.startswith(start) and done.stderr.count("\n") == 1, done.stderr
+    assert done.stderr.rstrip().endswith("--help')")
