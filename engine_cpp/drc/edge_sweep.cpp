@@ -61,13 +61,7 @@ struct Run {
 
 // The uncovered runs of the Top sides of `rs` (frame coordinates), by coord then lo.
 std::vector<Run> topRuns(const std::vector<Rect>& rs) {
-  std::vector<Dbu> xs;
-  for (const Rect& r : rs) {
-    xs.push_back(r.xlo);
-    xs.push_back(r.xhi);
-  }
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  const std::vector<Dbu> xs = edgeXs(rs);
   auto at = [&](Dbu x) { return size_t(std::lower_bound(xs.begin(), xs.end(), x) - xs.begin()); };
   std::vector<int32_t> byLo(rs.size()), byHi(rs.size());
   for (size_t i = 0; i < rs.size(); ++i) byLo[i] = byHi[i] = int32_t(i);

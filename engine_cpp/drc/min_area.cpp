@@ -17,13 +17,7 @@ namespace {
 
 // Area of the union of rects (DBU^2): a sweep over x slabs.
 Area unionArea(const std::vector<Rect>& rects) {
-  std::vector<Dbu> xs;
-  for (const Rect& r : rects) {
-    xs.push_back(r.xlo);
-    xs.push_back(r.xhi);
-  }
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  const std::vector<Dbu> xs = edgeXs(rects);
   Area total = 0;
   std::vector<std::pair<Dbu, Dbu>> spans;
   for (size_t k = 0; k + 1 < xs.size(); ++k) {

@@ -7,17 +7,7 @@
 namespace xroute {
 
 Area unionArea(const std::vector<Rect>& rects) {
-  std::vector<Dbu> xs, ys;
-  for (const Rect& r : rects) {
-    xs.push_back(r.xlo);
-    xs.push_back(r.xhi);
-    ys.push_back(r.ylo);
-    ys.push_back(r.yhi);
-  }
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-  std::sort(ys.begin(), ys.end());
-  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
+  const std::vector<Dbu> xs = edgeXs(rects), ys = edgeYs(rects);
   Area total = 0;
   for (size_t i = 0; i + 1 < xs.size(); ++i) {
     for (size_t j = 0; j + 1 < ys.size(); ++j) {
