@@ -81,7 +81,9 @@ void bindRouterSettings(nb::module_& m) {
       .def_rw("first_repair_rounds", &RouterSettings::firstRepairRounds,
               "The same in iteration 0 (clamped likewise).")
       .def_rw("repair_penalty", &RouterSettings::repairPenalty,
-              "Cost units per node near a region marker, times the repair round.");
+              "Cost units per node near a region marker, times the repair round.")
+      .def_rw("rip_neighbours_of_persistent", &RouterSettings::ripNeighboursOfPersistent,
+              "A marker that survived its nets' reroute also rips up the other nets with metal near it.");
 }
 
 }  // namespace

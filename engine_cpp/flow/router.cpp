@@ -84,6 +84,7 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
+      prevMarkers_ = std::move(markers_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
@@ -101,6 +102,15 @@ class Flow {
   }
 
  private:
+  // A marker of the last check that one of the check before it (same layer, touching) foretold.
+  bool persistent(const Marker& m) const {
+    if (!s_.ripNeighboursOfPersistent) return false;
+    return std::any_of(prevMarkers_.begin(), prevMarkers_.end(), [&](const Marker& p) {
+      return p.layer == m.layer && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi && p.box.ylo <= m.box.yhi &&
+             m.box.ylo <= p.box.yhi;
+    });
+  }
+
   std::vector<MarkerCost> markersNear(const Rect& box) const {
     std::vector<MarkerCost> out;
     const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};
@@ -149,18 +159,24 @@ class Flow {
       // A piece below the minimum area that no patch could fit beside stays
       // short while its neighbours stay: they go too, so that the piece's
       // net can take the room and they come back around it (the marker's
-      // cost keeps them off it). Neighbours: other nets with metal on the
-      // layer within two pitches of the marker.
-      if (m.type != MarkerType::MinArea) continue;
+      // cost keeps them off it). So do the neighbours of a marker that
+      // survived the last reroute of its own nets (one of the last check
+      // but one, on its layer, touching it): ripping up only its two nets
+      // puts them back in the same spot. Neighbours: other nets with
+      // metal on the layer (on a cut layer: on the layer below) within two
+      // pitches of the marker.
+      if (m.type != MarkerType::MinArea && !persistent(m)) continue;
       const Layer& l = ctx_.tech.layer(m.layer);
-      const Dbu reach = 2 * std::max(l.pitchX, l.pitchY);
+      const LayerId below = l.routingIndex >= 0 || *m.layer == 0 ? m.layer : LayerId(*m.layer - 1);
+      const Layer& pl = ctx_.tech.layer(below);
+      const Dbu reach = 2 * std::max(pl.pitchX, pl.pitchY);
       const Rect near{m.box.xlo - reach, m.box.ylo - reach, m.box.xhi + reach, m.box.yhi + reach};
       for (int32_t n : ctx_.netsNear(near)) {
-        if (n == m.net1) continue;
+        if (n == m.net1 || n == m.net2) continue;
         shapes.clear();
         netRoutingShapes(ctx_.tech, design_, design_.nets[n].routing, shapes);
         for (const NetShape& sh : shapes) {
-          if (sh.layer == m.layer && sh.rect.overlaps(near)) {
+          if ((sh.layer == m.layer || (l.routingIndex < 0 && sh.layer == below)) && sh.rect.overlaps(near)) {
             dirty.push_back(n);
             break;
           }
@@ -286,6 +302,7 @@ class Flow {
   std::unique_ptr<NetOrderPolicy> search_;  // the running iteration's search, when its plan asks for one
   RouteContext ctx_;
   std::vector<Marker> markers_;
+  std::vector<Marker> prevMarkers_;  // the check before markers_'s
   std::vector<MarkerCost> history_;
 };
 

@@ -430,6 +430,15 @@ class RouterSettings:
     @repair_penalty.setter
     def repair_penalty(self, arg: int, /) -> None: ...
 
+    @property
+    def rip_neighbours_of_persistent(self) -> bool:
+        """
+        A marker that survived its nets' reroute also rips up the other nets with metal near it.
+        """
+
+    @rip_neighbours_of_persistent.setter
+    def rip_neighbours_of_persistent(self, arg: bool, /) -> None: ...
+
 POLICY_FEATURES: tuple = ...
 
 def route(db: Database, region_size: int | None = None, iterations: int | None = None, threads: int | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, settings: RouterSettings | None = None, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None, planner: object | None = None) -> dict:
