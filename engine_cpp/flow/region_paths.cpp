@@ -70,9 +70,54 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     w.width = ctx.netRules.width(net, zu);  // a NONDEFAULTRULE's width (0: the layer's default)
     w.from = a;
     w.to = g.point(path[j]);
+    // An end at one of the net's access points inside its pin stops there: the
+    // pin holds it, and the usual half-width extension would only stick out of
+    // the pin towards its neighbour (two stubs leaving facing pins of one cell
+    // made line ends 100 apart where 120 is needed).
+    const Dbu width = w.width > 0 ? w.width : ctx.tech.layer(w.layer).width;
+    auto heldEnd = [&](int32_t node, int sign) {
+      return (g.flags[node] & kAccess) && g.accessNet[node] == net && g.accessPin[node] >= 0 &&
+             pinHoldsEnd(g.accessPin[node], w.layer, g.point(node), alongX, sign, width);
+    };
+    // (Not where the path turns on the layer: the corner's square needs the extensions.)
+    const int fwd = (alongX ? w.to.x >= w.from.x : w.to.y >= w.from.y) ? 1 : -1;
+    if ((i == 0 || g.zOf(path[i - 1]) != zu) && heldEnd(u, -fwd)) w.extFrom = 0;
+    if ((j + 1 == path.size() || g.zOf(path[j + 1]) != zu) && heldEnd(path[j], fwd)) w.extTo = 0;
     out.wires.push_back(w);
     i = j;
   }
+}
+
+bool RegionRouter::Impl::pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bool alongX, int sign,
+                                     Dbu width) const {
+  const Design& d = ctx.design;
+  const PinRef& ref = d.pinRefs[pinRef];
+  const Dbu lo = width / 2, hi = width - width / 2;
+  const Rect cross = alongX ? Rect{at.x, at.y - lo, at.x, at.y + hi} : Rect{at.x - lo, at.y, at.x + hi, at.y};
+  const Dbu reach = sign * lo;  // the default extension beyond `at`
+  const Rect ext = alongX ? Rect{std::min(at.x, at.x + reach), cross.ylo, std::max(at.x, at.x + reach), cross.yhi}
+                          : Rect{cross.xlo, std::min(at.y, at.y + reach), cross.xhi, std::max(at.y, at.y + reach)};
+  auto holds = [](const Rect& r, const Rect& in) {
+    return r.xlo <= in.xlo && in.xhi <= r.xhi && r.ylo <= in.ylo && in.yhi <= r.yhi;
+  };
+  std::vector<Rect> rects;
+  if (ref.isIo()) {
+    const IoPin& pin = d.ioPins[ref.pin];
+    const Transform t{pin.location, pin.orient, 0, 0};
+    for (const IoPinShape& s : pin.shapes)
+      if (s.layer == layer) rects.push_back(t.apply(s.rect));
+  } else {
+    const Component& comp = d.components[*ref.comp];
+    const Transform t = componentTransform(ctx.tech, comp);
+    for (const MacroShape& s : ctx.tech.macros[*comp.macro].pins[ref.pin].shapes)
+      if (s.layer == layer) placedShapeRects(s, t, rects);
+  }
+  bool held = false;
+  for (const Rect& r : rects) {
+    if (holds(r, ext)) return false;  // the extension stays inside the pin: nothing to gain
+    held = held || holds(r, cross);
+  }
+  return held;
 }
 
 void RegionRouter::Impl::markNewRouting(int32_t net, const NetRouting& added) {
