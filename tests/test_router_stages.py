@@ -488,16 +488,20 @@ def test_a_net_whose_guide_passes_a_region_twice_has_two_parts_there(tmp_path: P
     assert r.out_of_guide_wirelength_um == 0
 
 
-def test_a_wire_leaving_a_pin_does_not_extend_beyond_the_pins_inner_edge(tmp_path: Path) -> None:
+@pytest.mark.parametrize("pin_ylo", [1070, 1080])
+def test_a_wire_leaving_a_pin_does_not_extend_beyond_the_pins_inner_edge(tmp_path: Path, pin_ylo: int) -> None:
     # M1 end-of-line spacing 0.17 um for line ends under 0.07 um. Two facing pins of different
     # nets, 180 apart: u1's (x 1470..1510) and u2's (1690..1730), each too narrow for a via's
     # cut, so pin access offers planar exits only, the nearest at their centres x = 1490 and
-    # 1710. n1 leaves u1 west (to u3), n2 leaves u2 east (to u4). A wire end's usual
-    # half-width extension (30) stuck out of each pin: line ends at 1520 and 1680, 160 apart,
-    # two EndOfLine markers. A wire end at a point whose pin holds the wire's cross-section
-    # there now stops at the point (extension 0): the metal ends at the pins' own edges.
-    left = cell("LEFTPIN", (0.07, 0.07, 0.11, 0.13))
-    right = cell("RIGHTPIN", (0.09, 0.07, 0.13, 0.13))
+    # 1710 on the track y = 1100. n1 leaves u1 west (to u3), n2 leaves u2 east (to u4). A wire
+    # end's usual half-width extension (30) stuck out of each pin: line ends at 1520 and 1680,
+    # 160 apart, two EndOfLine markers. A wire end at a point inside its pin, where the pin
+    # reaches into the wire, now stops at the point (extension 0): the metal ends at the pins'
+    # own edges. The pins are as tall as the wire (y 1070..1130), or 10 shorter (1080..1130):
+    # the end edge's bare 10 meets the pin at a concave corner, no line end.
+    pin_y = (pin_ylo - 1000) / 1000
+    left = cell("LEFTPIN", (0.07, pin_y, 0.11, 0.13))
+    right = cell("RIGHTPIN", (0.09, pin_y, 0.13, 0.13))
     comps = {"u3": (400, 1000), "u1": (1400, 1000, "LEFTPIN"), "u2": (1600, 1000, "RIGHTPIN"), "u4": (2600, 1000)}
     eol = "SPACING 0.17 ENDOFLINE 0.07 WITHIN 0.025 ;"
     d = drawn(tmp_path, comps, {"n1": ["u3", "u1"], "n2": ["u2", "u4"]}, macros=left + right, m1_rules=eol)
@@ -507,12 +511,12 @@ def test_a_wire_leaving_a_pin_does_not_extend_beyond_the_pins_inner_edge(tmp_pat
     assert d.net_routing(1)["wires"] == [("M1", 1710, 1100, 2700, 1100, 0, 0, -1)]
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
     # The same wires with the usual extensions (metal 470..1520 and 1680..2730): both ends face.
-    m1 = [i for i, layer in enumerate(d.engine.layers()) if layer["name"] == "M1"][0]
-    pins = [(m1, 1470, 1070, 1510, 1130, 0), (m1, 1690, 1070, 1730, 1130, 1),
-            (m1, 470, 1070, 530, 1130, 0), (m1, 2670, 1070, 2730, 1130, 1)]
-    old = shape_rows(pins + [(m1, 470, 1070, 1520, 1130, 0), (m1, 1680, 1070, 2730, 1130, 1)])
     # Each marker: the other net's metal inside the line end's window (n2's end at 1680 reaches
     # 1510, n1's extension 1510..1520 is in it; and the mirror image).
+    m1 = [i for i, layer in enumerate(d.engine.layers()) if layer["name"] == "M1"][0]
+    pins = [(m1, 1470, pin_ylo, 1510, 1130, 0), (m1, 1690, pin_ylo, 1730, 1130, 1),
+            (m1, 470, 1070, 530, 1130, 0), (m1, 2670, 1070, 2730, 1130, 1)]
+    old = shape_rows(pins + [(m1, 470, 1070, 1520, 1130, 0), (m1, 1680, 1070, 2730, 1130, 1)])
     markers = _engine.check_shapes(d.engine, old)
     assert sorted((m["type"], m["box"], m["nets"]) for m in markers) == [
         ("EndOfLine", (1510, 1070, 1520, 1130), (1, 0)), ("EndOfLine", (1680, 1070, 1690, 1130), (0, 1))]

@@ -99,9 +99,9 @@ struct RegionRouter::Impl {
   std::vector<uint8_t> guideMask(int32_t net) const;
   void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
   // True when a wire end at `at` (a wire of width `width` along x when `alongX`, ending towards
-  // `sign` = +1 / -1) should stop there: a rect of pin `pinRef` on `layer` holds the wire's whole
-  // cross-section at `at`, and no rect of it holds the end's usual half-width extension (that
-  // would stick out of the pin).
+  // `sign` = +1 / -1) should stop there: a rect of pin `pinRef` on `layer` holds `at` and reaches
+  // from it into the wire's body, and no rect of it holds the end's usual half-width extension
+  // (which then sticks out of the pin).
   bool pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bool alongX, int sign, Dbu width) const;
   void markNewRouting(int32_t net, const NetRouting& added);
   void applyPaths(NetState& ns, const MazeNet& mn, const std::vector<int32_t>& termOfSpec,

@@ -73,7 +73,9 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     // An end at one of the net's access points inside its pin stops there: the
     // pin holds it, and the usual half-width extension would only stick out of
     // the pin towards its neighbour (two stubs leaving facing pins of one cell
-    // made line ends 100 apart where 120 is needed).
+    // made line ends 100 apart where 120 is needed). Where the pin covers only a
+    // part of the wire's width at the point, the end edge left bare meets the
+    // pin at a concave corner: no line end either.
     const Dbu width = w.width > 0 ? w.width : ctx.tech.layer(w.layer).width;
     auto heldEnd = [&](int32_t node, int sign) {
       return (g.flags[node] & kAccess) && g.accessNet[node] == net && g.accessPin[node] >= 0 &&
@@ -93,13 +95,9 @@ bool RegionRouter::Impl::pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bo
   const Design& d = ctx.design;
   const PinRef& ref = d.pinRefs[pinRef];
   const Dbu lo = width / 2, hi = width - width / 2;
-  const Rect cross = alongX ? Rect{at.x, at.y - lo, at.x, at.y + hi} : Rect{at.x - lo, at.y, at.x + hi, at.y};
   const Dbu reach = sign * lo;  // the default extension beyond `at`
-  const Rect ext = alongX ? Rect{std::min(at.x, at.x + reach), cross.ylo, std::max(at.x, at.x + reach), cross.yhi}
-                          : Rect{cross.xlo, std::min(at.y, at.y + reach), cross.xhi, std::max(at.y, at.y + reach)};
-  auto holds = [](const Rect& r, const Rect& in) {
-    return r.xlo <= in.xlo && in.xhi <= r.xhi && r.ylo <= in.ylo && in.yhi <= r.yhi;
-  };
+  const Rect ext = alongX ? Rect{std::min(at.x, at.x + reach), at.y - lo, std::max(at.x, at.x + reach), at.y + hi}
+                          : Rect{at.x - lo, std::min(at.y, at.y + reach), at.x + hi, std::max(at.y, at.y + reach)};
   std::vector<Rect> rects;
   if (ref.isIo()) {
     const IoPin& pin = d.ioPins[ref.pin];
@@ -114,8 +112,10 @@ bool RegionRouter::Impl::pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bo
   }
   bool held = false;
   for (const Rect& r : rects) {
-    if (holds(r, ext)) return false;  // the extension stays inside the pin: nothing to gain
-    held = held || holds(r, cross);
+    if (r.xlo <= ext.xlo && ext.xhi <= r.xhi && r.ylo <= ext.ylo && ext.yhi <= r.yhi) return false;  // nothing to gain
+    // The rect holds the point and reaches into the wire's body from it.
+    if (!(r.xlo <= at.x && at.x <= r.xhi && r.ylo <= at.y && at.y <= r.yhi)) continue;
+    held = held || (alongX ? (sign > 0 ? r.xlo < at.x : at.x < r.xhi) : (sign > 0 ? r.ylo < at.y : at.y < r.yhi));
   }
   return held;
 }
