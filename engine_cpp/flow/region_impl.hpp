@@ -98,6 +98,7 @@ struct RegionRouter::Impl {
   // region_paths.cpp
   std::vector<uint8_t> guideMask(int32_t net) const;
   void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
+  void releaseLandings(const NetState& ns);
   // True when a wire end at `at` (a wire of width `width` along x when `alongX`, ending towards
   // `sign` = +1 / -1) should stop there: a rect of pin `pinRef` on `layer` holds `at` and reaches
   // from it into the wire's body, and no rect of it holds the end's usual half-width extension

@@ -205,6 +205,7 @@ void RegionRouter::Impl::applyPaths(NetState& ns, const MazeNet& mn, const std::
       if (done) break;
     }
   }
+  releaseLandings(ns);
   std::vector<MetalAnchor> anchors;
   std::vector<PinMetal> pinMetal;
   for (const TermSpec& s : ns.terms) {
@@ -224,6 +225,22 @@ void RegionRouter::Impl::applyPaths(NetState& ns, const MazeNet& mn, const std::
   fixMinArea(ctx.tech, ctx.design, ctx.tracks, box(), anchors, pinMetal, score, ns.result.added);
   markNewRouting(ns.task.net, ns.result.added);
   ns.paths = std::move(paths);
+}
+
+// The candidate's pins are joined: the landings above their access points
+// that it holds alone are free for the nets after it (the one its via took is
+// its routed metal now). Kept, they cost every later net the reserve penalty
+// for passing on Metal2 above a routed pin's unused points.
+void RegionRouter::Impl::releaseLandings(const NetState& ns) {
+  RegionGrid& g = *grid;
+  for (const TermSpec& s : ns.terms) {
+    if (s.pinRef < 0) continue;
+    for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
+      if (!(ap->dirs & kAccessUp) || ap->z + 1 >= g.nz()) continue;
+      const int32_t above = nodeAt(ap->at, ap->z + 1);
+      if (above >= 0 && g.reservedNet[above] == ns.task.net) g.flags[above] |= kReleased;
+    }
+  }
 }
 
 // A caller's node paths for net `index` (each step one maze edge), routed

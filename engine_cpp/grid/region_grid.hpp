@@ -27,6 +27,7 @@ enum NodeFlag : uint8_t {
   kTerminal = 4,  // a boundary terminal (where a net's outside routing ends)
   kLanding = 8,   // right above an access point: where its via lands (may be off-track)
   kAccessVia = 16,  // an access point whose via up pin access checked against fixed shapes
+  kReleased = 32,   // a landing whose net is routed here: other nets' wires pass it freely
 };
 
 // Observation node types (what the RL side sees).

@@ -125,7 +125,8 @@ int64_t Search::wireNodeCost(int32_t v) const {
     return cost;
   }
   if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
-  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
+  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net && !(g_.flags[v] & kReleased))
+    cost += c_.reservePenalty;
   const int32_t fo = g_.fixedOwner[v];
   if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
   if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
