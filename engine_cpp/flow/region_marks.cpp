@@ -84,6 +84,13 @@ void markRoutedNodes(const RouteContext& ctx, int32_t net, const NetRouting& r, 
   }
 }
 
+Dbu markerReach(const Tech& tech, const Marker& m) {
+  if (m.type != MarkerType::EndOfLine) return 0;
+  Dbu reach = 0;
+  for (const EolRule& r : tech.layer(m.layer).eolRules) reach = std::max(reach, r.space);
+  return reach;
+}
+
 void markMarker(const RouteContext& ctx, const MarkerCost& m, RegionGrid& g) {
   const Layer& l = ctx.tech.layer(m.layer);
   int zlo = l.routingIndex, zhi = l.routingIndex;
@@ -93,7 +100,7 @@ void markMarker(const RouteContext& ctx, const MarkerCost& m, RegionGrid& g) {
     if (zlo < 0) return;
   }
   for (int z = zlo; z <= zhi && z < g.nz(); ++z) {
-    const Dbu grow = ctx.tracks.layers[z].pitch;
+    const Dbu grow = ctx.tracks.layers[z].pitch + m.reach;
     int x0, x1, y0, y1;
     closedRange(g.xs(), m.box.xlo - grow, m.box.xhi + grow, x0, x1);
     closedRange(g.ys(), m.box.ylo - grow, m.box.yhi + grow, y0, y1);

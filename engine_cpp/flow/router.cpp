@@ -55,6 +55,9 @@ IterationPlan clampedPlan(IterationPlan p) {
   return p;
 }
 
+// The widest neighbourhood (in pitches of the marker's layer) a persistent marker rips up.
+constexpr int kMaxReachPitches = 8;
+
 class Flow {
  public:
   Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress,
@@ -85,7 +88,10 @@ class Flow {
       rep.offset = plan_.offset;
       runIteration(it, rep);
       prevMarkers_ = std::move(markers_);
+      prevAges_ = std::move(ages_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
+      ages_.assign(markers_.size(), 0);
+      for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
@@ -102,20 +108,28 @@ class Flow {
   }
 
  private:
-  // A marker of the last check that one of the check before it (same layer, touching) foretold.
-  bool persistent(const Marker& m) const {
-    if (!s_.ripNeighboursOfPersistent) return false;
-    return std::any_of(prevMarkers_.begin(), prevMarkers_.end(), [&](const Marker& p) {
-      return p.layer == m.layer && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi && p.box.ylo <= m.box.yhi &&
-             m.box.ylo <= p.box.yhi;
-    });
+  // How many checks in a row before this one had a marker on m's layer touching it (the
+  // previous check's markers with their own ages).
+  int age(const Marker& m) const {
+    int best = 0;
+    for (size_t j = 0; j < prevMarkers_.size(); ++j) {
+      const Marker& p = prevMarkers_[j];
+      if (p.layer == m.layer && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi && p.box.ylo <= m.box.yhi &&
+          m.box.ylo <= p.box.yhi)
+        best = std::max(best, 1 + prevAges_[j]);
+    }
+    return best;
   }
 
   std::vector<MarkerCost> markersNear(const Rect& box) const {
     std::vector<MarkerCost> out;
     const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};
-    for (const Marker& m : markers_) {
-      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty});
+    // A marker that two reroutes in a row left (age 2) also costs around the shapes that cause
+    // it beyond the pitch (markerReach: the line end in front of an EndOfLine marker's box).
+    for (size_t i = 0; i < markers_.size(); ++i) {
+      const Marker& m = markers_[i];
+      const Dbu reach = ages_[i] >= 2 ? markerReach(ctx_.tech, m) : 0;
+      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty, reach});
     }
     for (const MarkerCost& h : history_) {
       if (h.box.overlaps(win)) out.push_back(h);
@@ -152,7 +166,8 @@ class Flow {
     std::vector<int32_t> dirty;
     const int32_t nNets = static_cast<int32_t>(design_.nets.size());
     std::vector<NetShape> shapes;
-    for (const Marker& m : markers_) {
+    for (size_t i = 0; i < markers_.size(); ++i) {
+      const Marker& m = markers_[i];
       if (!m.box.overlaps(r.box)) continue;
       if (m.net1 >= 0 && m.net1 < nNets) dirty.push_back(m.net1);
       if (m.net2 >= 0 && m.net2 < nNets) dirty.push_back(m.net2);
@@ -164,12 +179,15 @@ class Flow {
       // but one, on its layer, touching it): ripping up only its two nets
       // puts them back in the same spot. Neighbours: other nets with
       // metal on the layer (on a cut layer: on the layer below) within two
-      // pitches of the marker.
-      if (m.type != MarkerType::MinArea && !persistent(m)) continue;
+      // pitches of the marker, two more for each earlier check in a row that
+      // had it (up to kMaxReachPitches).
+      const int persisted = s_.ripNeighboursOfPersistent ? ages_[i] : 0;
+      if (m.type != MarkerType::MinArea && persisted == 0) continue;
       const Layer& l = ctx_.tech.layer(m.layer);
       const LayerId below = l.routingIndex >= 0 || *m.layer == 0 ? m.layer : LayerId(*m.layer - 1);
       const Layer& pl = ctx_.tech.layer(below);
-      const Dbu reach = 2 * std::max(pl.pitchX, pl.pitchY);
+      const int pitches = std::min(kMaxReachPitches, 2 * std::max(1, persisted));
+      const Dbu reach = pitches * std::max(pl.pitchX, pl.pitchY);
       const Rect near{m.box.xlo - reach, m.box.ylo - reach, m.box.xhi + reach, m.box.yhi + reach};
       for (int32_t n : ctx_.netsNear(near)) {
         if (n == m.net1 || n == m.net2) continue;
@@ -303,6 +321,8 @@ class Flow {
   RouteContext ctx_;
   std::vector<Marker> markers_;
   std::vector<Marker> prevMarkers_;  // the check before markers_'s
+  std::vector<int> ages_;            // per marker of markers_: age()
+  std::vector<int> prevAges_;        // per marker of prevMarkers_
   std::vector<MarkerCost> history_;
 };
 
