@@ -179,8 +179,8 @@ class Flow {
       // but one, on its layer, touching it): ripping up only its two nets
       // puts them back in the same spot. Neighbours: other nets with
       // metal on the layer (on a cut layer: on the layer below) within two
-      // pitches of the marker, two more for each earlier check in a row that
-      // had it (up to kMaxReachPitches).
+      // pitches of the marker per earlier check in a row that had it (two
+      // for a fresh MinArea marker), kMaxReachPitches at most.
       const int persisted = s_.ripNeighboursOfPersistent ? ages_[i] : 0;
       if (m.type != MarkerType::MinArea && persisted == 0) continue;
       const Layer& l = ctx_.tech.layer(m.layer);
