@@ -83,7 +83,8 @@ void bindRouterSettings(nb::module_& m) {
       .def_rw("repair_penalty", &RouterSettings::repairPenalty,
               "Cost units per node near a region marker, times the repair round.")
       .def_rw("rip_neighbours_of_persistent", &RouterSettings::ripNeighboursOfPersistent,
-              "A marker that survived its nets' reroute also rips up the other nets with metal near it.");
+              "A marker that survived its nets' reroute also rips up the other nets with metal near it "
+              "(farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).");
 }
 
 }  // namespace

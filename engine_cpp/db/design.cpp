@@ -59,6 +59,21 @@ bool routeWireRect(const Tech& tech, const RouteWire& w, Rect& out) {
   return false;
 }
 
+void pinRefRects(const Tech& tech, const Design& design, int32_t pinRef, LayerId layer, std::vector<Rect>& out) {
+  const PinRef& ref = design.pinRefs[pinRef];
+  if (ref.isIo()) {
+    const IoPin& pin = design.ioPins[ref.pin];
+    const Transform t{pin.location, pin.orient, 0, 0};
+    for (const IoPinShape& s : pin.shapes)
+      if (s.layer == layer) out.push_back(t.apply(s.rect));
+    return;
+  }
+  const Component& comp = design.components[*ref.comp];
+  const Transform t = componentTransform(tech, comp);
+  for (const MacroShape& s : tech.macros[*comp.macro].pins[ref.pin].shapes)
+    if (s.layer == layer) placedShapeRects(s, t, out);
+}
+
 const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer) {
   if (net < 0 || static_cast<size_t>(net) >= design.nets.size()) return nullptr;
   const int rule = design.nets[net].ndr;

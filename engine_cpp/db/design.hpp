@@ -252,6 +252,8 @@ Transform componentTransform(const Tech& tech, const Component& comp);
 
 // All pin shapes of net `n` in design coordinates, in pin order.
 std::vector<PlacedShape> netPinShapes(const Tech& tech, const Design& design, NetId n);
+// The placed rects of pin ref `pinRef` on `layer` appended to `out` (DBU; polygons as rects).
+void pinRefRects(const Tech& tech, const Design& design, int32_t pinRef, LayerId layer, std::vector<Rect>& out);
 
 // The rectangle of a regular wire: its width (0 = the layer's default) and
 // its end extensions (-1 = half the width). False for a point wire or a wire

@@ -61,7 +61,7 @@ struct Run {
 
 // The uncovered runs of the Top sides of `rs` (frame coordinates), by coord then lo.
 std::vector<Run> topRuns(const std::vector<Rect>& rs) {
-  const std::vector<Dbu> xs = edgeXs(rs);
+  const std::vector<Dbu> xs = edgeCoords(rs, true);
   auto at = [&](Dbu x) { return size_t(std::lower_bound(xs.begin(), xs.end(), x) - xs.begin()); };
   std::vector<int32_t> byLo(rs.size()), byHi(rs.size());
   for (size_t i = 0; i < rs.size(); ++i) byLo[i] = byHi[i] = int32_t(i);

@@ -17,7 +17,7 @@ namespace {
 
 // Area of the union of rects (DBU^2): a sweep over x slabs.
 Area unionArea(const std::vector<Rect>& rects) {
-  const std::vector<Dbu> xs = edgeXs(rects);
+  const std::vector<Dbu> xs = edgeCoords(rects, true);
   Area total = 0;
   std::vector<std::pair<Dbu, Dbu>> spans;
   for (size_t k = 0; k + 1 < xs.size(); ++k) {

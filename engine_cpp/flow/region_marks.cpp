@@ -84,11 +84,9 @@ void markRoutedNodes(const RouteContext& ctx, int32_t net, const NetRouting& r, 
   }
 }
 
-Dbu markerReach(const Tech& tech, const Marker& m) {
-  if (m.type != MarkerType::EndOfLine) return 0;
-  Dbu reach = 0;
-  for (const EolRule& r : tech.layer(m.layer).eolRules) reach = std::max(reach, r.space);
-  return reach;
+Dbu markerReach(const RouteContext& ctx, const Marker& m) {
+  const int z = ctx.tech.layer(m.layer).routingIndex;
+  return m.type == MarkerType::EndOfLine && z >= 0 ? ctx.rules.eolSpace[z] : 0;
 }
 
 void markMarker(const RouteContext& ctx, const MarkerCost& m, RegionGrid& g) {

@@ -22,9 +22,9 @@ struct MarkerCost {
 };
 
 // How much farther than a pitch the nodes that caused marker `m` may lie from its box: for an
-// EndOfLine marker the largest end-of-line spacing of its layer (its box is in front of the line
-// end, which lies up to that far away), else 0.
-Dbu markerReach(const Tech& tech, const Marker& m);
+// EndOfLine marker the largest end-of-line spacing of its layer (FootprintRules::eolSpace: its
+// box is in front of the line end, which lies up to that far away), else 0.
+Dbu markerReach(const RouteContext& ctx, const Marker& m);
 
 // Per routing layer: routed metal (rect in DBU, net) of every net marked in
 // the grid (committed routing near the box and the region's new routing), so

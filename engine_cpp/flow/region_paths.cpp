@@ -92,24 +92,12 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
 
 bool RegionRouter::Impl::pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bool alongX, int sign,
                                      Dbu width) const {
-  const Design& d = ctx.design;
-  const PinRef& ref = d.pinRefs[pinRef];
   const Dbu lo = width / 2, hi = width - width / 2;
   const Dbu reach = sign * lo;  // the default extension beyond `at`
   const Rect ext = alongX ? Rect{std::min(at.x, at.x + reach), at.y - lo, std::max(at.x, at.x + reach), at.y + hi}
                           : Rect{at.x - lo, std::min(at.y, at.y + reach), at.x + hi, std::max(at.y, at.y + reach)};
   std::vector<Rect> rects;
-  if (ref.isIo()) {
-    const IoPin& pin = d.ioPins[ref.pin];
-    const Transform t{pin.location, pin.orient, 0, 0};
-    for (const IoPinShape& s : pin.shapes)
-      if (s.layer == layer) rects.push_back(t.apply(s.rect));
-  } else {
-    const Component& comp = d.components[*ref.comp];
-    const Transform t = componentTransform(ctx.tech, comp);
-    for (const MacroShape& s : ctx.tech.macros[*comp.macro].pins[ref.pin].shapes)
-      if (s.layer == layer) placedShapeRects(s, t, rects);
-  }
+  pinRefRects(ctx.tech, ctx.design, pinRef, layer, rects);
   bool held = false;
   for (const Rect& r : rects) {
     if (r.xlo <= ext.xlo && ext.xhi <= r.xhi && r.ylo <= ext.ylo && ext.yhi <= r.yhi) return false;  // nothing to gain

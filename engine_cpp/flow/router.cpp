@@ -91,7 +91,8 @@ class Flow {
       prevAges_ = std::move(ages_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
       ages_.assign(markers_.size(), 0);
-      for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
+      if (s_.ripNeighboursOfPersistent)
+        for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
@@ -128,7 +129,7 @@ class Flow {
     // it beyond the pitch (markerReach: the line end in front of an EndOfLine marker's box).
     for (size_t i = 0; i < markers_.size(); ++i) {
       const Marker& m = markers_[i];
-      const Dbu reach = ages_[i] >= 2 ? markerReach(ctx_.tech, m) : 0;
+      const Dbu reach = ages_[i] >= 2 ? markerReach(ctx_, m) : 0;
       if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty, reach});
     }
     for (const MarkerCost& h : history_) {
@@ -181,12 +182,11 @@ class Flow {
       // metal on the layer (on a cut layer: on the layer below) within two
       // pitches of the marker per earlier check in a row that had it (two
       // for a fresh MinArea marker), kMaxReachPitches at most.
-      const int persisted = s_.ripNeighboursOfPersistent ? ages_[i] : 0;
-      if (m.type != MarkerType::MinArea && persisted == 0) continue;
+      if (m.type != MarkerType::MinArea && ages_[i] == 0) continue;
       const Layer& l = ctx_.tech.layer(m.layer);
       const LayerId below = l.routingIndex >= 0 || *m.layer == 0 ? m.layer : LayerId(*m.layer - 1);
       const Layer& pl = ctx_.tech.layer(below);
-      const int pitches = std::min(kMaxReachPitches, 2 * std::max(1, persisted));
+      const int pitches = std::min(kMaxReachPitches, 2 * std::max(1, ages_[i]));
       const Dbu reach = pitches * std::max(pl.pitchX, pl.pitchY);
       const Rect near{m.box.xlo - reach, m.box.ylo - reach, m.box.xhi + reach, m.box.yhi + reach};
       for (int32_t n : ctx_.netsNear(near)) {

@@ -49,7 +49,8 @@ struct RouterSettings {
   int firstRepairRounds = 0;       // the same in iteration 0 (0 measured best: later iterations mend as much, for a fraction of the time)
   int64_t repairPenalty = 3000;    // cost units per node near a region marker, times the repair round
   uint64_t searchSeed = 1;         // seeds the search of an iteration whose plan asks for one
-  // A marker that survived its nets' reroute also rips up the other nets with metal near it.
+  // A marker that survived its nets' reroute also rips up the other nets with metal near it
+  // (farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).
   bool ripNeighboursOfPersistent = true;
 };
 

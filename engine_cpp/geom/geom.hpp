@@ -56,23 +56,15 @@ struct Rect {
   friend bool operator==(const Rect&, const Rect&) = default;
 };
 
-// The distinct x (y) coordinates of the rects' edges, ascending: the slab and strip boundaries of
-// a sweep over them.
-inline std::vector<Dbu> edgeXs(const std::vector<Rect>& rects) {
-  std::vector<Dbu> xs;
-  xs.reserve(2 * rects.size());
-  for (const Rect& r : rects) xs.insert(xs.end(), {r.xlo, r.xhi});
-  std::sort(xs.begin(), xs.end());
-  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
-  return xs;
-}
-inline std::vector<Dbu> edgeYs(const std::vector<Rect>& rects) {
-  std::vector<Dbu> ys;
-  ys.reserve(2 * rects.size());
-  for (const Rect& r : rects) ys.insert(ys.end(), {r.ylo, r.yhi});
-  std::sort(ys.begin(), ys.end());
-  ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
-  return ys;
+// The distinct x (alongX) or y coordinates of the rects' edges, ascending: the slab and strip
+// boundaries of a sweep over them.
+inline std::vector<Dbu> edgeCoords(const std::vector<Rect>& rects, bool alongX) {
+  std::vector<Dbu> cs;
+  cs.reserve(2 * rects.size());
+  for (const Rect& r : rects) cs.insert(cs.end(), {alongX ? r.xlo : r.ylo, alongX ? r.xhi : r.yhi});
+  std::sort(cs.begin(), cs.end());
+  cs.erase(std::unique(cs.begin(), cs.end()), cs.end());
+  return cs;
 }
 
 // The eight DEF/LEF orientations. N is the identity; FS = mirrored about the

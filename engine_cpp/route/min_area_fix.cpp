@@ -7,7 +7,7 @@
 namespace xroute {
 
 Area unionArea(const std::vector<Rect>& rects) {
-  const std::vector<Dbu> xs = edgeXs(rects), ys = edgeYs(rects);
+  const std::vector<Dbu> xs = edgeCoords(rects, true), ys = edgeCoords(rects, false);
   Area total = 0;
   for (size_t i = 0; i + 1 < xs.size(); ++i) {
     for (size_t j = 0; j + 1 < ys.size(); ++j) {

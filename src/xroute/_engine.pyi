@@ -433,7 +433,7 @@ class RouterSettings:
     @property
     def rip_neighbours_of_persistent(self) -> bool:
         """
-        A marker that survived its nets' reroute also rips up the other nets with metal near it.
+        A marker that survived its nets' reroute also rips up the other nets with metal near it (farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).
         """
 
     @rip_neighbours_of_persistent.setter
