@@ -31,9 +31,19 @@ namespace {
 
 // Views into the grid owned by the Region object `owner` (kept alive by them).
 template <class T>
-nb::object gridView(const RegionGrid& g, std::vector<T>& v, nb::handle owner) {
+nb::object gridView(const RegionGrid& g, NodeArray<T>& v, nb::handle owner) {
   const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
   return nb::cast(nb::ndarray<nb::numpy, T>(v.data(), 3, shape, owner), nb::rv_policy::reference);
+}
+
+// A copy of a sparse per-node field (`at(node)` at every node), shaped like gridView's.
+template <class T, class At>
+nb::object gridCopy(const RegionGrid& g, At&& at) {
+  auto* data = new std::vector<T>(g.size());
+  for (size_t n = 0; n < g.size(); ++n) (*data)[n] = at(static_cast<int32_t>(n));
+  nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
+  const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
+  return nb::cast(nb::ndarray<nb::numpy, T>(data->data(), 3, shape, owner));
 }
 
 nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
@@ -303,8 +313,8 @@ void bindRegionGrid(RegionClass& cls) {
             d["wire_use"] = gridView(g, g.wireUse, self);
             d["via_use"] = gridView(g, g.viaUse, self);
             d["marker_cost"] = gridView(g, g.markerCost, self);
-            d["access_net"] = gridView(g, g.accessNet, self);
-            d["access_pin"] = gridView(g, g.accessPin, self);
+            d["access_net"] = gridCopy<int32_t>(g, [&](int32_t n) { return g.accessNet(n); });
+            d["access_pin"] = gridCopy<int32_t>(g, [&](int32_t n) { return g.accessPin(n); });
             d["routed_net"] = gridView(g, g.routedNet, self);
             return d;
           },
@@ -315,7 +325,7 @@ void bindRegionGrid(RegionClass& cls) {
           "fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a "
           "wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay "
           "valid while the Region lives and change as nets are routed (for a region lent to a policy: during that "
-          "call only).")
+          "call only); access_net and access_pin, which do not change once the region is made, are copies.")
       .def(
           "node_type",
           [](const RegionHandle& h) {

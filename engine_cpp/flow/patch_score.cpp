@@ -78,7 +78,7 @@ int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMet
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const int32_t v = g.index(x, y, z);
-      const int32_t owner = g.reservedNet[v];
+      const int32_t owner = g.reservedNet(v);
       if (owner == kOwnerNone || owner == net) continue;
       const Rect landing = m.translated(g.point(v));
       if (drc::rectGap(landing, r) < drc::metalNeed(layer, r, landing)) crowded += kBlocksAccess;
@@ -89,7 +89,7 @@ int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMet
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const int32_t v = g.index(x, y, z);
-      if (g.accessNet[v] >= 0 && g.accessNet[v] != net) bad += 5;  // keep clear of others' pin access
+      if (g.accessNet(v) >= 0 && g.accessNet(v) != net) bad += 5;  // keep clear of others' pin access
     }
   return bad;
 }

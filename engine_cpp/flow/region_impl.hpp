@@ -28,7 +28,7 @@ struct TermSpec {
 
 // A NONDEFAULTRULE net's extra node costs, cost units per node (MazeNet::ruleWire / ruleVia).
 struct RuleCosts {
-  std::vector<int32_t> wire, via;
+  NodeArray<int32_t> wire, via;
 };
 
 struct NetState {
@@ -38,7 +38,7 @@ struct NetState {
   bool routed = false;
   RegionNetResult result;
   std::vector<std::vector<int32_t>> paths;  // the node paths its routing was made of
-  std::vector<uint8_t> guide;               // guideMask, built on first use by moves()
+  NodeArray<uint8_t> guide;                 // guideMask, built on first use by moves()
   RuleCosts rule;                           // ruleCosts for moves(), as of ruleAt routed nets
   bool hasRule = false;
   size_t ruleAt = std::numeric_limits<size_t>::max();
@@ -96,7 +96,7 @@ struct RegionRouter::Impl {
   Rect guideSpan(int32_t net) const;
 
   // region_paths.cpp
-  std::vector<uint8_t> guideMask(int32_t net) const;
+  NodeArray<uint8_t> guideMask(int32_t net) const;
   void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
   void releaseLandings(const NetState& ns);
   // True when a wire end at `at` (a wire of width `width` along x when `alongX`, ending towards

@@ -18,10 +18,10 @@ int32_t RegionRouter::Impl::nodeAt(Point p, int z) const {
   return grid->index(x, y, z);
 }
 
-std::vector<uint8_t> RegionRouter::Impl::guideMask(int32_t net) const {
+NodeArray<uint8_t> RegionRouter::Impl::guideMask(int32_t net) const {
   const RegionGrid& g = *grid;
   const Design& d = ctx.design;
-  std::vector<uint8_t> mask(g.size(), 0);
+  NodeArray<uint8_t> mask(g.size(), 0);
   if (!d.hasGuides() || d.guideStart[net] == d.guideStart[net + 1]) {
     std::fill(mask.begin(), mask.end(), 1);
     return mask;
@@ -52,7 +52,7 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
       const ViaId rule = ctx.netRules.via(net, zl);  // a NONDEFAULTRULE's via, else the default
       ViaId via = rule.valid() ? rule : ctx.vias.cuts[zl].via;
       auto it = apVia.find(lower);
-      if (it != apVia.end() && g.accessNet[lower] == net) via = it->second;
+      if (it != apVia.end() && g.accessNet(lower) == net) via = it->second;
       out.vias.push_back({ViaRef{*via, false}, g.point(u)});
       ++i;
       continue;
@@ -78,8 +78,8 @@ void RegionRouter::Impl::addPathGeometry(int32_t net, const std::vector<int32_t>
     // pin at a concave corner: no line end either.
     const Dbu width = w.width > 0 ? w.width : ctx.tech.layer(w.layer).width;
     auto heldEnd = [&](int32_t node, int sign) {
-      return (g.flags[node] & kAccess) && g.accessNet[node] == net && g.accessPin[node] >= 0 &&
-             pinHoldsEnd(g.accessPin[node], w.layer, g.point(node), alongX, sign, width);
+      return (g.flags[node] & kAccess) && g.accessNet(node) == net && g.accessPin(node) >= 0 &&
+             pinHoldsEnd(g.accessPin(node), w.layer, g.point(node), alongX, sign, width);
     };
     // (Not where the path turns on the layer: the corner's square needs the extensions.)
     const int fwd = (alongX ? w.to.x >= w.from.x : w.to.y >= w.from.y) ? 1 : -1;
@@ -153,7 +153,7 @@ void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
   std::vector<int32_t> termOfSpec;
   MazeNet mn = mazeNet(ns, termOfSpec);
   if (mn.terminals.size() < 2) return;
-  const std::vector<uint8_t> mask = guideMask(ns.task.net);
+  const NodeArray<uint8_t> mask = guideMask(ns.task.net);
   mn.inGuide = &mask;
   RuleCosts rule;
   if (ruleCosts(ns.task.net, rule)) {
@@ -226,7 +226,7 @@ void RegionRouter::Impl::releaseLandings(const NetState& ns) {
     for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
       if (!(ap->dirs & kAccessUp) || ap->z + 1 >= g.nz()) continue;
       const int32_t above = nodeAt(ap->at, ap->z + 1);
-      if (above >= 0 && g.reservedNet[above] == ns.task.net) g.flags[above] |= kReleased;
+      if (above >= 0 && g.reservedNet(above) == ns.task.net) g.flags[above] |= kReleased;
     }
   }
 }

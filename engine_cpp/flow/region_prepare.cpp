@@ -189,8 +189,7 @@ void RegionRouter::Impl::markTerminals(NetState& ns) {
       if (v < 0) continue;
       if (s.crossing < 0) {
         g.flags[v] |= s.pinRef >= 0 ? kAccess : kTerminal;
-        g.accessNet[v] = ns.task.net;
-        if (s.pinRef >= 0) g.accessPin[v] = s.pinRef;
+        g.setAccess(v, ns.task.net, s.pinRef);
       }
     }
   }
@@ -200,7 +199,7 @@ void RegionRouter::Impl::markTerminals(NetState& ns) {
       const int32_t v = nodeAt(ap->at, ap->z);
       if (v >= 0) {
         const uint8_t planar = ap->dirs & (kAccessEast | kAccessWest | kAccessNorth | kAccessSouth);
-        g.accessExits[v] = g.accessExits[v] == kAnyExit ? planar : uint8_t(g.accessExits[v] | planar);
+        g.addAccessExits(v, planar);
       }
       if (v >= 0 && ap->upVia.valid()) apVia.emplace(v, ap->upVia);
       if (v >= 0 && (ap->dirs & kAccessUp) && ap->z + 1 < g.nz()) {
@@ -208,7 +207,7 @@ void RegionRouter::Impl::markTerminals(NetState& ns) {
         const int32_t above = nodeAt(ap->at, ap->z + 1);
         if (above >= 0) {
           g.flags[above] |= kLanding;
-          claimOwner(g.reservedNet[above], ns.task.net);
+          g.reserveLanding(above, ns.task.net);
         }
       }
     }

@@ -37,7 +37,7 @@ bool RegionRouter::Impl::ruleCosts(int32_t net, RuleCosts& out) const {
       const Dbu minSpace = std::max(space, ctx.netRules.spacing(other, z));
       const MetalReach reach = metalReach(ctx.rules, z, r, half, minSpace, landing);
       forMetalReach(g, reach, z, [&](int32_t n, bool via) {
-        if (fixed && (g.accessNet[n] == net || g.reservedNet[n] == net)) return;
+        if (fixed && (g.accessNet(n) == net || g.reservedNet(n) == net)) return;
         addCost((via ? out.via : out.wire)[n], cost);
       });
     };

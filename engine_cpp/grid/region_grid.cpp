@@ -64,11 +64,7 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
   cutUse.assign(n, 0);
   cutUseOwner.assign(n, kOwnerNone);
   markerCost.assign(n, 0);
-  accessNet.assign(n, -1);
-  accessPin.assign(n, -1);
-  accessExits.assign(n, kAnyExit);
   routedNet.assign(n, -1);
-  reservedNet.assign(n, -1);
 
   horizontal_.resize(nz_);
   for (int z = 0; z < nz_; ++z) {
@@ -87,6 +83,38 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
     }
   }
 }
+
+template <class... Arrays>
+constexpr size_t elementBytes() {
+  return (sizeof(typename Arrays::value_type) + ...);
+}
+static_assert(elementBytes<decltype(RegionGrid::flags), decltype(RegionGrid::fixedOwner),
+                           decltype(RegionGrid::viaFixedOwner), decltype(RegionGrid::wireUse),
+                           decltype(RegionGrid::wireUseOwner), decltype(RegionGrid::viaUse),
+                           decltype(RegionGrid::viaUseOwner), decltype(RegionGrid::cutUse),
+                           decltype(RegionGrid::cutUseOwner), decltype(RegionGrid::markerCost),
+                           decltype(RegionGrid::routedNet)>() == kGridBytesPerNode,
+              "a per-node array was added or changed: update kGridBytesPerNode");
+
+const RegionGrid::Sparse RegionGrid::kNoSparse{};
+
+const RegionGrid::Sparse& RegionGrid::lookup(int32_t n) const {
+  const auto it = sparse_.find(n);
+  return it == sparse_.end() ? kNoSparse : it->second;
+}
+
+void RegionGrid::setAccess(int32_t n, int32_t net, int32_t pin) {
+  Sparse& s = sparse_[n];
+  s.net = net;
+  if (pin >= 0) s.pin = pin;
+}
+
+void RegionGrid::addAccessExits(int32_t n, uint8_t exits) {
+  Sparse& s = sparse_[n];
+  s.exits = s.exits == kAnyExit ? exits : uint8_t(s.exits | exits);
+}
+
+void RegionGrid::reserveLanding(int32_t n, int32_t net) { claimOwner(sparse_[n].reserved, net); }
 
 int RegionGrid::xIndex(Dbu x) const { return exactIndex(xs_, x); }
 int RegionGrid::yIndex(Dbu y) const { return exactIndex(ys_, y); }

@@ -14,9 +14,11 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "geom/geom.hpp"
+#include "grid/node_array.hpp"
 #include "grid/tracks.hpp"
 
 namespace xroute {
@@ -30,16 +32,17 @@ enum NodeFlag : uint8_t {
   kReleased = 32,   // a landing whose net is routed here: other nets' wires pass it freely
 };
 
-// Observation node types (what the RL side sees).
-enum class NodeType : uint8_t { NotExist = 0, Blockage = 1, Normal = 2, Access = 3 };
-
-// Largest grid a region may have (about 85 bytes a node with the search
-// buffers): a bigger one means the region size is far too large for the design.
-inline constexpr size_t kMaxRegionNodes = 20'000'000;
-
 inline constexpr int32_t kOwnerNone = -1;   // no shape claims the node
 inline constexpr int32_t kOwnerMixed = -2;  // shapes of several nets / an obstruction
 inline constexpr uint8_t kAnyExit = 0xFF;   // accessExits of a node that is no access point
+
+// Observation node types (what the RL side sees).
+enum class NodeType : uint8_t { NotExist = 0, Blockage = 1, Normal = 2, Access = 3 };
+
+// Largest grid a region may have (kGridBytesPerNode plus the maze's
+// kSearchBytesPerNode a node): a bigger one means the region size is far too
+// large for the design.
+inline constexpr size_t kMaxRegionNodes = 20'000'000;
 
 class RegionGrid {
  public:
@@ -75,31 +78,57 @@ class RegionGrid {
   // (dir = +1 / -1), or -1. Wrong-way edges go there.
   int32_t wrongWayNeighbour(int32_t n, int dir) const;
 
-  // Per node (size nx*ny*nz):
-  std::vector<uint8_t> flags;          // NodeFlag bits; 0 = the node does not exist
-  std::vector<int32_t> fixedOwner;     // wire here would violate a fixed shape: kOwnerNone, the one net allowed, or kOwnerMixed
-  std::vector<int32_t> viaFixedOwner;  // same for a via's metal landing here
-  std::vector<uint16_t> wireUse;       // routed shapes a wire here would violate
-  std::vector<int32_t> wireUseOwner;   // kOwnerNone, the only net those shapes belong to, or kOwnerMixed
-  std::vector<uint16_t> viaUse;        // routed shapes a via's metal here would violate
-  std::vector<int32_t> viaUseOwner;
-  std::vector<uint16_t> cutUse;        // routed cuts a via from z to z+1 here would violate
-  std::vector<int32_t> cutUseOwner;
-  std::vector<int32_t> markerCost;     // cost units from DRC markers and history
-  std::vector<int32_t> accessNet;      // net of the access point / terminal here, else -1
-  std::vector<int32_t> accessPin;      // pinRef of the access point here, else -1
-  // At an access point: the planar exits pin access found legal there (AccessDir bits
-  // 2 east, 4 west, 8 north, 16 south, of every point of the node); kAnyExit elsewhere.
-  std::vector<uint8_t> accessExits;
-  std::vector<int32_t> routedNet;      // net whose new route uses the node, else -1
-  std::vector<int32_t> reservedNet;    // node right above an access point: kept for that net's via, else -1
+  // Per node (size nx*ny*nz; kGridBytesPerNode in all):
+  NodeArray<uint8_t> flags;          // NodeFlag bits; 0 = the node does not exist
+  NodeArray<int32_t> fixedOwner;     // wire here would violate a fixed shape: kOwnerNone, the one net allowed, or kOwnerMixed
+  NodeArray<int32_t> viaFixedOwner;  // same for a via's metal landing here
+  NodeArray<uint16_t> wireUse;       // routed shapes a wire here would violate
+  NodeArray<int32_t> wireUseOwner;   // kOwnerNone, the only net those shapes belong to, or kOwnerMixed
+  NodeArray<uint16_t> viaUse;        // routed shapes a via's metal here would violate
+  NodeArray<int32_t> viaUseOwner;
+  NodeArray<uint16_t> cutUse;        // routed cuts a via from z to z+1 here would violate
+  NodeArray<int32_t> cutUseOwner;
+  NodeArray<int32_t> markerCost;     // cost units from DRC markers and history
+  NodeArray<int32_t> routedNet;      // net whose new route uses the node, else -1
+
+  // Only at nodes flagged kAccess, kTerminal or kLanding (a few per net), so
+  // kept apart from the per-node arrays; the defaults everywhere else.
+  // Net of the access point / terminal at n, else -1.
+  int32_t accessNet(int32_t n) const { return sparse(n).net; }
+  // PinRef of the access point at n, else -1.
+  int32_t accessPin(int32_t n) const { return sparse(n).pin; }
+  // At an access point: the planar exits pin access found legal there (AccessDir bits 2 east,
+  // 4 west, 8 north, 16 south, of every point of the node); kAnyExit elsewhere.
+  uint8_t accessExits(int32_t n) const { return sparse(n).exits; }
+  // At a landing right above an access point: the net whose via it is kept for (kOwnerMixed when
+  // several), else kOwnerNone.
+  int32_t reservedNet(int32_t n) const { return sparse(n).reserved; }
+  void setAccess(int32_t n, int32_t net, int32_t pin);  // pin < 0 keeps the pin there
+  void addAccessExits(int32_t n, uint8_t exits);
+  void reserveLanding(int32_t n, int32_t net);
 
  private:
+  struct Sparse {
+    int32_t net = -1;
+    int32_t pin = -1;
+    int32_t reserved = kOwnerNone;
+    uint8_t exits = kAnyExit;
+  };
+  static constexpr uint8_t kSparseFlags = kAccess | kTerminal | kLanding;
+  static const Sparse kNoSparse;
+  // The search asks at every step: the flag test stays inline, the lookup runs at flagged nodes only.
+  const Sparse& sparse(int32_t n) const { return (flags[n] & kSparseFlags) ? lookup(n) : kNoSparse; }
+  const Sparse& lookup(int32_t n) const;
+
   Rect box_;                   // DBU
   int nz_ = 0;
   std::vector<Dbu> xs_, ys_;   // DBU, sorted unique
   std::vector<uint8_t> horizontal_;
+  std::unordered_map<int32_t, Sparse> sparse_;  // node -> its access fields (set ones only)
 };
+
+// Bytes of the per-node arrays above, held by a static_assert in region_grid.cpp.
+inline constexpr size_t kGridBytesPerNode = 35;
 
 // Adds `net` to an owner field: none -> net, same net -> net, other -> mixed.
 inline void claimOwner(int32_t& owner, int32_t net) {

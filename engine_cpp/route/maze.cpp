@@ -13,6 +13,19 @@ namespace {
 
 constexpr int64_t kInf = std::numeric_limits<int64_t>::max() / 4;
 
+static_assert(sizeof(decltype(MazeWorkspace::cost)::value_type) + sizeof(decltype(MazeWorkspace::parent)::value_type) +
+                      sizeof(decltype(MazeWorkspace::visit)::value_type) +
+                      sizeof(decltype(MazeWorkspace::inTree)::value_type) +
+                      sizeof(decltype(MazeWorkspace::terminalSlot)::value_type) ==
+                  kSearchBytesPerNode,
+              "a per-node search array was added or changed: update kSearchBytesPerNode");
+
+// A terminal node of the net being routed: its terminal and the cost of ending there.
+struct TerminalSlot {
+  int32_t terminal;
+  int64_t exitCost;
+};
+
 class Search {
  public:
   Search(const RegionGrid& g, const MazeCosts& c, const MazeNet& net, MazeWorkspace& ws)
@@ -37,7 +50,7 @@ class Search {
     return len * (guideFactor(u) + guideFactor(v)) / 2;
   }
   int64_t viaGuideFactor(int32_t u, int32_t v) const { return std::max(guideFactor(u), guideFactor(v)); }
-  bool own(int32_t v) const { return g_.accessNet[v] == net_.net; }
+  bool own(int32_t v) const { return g_.accessNet(v) == net_.net; }
   // A planar step u -> v in direction `dir` leaves u that way and v the
   // opposite way: at the net's own access points, a way pin access did not
   // find legal (its stub that way adds a marker) costs like a fixed shape.
@@ -45,8 +58,8 @@ class Search {
     static constexpr uint8_t kOut[kMoveCount] = {0, 0, 8, 16, 2, 4};   // AccessDir bit leaving that way
     static constexpr uint8_t kBack[kMoveCount] = {0, 0, 16, 8, 4, 2};  // ... and arriving from it
     int64_t cost = 0;
-    if (own(u) && !(g_.accessExits[u] & kOut[dir])) cost += c_.fixedPenalty;
-    if (own(v) && !(g_.accessExits[v] & kBack[dir])) cost += c_.fixedPenalty;
+    if (own(u) && !(g_.accessExits(u) & kOut[dir])) cost += c_.fixedPenalty;
+    if (own(v) && !(g_.accessExits(v) & kBack[dir])) cost += c_.fixedPenalty;
     return cost;
   }
   int64_t heuristic(int32_t v) const;
@@ -65,7 +78,20 @@ class Search {
   const MazeCosts& c_;
   const MazeNet& net_;
   MazeWorkspace& ws_;
+  bool seen(int32_t v) const { return ws_.visit[v] >= ws_.stamp; }
+  bool closed(int32_t v) const { return ws_.visit[v] == ws_.stamp + 1; }
+  // The terminal whose node v is (-1: none) and the cost of ending there.
+  int32_t terminalOf(int32_t v) const {
+    const int32_t k = ws_.terminalSlot[v];
+    return k < 0 ? -1 : slots_[k].terminal;
+  }
+  int64_t exitCostAt(int32_t v) const {
+    const int32_t k = ws_.terminalSlot[v];
+    return k < 0 ? 0 : slots_[k].exitCost;
+  }
+
   std::vector<uint8_t> reached_;     // per terminal
+  std::vector<TerminalSlot> slots_;  // per node of a terminal (terminalSlot): the first terminal naming it
   std::vector<Rect> termBox_;        // per terminal, DBU
 };
 
@@ -124,9 +150,9 @@ int64_t Search::wireNodeCost(int32_t v) const {
     if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
     return cost;
   }
-  if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
-  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net && !(g_.flags[v] & kReleased))
-    cost += c_.reservePenalty;
+  if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
+  const int32_t reserved = g_.reservedNet(v);
+  if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased)) cost += c_.reservePenalty;
   const int32_t fo = g_.fixedOwner[v];
   if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
   if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
@@ -144,12 +170,13 @@ int64_t Search::viaNodeCost(int32_t v) const {
     if (!(g_.flags[v] & kAccessVia) && fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
     return cost;
   }
-  if (g_.accessNet[v] >= 0) cost += c_.reservePenalty;
-  if (g_.reservedNet[v] >= 0 && g_.reservedNet[v] != net_.net) cost += c_.reservePenalty;
+  if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
+  const int32_t reserved = g_.reservedNet(v);
+  if (reserved >= 0 && reserved != net_.net) cost += c_.reservePenalty;
   // Above the net's own access point, pin access has checked the via
   // exactly; the footprint's bloated estimate would only forbid it.
   const int32_t fo = g_.viaFixedOwner[v];
-  if (fo != kOwnerNone && fo != net_.net && g_.reservedNet[v] != net_.net) cost += c_.fixedPenalty;
+  if (fo != kOwnerNone && fo != net_.net && reserved != net_.net) cost += c_.fixedPenalty;
   if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
   return cost;
 }
@@ -170,32 +197,36 @@ int64_t Search::heuristic(int32_t v) const {
 void Search::relax(int32_t u, int32_t v, int64_t step,
                    std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>,
                                        std::greater<>>& open) {
-  if (ws_.closed[v] == ws_.stamp) return;
+  if (closed(v)) return;
   int64_t nc = ws_.cost[u] + step;
-  const int32_t t = ws_.terminalOf[v];
-  if (t >= 0 && !reached_[t]) nc += ws_.exitCost[v];
-  if (ws_.seen[v] == ws_.stamp && ws_.cost[v] <= nc) return;
-  ws_.seen[v] = ws_.stamp;
+  const int32_t k = ws_.terminalSlot[v];
+  if (k >= 0 && !reached_[slots_[k].terminal]) nc += slots_[k].exitCost;
+  if (seen(v) && ws_.cost[v] <= nc) return;
+  ws_.visit[v] = ws_.stamp;
   ws_.cost[v] = nc;
   ws_.parent[v] = u;
   open.push({nc + heuristic(v), v});
 }
 
 int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCost) {
-  ++ws_.stamp;
+  if (ws_.stamp >= std::numeric_limits<uint32_t>::max() - 2) {  // stamps used up: start again
+    std::fill(ws_.visit.begin(), ws_.visit.end(), 0);
+    ws_.stamp = 0;
+  }
+  ws_.stamp += 2;
   std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>, std::greater<>> open;
   for (int32_t s : sources) {
-    ws_.seen[s] = ws_.stamp;
-    ws_.cost[s] = withExitCost ? ws_.exitCost[s] : 0;
+    ws_.visit[s] = ws_.stamp;
+    ws_.cost[s] = withExitCost ? exitCostAt(s) : 0;
     ws_.parent[s] = -1;
     open.push({ws_.cost[s] + heuristic(s), s});
   }
   while (!open.empty()) {
     const auto [f, u] = open.top();
     open.pop();
-    if (ws_.closed[u] == ws_.stamp) continue;
-    ws_.closed[u] = ws_.stamp;
-    const int32_t t = ws_.terminalOf[u];
+    if (closed(u)) continue;
+    ws_.visit[u] = ws_.stamp + 1;
+    const int32_t t = terminalOf(u);
     if (t >= 0 && !reached_[t]) return u;
 
     forEachEdge(u, [&](int32_t v, int64_t step, int) { relax(u, v, step, open); });
@@ -227,13 +258,14 @@ void Search::reachShared(std::vector<int32_t>& tree) {
 int Search::run(std::vector<std::vector<int32_t>>& paths) {
   const size_t n = g_.size();
   if (ws_.cost.size() != n) {
+    // A bigger region: the old arrays go first (two generations at once would double them).
+    // A smaller one reuses them, which spares the kernel mapping and clearing new pages.
+    if (n > ws_.cost.capacity()) ws_ = MazeWorkspace{};
     ws_.cost.assign(n, 0);
     ws_.parent.assign(n, -1);
-    ws_.seen.assign(n, 0);
-    ws_.closed.assign(n, 0);
+    ws_.visit.assign(n, 0);
     ws_.inTree.assign(n, 0);
-    ws_.terminalOf.assign(n, -1);
-    ws_.exitCost.assign(n, 0);
+    ws_.terminalSlot.assign(n, -1);
     ws_.stamp = 0;
     ws_.treeStamp = 0;
   }
@@ -241,14 +273,15 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
   if (nt < 2) return 0;
   reached_.assign(nt, 0);
   termBox_.assign(nt, Rect{});
+  slots_.clear();
   for (size_t t = 0; t < nt; ++t) {
     bool first = true;
     const MazeTerminal& term = net_.terminals[t];
     for (size_t k = 0; k < term.nodes.size(); ++k) {
       const int32_t v = term.nodes[k];
-      if (ws_.terminalOf[v] < 0) {
-        ws_.terminalOf[v] = static_cast<int32_t>(t);
-        ws_.exitCost[v] = k < term.exitCost.size() ? term.exitCost[k] : 0;
+      if (ws_.terminalSlot[v] < 0) {
+        ws_.terminalSlot[v] = static_cast<int32_t>(slots_.size());
+        slots_.push_back({static_cast<int32_t>(t), k < term.exitCost.size() ? term.exitCost[k] : 0});
       }
       const Point p = g_.point(v);
       const Rect r{p.x, p.y, p.x, p.y};
@@ -286,7 +319,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
           ws_.inTree[v] = ws_.treeStamp;
           tree.push_back(v);
         }
-        const int32_t t = ws_.terminalOf[v];
+        const int32_t t = terminalOf(v);
         if (t >= 0 && !net_.terminals[t].joined) reached_[t] = 1;  // a free crossing: this alternative
       }
       reachShared(tree);
@@ -295,10 +328,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
   }
   for (size_t t = 0; t < nt; ++t) {
     if (!reached_[t]) ++unreached;
-    for (int32_t v : net_.terminals[t].nodes) {
-      ws_.terminalOf[v] = -1;
-      ws_.exitCost[v] = 0;
-    }
+    for (int32_t v : net_.terminals[t].nodes) ws_.terminalSlot[v] = -1;
   }
   return unreached;
 }

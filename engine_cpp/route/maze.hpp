@@ -37,25 +37,26 @@ struct MazeTerminal {
 struct MazeNet {
   int32_t net = -1;
   std::vector<MazeTerminal> terminals;
-  const std::vector<uint8_t>* inGuide = nullptr;  // per node, 1 = inside the net's guides; null = all
+  const NodeArray<uint8_t>* inGuide = nullptr;  // per node, 1 = inside the net's guides; null = all
   // A net of a NONDEFAULTRULE: per node, the cost units its wider wire (ruleWire) or its via's
   // metal kept at the rule's spacing (ruleVia) adds there; null for a net of the default rule.
-  const std::vector<int32_t>* ruleWire = nullptr;
-  const std::vector<int32_t>* ruleVia = nullptr;
+  const NodeArray<int32_t>* ruleWire = nullptr;
+  const NodeArray<int32_t>* ruleVia = nullptr;
 };
 
-// Reusable search buffers (one per thread).
+// Reusable search buffers (one per thread), per node of the region's grid.
 struct MazeWorkspace {
-  std::vector<int64_t> cost;
-  std::vector<int32_t> parent;
-  std::vector<uint32_t> seen;     // stamp: cost/parent valid
-  std::vector<uint32_t> closed;   // stamp: expanded
-  std::vector<uint32_t> inTree;   // stamp of the net being routed
-  std::vector<int32_t> terminalOf;
-  std::vector<int64_t> exitCost;
-  uint32_t stamp = 0;
+  NodeArray<int64_t> cost;
+  NodeArray<int32_t> parent;
+  // Search round r (stamps 2r, 2r + 1): 2r = cost / parent valid, 2r + 1 = expanded too.
+  NodeArray<uint32_t> visit;
+  NodeArray<uint32_t> inTree;      // stamp of the net being routed
+  NodeArray<int32_t> terminalSlot;  // index into the route's terminal slots, else -1
+  uint32_t stamp = 0;               // the round's even stamp
   uint32_t treeStamp = 0;
 };
+// Bytes of MazeWorkspace's per-node arrays, held by a static_assert in maze.cpp.
+inline constexpr size_t kSearchBytesPerNode = 24;
 
 // Appends one node path per round to `paths` (from a tree node to a terminal
 // node, inclusive). Returns the number of terminals that could not be

@@ -558,7 +558,7 @@ class Region:
 
     def grid(self) -> dict:
         """
-        Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags (1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point, 16 access point whose via up pin access checked, 32 landing of a net already routed here: other nets' wires pass it freely; 0 = no node), fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay valid while the Region lives and change as nets are routed (for a region lent to a policy: during that call only).
+        Live numpy views of the region grid, each shaped (nz, ny, nx) (xs, ys: grid coordinates in DBU): flags (1 on track, 2 access point, 4 boundary terminal, 8 via landing above an access point, 16 access point whose via up pin access checked, 32 landing of a net already routed here: other nets' wires pass it freely; 0 = no node), fixed_owner / via_fixed_owner (-1 free, net allowed, -2 blocked), wire_use / via_use (routed shapes a wire / via there would violate), marker_cost, access_net, access_pin, routed_net (-1 = none). They stay valid while the Region lives and change as nets are routed (for a region lent to a policy: during that call only); access_net and access_pin, which do not change once the region is made, are copies.
         """
 
     def node_type(self) -> NDArray[numpy.uint8]:
