@@ -84,7 +84,12 @@ void bindRouterSettings(nb::module_& m) {
               "Cost units per node near a region marker, times the repair round.")
       .def_rw("rip_neighbours_of_persistent", &RouterSettings::ripNeighboursOfPersistent,
               "A marker that survived its nets' reroute also rips up the other nets with metal near it "
-              "(farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).");
+              "(farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).")
+      .def_rw("late_search_markers", &RouterSettings::lateSearchMarkers,
+              "Once a check leaves this many markers or fewer (and some), the next iterations run the victims "
+              "search (when the run's policy is the heuristic).")
+      .def_rw("late_search_budget", &RouterSettings::lateSearchBudget,
+              "Trial routings per region of that late search (0: never; at most max_search_budget).");
 }
 
 }  // namespace

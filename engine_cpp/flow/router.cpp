@@ -71,7 +71,8 @@ class Flow {
     RouteOutcome out;
     const int iterations = std::clamp(s_.iterations, 1, kMaxIterations);
     for (int it = 0; it < iterations; ++it) {
-      const IterationPlan rule = rulePlan(s_, it);
+      IterationPlan rule = rulePlan(s_, it);
+      if (lateSearch(it)) rule.searchBudget = std::clamp(s_.lateSearchBudget, 1, kMaxSearchBudget);
       plan_ = planner_ ? clampedPlan(planner_(out.iterations, rule)) : rule;
       if (plan_.stop && it > 0) break;  // iteration 0 always runs: it routes every net
       search_.reset();
@@ -109,6 +110,12 @@ class Flow {
   }
 
  private:
+  // Whether iteration `it` runs the late search (RouterSettings::lateSearchBudget).
+  bool lateSearch(int it) const {
+    return it > 0 && s_.lateSearchBudget > 0 && !markers_.empty() &&
+           static_cast<int>(markers_.size()) <= s_.lateSearchMarkers && policy_.name() == "heuristic";
+  }
+
   // How many checks in a row before this one had a marker on m's layer touching it (the
   // previous check's markers with their own ages).
   int age(const Marker& m) const {

@@ -52,6 +52,12 @@ struct RouterSettings {
   // A marker that survived its nets' reroute also rips up the other nets with metal near it
   // (farther the longer it lasts; an EndOfLine one of age 2+ also costs nodes farther out).
   bool ripNeighboursOfPersistent = true;
+  // Once a check leaves lateSearchMarkers markers or fewer (and some), the next iterations order
+  // their regions' nets by the victims search with lateSearchBudget trial routings per region
+  // (IterationPlan::searchBudget), when the run's policy is the heuristic; 0 = never. Those regions
+  // are few by then: on ispd19_test3 the search costs about 1 s an iteration (flow/README.md).
+  int lateSearchMarkers = 50;
+  int lateSearchBudget = 4;
 };
 
 // What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,

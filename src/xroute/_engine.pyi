@@ -439,6 +439,24 @@ class RouterSettings:
     @rip_neighbours_of_persistent.setter
     def rip_neighbours_of_persistent(self, arg: bool, /) -> None: ...
 
+    @property
+    def late_search_markers(self) -> int:
+        """
+        Once a check leaves this many markers or fewer (and some), the next iterations run the victims search (when the run's policy is the heuristic).
+        """
+
+    @late_search_markers.setter
+    def late_search_markers(self, arg: int, /) -> None: ...
+
+    @property
+    def late_search_budget(self) -> int:
+        """
+        Trial routings per region of that late search (0: never; at most max_search_budget).
+        """
+
+    @late_search_budget.setter
+    def late_search_budget(self, arg: int, /) -> None: ...
+
 POLICY_FEATURES: tuple = ...
 
 def route(db: Database, region_size: int | None = None, iterations: int | None = None, threads: int | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, settings: RouterSettings | None = None, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None, planner: object | None = None) -> dict:
