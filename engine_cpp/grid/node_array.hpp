@@ -5,8 +5,10 @@
 // Why: a region's arrays are tens of MB and live for one region. Through
 // malloc, glibc raises its mmap threshold after the first such block is
 // freed, so later ones come from the per-thread arenas and stay in the
-// process after the region (ispd19_test3, 2 threads: peak RSS 383 MB through
-// malloc, 300 MB with the blocks mapped; measured 2026-11-27).
+// process after the region. ispd19_test3's iteration 0, 2 threads, measured
+// 2026-11-27: peak RSS 383 MB through malloc, 300 MB with glibc's threshold
+// held at 1 MiB (MALLOC_MMAP_THRESHOLD_), 249 MB with these arrays and the
+// smaller nodes of region_grid.hpp and route/maze.hpp.
 #pragma once
 
 #include <cstddef>
