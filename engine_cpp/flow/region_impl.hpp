@@ -23,6 +23,11 @@ struct TermSpec {
   std::vector<int64_t> exitCost;  // free crossings: per point, distance from where the far side wants it
   bool joined = true;
   int32_t pinRef = -1;        // pin terminals
+  // A pin's metal on other layers than its access points': nodes at an access point's x, y on a
+  // layer where a rect of the pin holds a wire ending there. Reaching one reaches the pin; they
+  // are no access points (no flags, no owner): the maze judges them like any node.
+  std::vector<Point> touch;   // DBU
+  std::vector<int> touchZs;   // routing index per point
   int32_t crossing = -1;      // free crossing terminals (iteration 0)
 };
 
@@ -89,6 +94,7 @@ struct RegionRouter::Impl {
   void gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>& ys);
   void takeSeed();
   void freeCrossingNodes(const Crossing& c, TermSpec& spec);
+  void pinTouches(TermSpec& spec) const;
   void markRouted();
   void markMarkers();
   void markTerminals(NetState& ns);

@@ -129,6 +129,10 @@ MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& te
         const int32_t v = nodeAt(s.points[k], s.zs[k]);
         if (v >= 0 && g.exists(v)) nodes.push_back({v, k < s.exitCost.size() ? s.exitCost[k] : 0});
       }
+      for (size_t k = 0; k < s.touch.size(); ++k) {
+        const int32_t v = nodeAt(s.touch[k], s.touchZs[k]);
+        if (v >= 0 && g.exists(v)) nodes.push_back({v, 0});
+      }
       std::sort(nodes.begin(), nodes.end());
       nodes.erase(std::unique(nodes.begin(), nodes.end(),
                               [](const auto& a, const auto& b) { return a.first == b.first; }),

@@ -21,7 +21,9 @@ void RegionRouter::Impl::gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>&
         spec.points.push_back(ap->at);
         spec.zs.push_back(ap->z);
       }
-      if (!spec.points.empty()) ns.terms.push_back(std::move(spec));
+      if (spec.points.empty()) continue;
+      pinTouches(spec);
+      ns.terms.push_back(std::move(spec));
     }
     if (t.ripup) {
       std::vector<BoundaryTerminal> bterms;
@@ -58,6 +60,31 @@ void RegionRouter::Impl::gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>&
       }
     }
     nets.push_back(std::move(ns));
+  }
+}
+
+// TermSpec::touch of a pin terminal: on every layer but the access point's, where a rect of the pin
+// holds the point with a wire's half width to spare each way (so a wire ending there, with its
+// extension, lies on the pin). A macro pin drawn on Metal1-4 with access points on Metal4 is then
+// reached by a wire arriving on Metal3 without a via through the macro's cut obstruction.
+void RegionRouter::Impl::pinTouches(TermSpec& spec) const {
+  std::vector<Rect> rects;
+  for (int z = 0; z < static_cast<int>(ctx.tracks.layers.size()); ++z) {
+    rects.clear();
+    pinRefRects(ctx.tech, ctx.design, spec.pinRef, ctx.tracks.layers[z].layer, rects);
+    if (rects.empty()) continue;
+    const Dbu half = ctx.rules.wireHalf[z];
+    for (size_t k = 0; k < spec.points.size(); ++k) {
+      if (spec.zs[k] == z) continue;
+      const Point p = spec.points[k];
+      for (const Rect& r : rects) {
+        if (p.x - half >= r.xlo && p.x + half <= r.xhi && p.y - half >= r.ylo && p.y + half <= r.yhi) {
+          spec.touch.push_back(p);
+          spec.touchZs.push_back(z);
+          break;
+        }
+      }
+    }
   }
 }
 
