@@ -24,7 +24,7 @@ struct TermSpec {
   bool joined = true;
   int32_t pinRef = -1;        // pin terminals
   // A pin's metal on other layers than its access points': nodes at an access point's x, y on a
-  // layer where a rect of the pin holds a wire ending there. Reaching one reaches the pin; they
+  // layer where a rect of the pin holds a wire ending there (along the layer). Reaching one reaches the pin; they
   // are no access points (no flags, no owner): the maze judges them like any node.
   std::vector<Point> touch;   // DBU
   std::vector<int> touchZs;   // routing index per point

@@ -64,8 +64,9 @@ void RegionRouter::Impl::gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>&
 }
 
 // TermSpec::touch of a pin terminal: on every layer but the access point's, where a rect of the pin
-// holds the point with a wire's half width to spare each way (so a wire ending there, with its
-// extension, lies on the pin). A macro pin drawn on Metal1-4 with access points on Metal4 is then
+// holds the point and a wire's half width from it along the layer (so a wire ending there, with its
+// extension, ends on the pin; across, the wire may overhang a narrower pin, as it may where it
+// passes over one). A macro pin drawn on Metal1-4 with access points on Metal4 is then
 // reached by a wire arriving on Metal3 without a via through the macro's cut obstruction.
 void RegionRouter::Impl::pinTouches(TermSpec& spec) const {
   std::vector<Rect> rects;
@@ -74,11 +75,13 @@ void RegionRouter::Impl::pinTouches(TermSpec& spec) const {
     pinRefRects(ctx.tech, ctx.design, spec.pinRef, ctx.tracks.layers[z].layer, rects);
     if (rects.empty()) continue;
     const Dbu half = ctx.rules.wireHalf[z];
+    const bool h = ctx.tracks.layers[z].horizontal;
+    const Dbu hx = h ? half : 0, hy = h ? 0 : half;
     for (size_t k = 0; k < spec.points.size(); ++k) {
       if (spec.zs[k] == z) continue;
       const Point p = spec.points[k];
       for (const Rect& r : rects) {
-        if (p.x - half >= r.xlo && p.x + half <= r.xhi && p.y - half >= r.ylo && p.y + half <= r.yhi) {
+        if (p.x - hx >= r.xlo && p.x + hx <= r.xhi && p.y - hy >= r.ylo && p.y + hy <= r.yhi) {
           spec.touch.push_back(p);
           spec.touchZs.push_back(z);
           break;
