@@ -24,8 +24,9 @@ struct TermSpec {
   bool joined = true;
   int32_t pinRef = -1;        // pin terminals
   // A pin's metal on other layers than its access points': nodes at an access point's x, y on a
-  // layer where a rect of the pin holds a wire ending there (along the layer). Reaching one reaches the pin; they
-  // are no access points (no flags, no owner): the maze judges them like any node.
+  // layer where a rect of the pin holds a wire ending there (along the layer). Reaching one
+  // reaches the pin; they are no access points (no flags, no owner): the maze judges them like
+  // any node.
   std::vector<Point> touch;   // DBU
   std::vector<int> touchZs;   // routing index per point
   int32_t crossing = -1;      // free crossing terminals (iteration 0)
