@@ -351,6 +351,10 @@ IterationPlan rulePlan(const RouterSettings& s, int iteration) {
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
                          const RouteProgress& progress, const ColourHook& beforeColour,
                          const IterationPlanner& planner) {
+  // The routing is replaced: cleared before the context is made, whose pin access judges IO pins
+  // (and access vias among the neighbours) against every shape of the design. Routing left from an
+  // earlier run, or read from the DEF, gave a second route of the same design other access points.
+  for (Net& n : design.nets) n.routing = NetRouting{};
   return Flow(tech, design, settings, policy, progress, beforeColour, planner).run();
 }
 
