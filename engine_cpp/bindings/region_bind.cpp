@@ -36,14 +36,14 @@ nb::object gridView(const RegionGrid& g, NodeArray<T>& v, nb::handle owner) {
   return nb::cast(nb::ndarray<nb::numpy, T>(v.data(), 3, shape, owner), nb::rv_policy::reference);
 }
 
-// A copy of a sparse per-node field (`at(node)` at every node), shaped like gridView's.
+// A copy of `at(node)` at every node (a sparse field, a derived one), shaped like gridView's.
 template <class T, class At>
-nb::object gridCopy(const RegionGrid& g, At&& at) {
+nb::ndarray<nb::numpy, T> gridCopy(const RegionGrid& g, At&& at) {
   auto* data = new std::vector<T>(g.size());
   for (size_t n = 0; n < g.size(); ++n) (*data)[n] = at(static_cast<int32_t>(n));
   nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<T>*>(p); });
   const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
-  return nb::cast(nb::ndarray<nb::numpy, T>(data->data(), 3, shape, owner));
+  return nb::ndarray<nb::numpy, T>(data->data(), 3, shape, owner);
 }
 
 nb::object coordView(const std::vector<Dbu>& v, nb::handle owner) {
@@ -313,8 +313,8 @@ void bindRegionGrid(RegionClass& cls) {
             d["wire_use"] = gridView(g, g.wireUse, self);
             d["via_use"] = gridView(g, g.viaUse, self);
             d["marker_cost"] = gridView(g, g.markerCost, self);
-            d["access_net"] = gridCopy<int32_t>(g, [&](int32_t n) { return g.accessNet(n); });
-            d["access_pin"] = gridCopy<int32_t>(g, [&](int32_t n) { return g.accessPin(n); });
+            d["access_net"] = nb::cast(gridCopy<int32_t>(g, [&](int32_t n) { return g.accessNet(n); }));
+            d["access_pin"] = nb::cast(gridCopy<int32_t>(g, [&](int32_t n) { return g.accessPin(n); }));
             d["routed_net"] = gridView(g, g.routedNet, self);
             return d;
           },
@@ -330,11 +330,7 @@ void bindRegionGrid(RegionClass& cls) {
           "node_type",
           [](const RegionHandle& h) {
             const RegionGrid& g = h.get().grid();
-            auto* data = new std::vector<uint8_t>(g.size());
-            for (size_t n = 0; n < g.size(); ++n) (*data)[n] = static_cast<uint8_t>(g.nodeType(static_cast<int32_t>(n)));
-            nb::capsule owner(data, [](void* p) noexcept { delete static_cast<std::vector<uint8_t>*>(p); });
-            const size_t shape[3] = {size_t(g.nz()), size_t(g.ny()), size_t(g.nx())};
-            return nb::ndarray<nb::numpy, uint8_t>(data->data(), 3, shape, owner);
+            return gridCopy<uint8_t>(g, [&](int32_t n) { return static_cast<uint8_t>(g.nodeType(n)); });
           },
           "uint8[nz, ny, nx]: 0 NOTEXIST, 1 BLOCKAGE, 2 NORMAL, 3 ACCESS (a copy).")
       .def(

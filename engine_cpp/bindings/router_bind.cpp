@@ -169,7 +169,6 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
       routePolicy(policy, seed, policyFn, needsRegion, policyNext, searchBudget, searchWidth);
   finishSettings(s, schedule);
   s.searchSeed = seed;
-  if (!policyFn.is_none() || !policyNext.is_none()) s.lateSearchBudget = 0;  // a Python policy runs every iteration
   const int dbu = db.design.dbuPerMicron;
   RouteProgress cb;
   if (!progress.is_none()) {

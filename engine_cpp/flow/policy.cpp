@@ -17,6 +17,7 @@ class HeuristicPolicy final : public NetOrderPolicy {
     return idx;
   }
   std::string name() const override { return "heuristic"; }
+  bool builtinHeuristic() const override { return true; }
 };
 
 class RandomPolicy final : public NetOrderPolicy {

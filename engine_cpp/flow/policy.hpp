@@ -67,6 +67,9 @@ class NetOrderPolicy {
     return o.empty() ? -1 : o.front();
   }
   virtual std::string name() const = 0;
+  // The built-in heuristic order, which the flow's late search may stand in for
+  // (RouterSettings::lateSearchBudget); every other policy orders every iteration itself.
+  virtual bool builtinHeuristic() const { return false; }
 };
 
 // Smallest terminal bounding box (half perimeter) first, then more

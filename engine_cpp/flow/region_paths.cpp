@@ -102,7 +102,7 @@ bool RegionRouter::Impl::pinHoldsEnd(int32_t pinRef, LayerId layer, Point at, bo
   for (const Rect& r : rects) {
     if (r.xlo <= ext.xlo && ext.xhi <= r.xhi && r.ylo <= ext.ylo && ext.yhi <= r.yhi) return false;  // nothing to gain
     // The rect holds the point and reaches into the wire's body from it.
-    if (!(r.xlo <= at.x && at.x <= r.xhi && r.ylo <= at.y && at.y <= r.yhi)) continue;
+    if (!r.contains(at)) continue;
     held = held || (alongX ? (sign > 0 ? r.xlo < at.x : at.x < r.xhi) : (sign > 0 ? r.ylo < at.y : at.y < r.yhi));
   }
   return held;

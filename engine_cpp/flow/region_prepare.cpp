@@ -81,7 +81,7 @@ void RegionRouter::Impl::pinTouches(TermSpec& spec) const {
       if (spec.zs[k] == z) continue;
       const Point p = spec.points[k];
       for (const Rect& r : rects) {
-        if (p.x - hx >= r.xlo && p.x + hx <= r.xhi && p.y - hy >= r.ylo && p.y + hy <= r.yhi) {
+        if (r.contains(Point{p.x - hx, p.y - hy}) && r.contains(Point{p.x + hx, p.y + hy})) {
           spec.touch.push_back(p);
           spec.touchZs.push_back(z);
           break;

@@ -65,9 +65,8 @@ class Flow {
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
 
+  // The design's routing is empty (routeDesign cleared it before the context was made).
   RouteOutcome run() {
-    for (Net& n : design_.nets) n.routing = NetRouting{};
-    ctx_.rebuildRoutedIndex();
     RouteOutcome out;
     const int iterations = std::clamp(s_.iterations, 1, kMaxIterations);
     for (int it = 0; it < iterations; ++it) {
@@ -113,7 +112,7 @@ class Flow {
   // Whether iteration `it` runs the late search (RouterSettings::lateSearchBudget).
   bool lateSearch(int it) const {
     return it > 0 && s_.lateSearchBudget > 0 && !markers_.empty() &&
-           static_cast<int>(markers_.size()) <= s_.lateSearchMarkers && policy_.name() == "heuristic";
+           static_cast<int>(markers_.size()) <= s_.lateSearchMarkers && policy_.builtinHeuristic();
   }
 
   // How many checks in a row before this one had a marker on m's layer touching it (the
