@@ -84,16 +84,16 @@ def test_a_plan_of_region_sizes_routes_as_the_same_static_schedule() -> None:
     assert [(it.region_size, it.offset) for it in result.iterations] == steps[: len(result.iterations)]
 
 
-def test_weights_and_repair_rounds_reach_the_engine(default: tuple[str, Any]) -> None:
-    """Each of the plan's weights changes the routing when it changes: at region size 1 the marker and
-    history weights from the second iteration on; at size 2 the other-net weight and two repair
-    rounds in every iteration (the sample's later regions at size 1 have no other-net conflict or
-    region marker for them to act on, nor, since open line ends across the tracks are in the
-    footprint, at size 2 for the other-net weight)."""
+def test_weights_and_repair_rounds_reach_the_engine() -> None:
+    """Each of the plan's weights changes the routing when it changes, at region size 2: the marker and
+    history weights from the second iteration on, the other-net weight and two repair rounds in
+    every iteration (at size 1 the sample's later regions have no other-net conflict or region
+    marker for them to act on, and since a rip-up no longer joins again what its kept routing
+    joins, the markers left there do not move for these weights either)."""
+    at_two = routed(size=2)[0]
     for change in ({"marker_penalty": 0}, {"history_penalty": 10**7}):
         policy = CallableSchedule(lambda h, r, change=change: change if h else None, name="weights")
-        assert routed(schedule_policy=policy)[0] != default[0], change
-    at_two = routed(size=2)[0]
+        assert routed(size=2, schedule_policy=policy)[0] != at_two, change
     no_use = CallableSchedule(lambda h, r: {"use_penalty": 0}, name="no-use")
     repair = CallableSchedule(lambda h, r: {"repair_rounds": 2}, name="repair")
     assert routed(size=2, schedule_policy=no_use)[0] != at_two

@@ -16,6 +16,7 @@
 #include "bindings/database_parts.hpp"
 #include "db/compare.hpp"
 #include "db/database.hpp"
+#include "flow/dangling.hpp"
 #include "io/readers.hpp"
 
 namespace nb = nanobind;
@@ -379,6 +380,31 @@ void bindDatabaseRouting(DatabaseClass& cls) {
           "net"_a,
           "A net's routing: wires (layer, x1, y1, x2, y2, width, ext_from, ext_to; width 0 = default, ext -1 = "
           "half width), vias (name, x, y), patches (layer, xlo, ylo, xhi, yhi); DBU.")
+      .def(
+          "trim_dangling",
+          [](Database& d) {
+            TrimCounts sum;
+            {
+              nb::gil_scoped_release release;
+              for (int32_t n = 0; n < static_cast<int32_t>(d.design.nets.size()); ++n) {
+                const TrimCounts c = trimDangling(d.tech, d.design, NetId(n));
+                sum.wires += c.wires, sum.shortened += c.shortened, sum.vias += c.vias;
+                sum.patches += c.patches, sum.length += c.length;
+              }
+            }
+            nb::dict r;
+            r["wires"] = sum.wires;
+            r["shortened"] = sum.shortened;
+            r["vias"] = sum.vias;
+            r["patches"] = sum.patches;
+            r["length_dbu"] = sum.length;
+            return r;
+          },
+          "Cuts every net's routing back to what joins its pins, as the flow does after each iteration:\n"
+          "a wire's end past the last thing it meets on its centre line (another wire or via of the net,\n"
+          "or a pin shape) goes back to it, or the wire goes; a via with nothing on one of its layers\n"
+          "goes; then a patch touching none of the net's metal goes. Returns {wires (removed), shortened,\n"
+          "vias, patches, length_dbu (centre line removed)}.")
       .def(
           "write_def",
           [](const Database& d, const std::string& path) {

@@ -89,7 +89,9 @@ void bindRouterSettings(nb::module_& m) {
               "Once a check leaves this many markers or fewer (and some), the next iterations run the victims "
               "search (when the run's policy is the heuristic).")
       .def_rw("late_search_budget", &RouterSettings::lateSearchBudget,
-              "Trial routings per region of that late search (0: never; at most max_search_budget).");
+              "Trial routings per region of that late search (0: never; at most max_search_budget).")
+      .def_rw("trim_dangling", &RouterSettings::trimDangling,
+              "After each iteration's routing, cut every net's routing back to what joins its pins.");
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "flow/centre_lines.hpp"
+#include "geom/union_find.hpp"
+
 namespace xroute {
 
 namespace {
@@ -82,6 +85,51 @@ NetRouting clipOutside(const Tech& tech, const Design& design, const NetRouting&
     if (!box.contains(c)) kept.patches.push_back(p);
   }
   return kept;
+}
+
+std::vector<int32_t> keptConductors(const Tech& tech, const Design& design, int32_t pins, const NetRouting& kept,
+                                    const std::vector<PinContact>& contacts, const std::vector<ConductorQuery>& queries) {
+  // Nodes: the pins, then one per kept wire and via; a via is a point wire on each of its layers.
+  CentreLineIndex index;
+  std::vector<LayerPoint> ends;  // the pieces' vertices
+  std::vector<int32_t> endPiece;
+  int32_t node = pins;
+  for (const RouteWire& w : kept.wires) {
+    const int z = tech.layer(w.layer).routingIndex;
+    if (z < 0) continue;
+    index.add(node, z, w.from, w.to);
+    for (const Point& p : {w.from, w.to}) {
+      ends.push_back({z, p});
+      endPiece.push_back(node);
+    }
+    ++node;
+  }
+  for (const RouteVia& v : kept.vias) {
+    if (!v.via.valid()) continue;
+    const Via& via = design.via(tech, v.via);
+    for (const LayerId l : {via.bottom, via.top}) {
+      const int z = tech.layer(l).routingIndex;
+      if (z < 0) continue;
+      index.add(node, z, v.at, v.at);
+      ends.push_back({z, v.at});
+      endPiece.push_back(node);
+    }
+    ++node;
+  }
+  UnionFind sets(static_cast<size_t>(node));
+  for (size_t k = 0; k < ends.size(); ++k) index.at(ends[k].z, ends[k].at, [&](int32_t e) { sets.unite(endPiece[k], e); });
+  for (const PinContact& c : contacts) {
+    if (c.pin < 0 || c.pin >= pins) continue;
+    index.at(c.point.z, c.point.at, [&](int32_t e) { sets.unite(c.pin, e); });
+  }
+  std::vector<int32_t> out;
+  out.reserve(queries.size());
+  for (const ConductorQuery& q : queries) {
+    int32_t found = q.pin >= 0 && q.pin < pins ? q.pin : -1;
+    if (q.pin < 0) index.at(q.point.z, q.point.at, [&](int32_t e) { found = found < 0 ? e : found; });
+    out.push_back(found < 0 ? -1 : sets.find(found));
+  }
+  return out;
 }
 
 bool routingTouches(const NetRouting& routing, const Rect& box) {

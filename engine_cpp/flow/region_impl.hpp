@@ -30,6 +30,9 @@ struct TermSpec {
   std::vector<Point> touch;   // DBU
   std::vector<int> touchZs;   // routing index per point
   int32_t crossing = -1;      // free crossing terminals (iteration 0)
+  // Rip-up: the conductor of the kept routing (or pin) the terminal lies on (keptConductors); -1
+  // none. Terminals of one conductor are joined outside the box already (MazeTerminal::group).
+  int32_t group = -1;
 };
 
 // A NONDEFAULTRULE net's extra node costs, cost units per node (MazeNet::ruleWire / ruleVia).
@@ -69,6 +72,7 @@ struct RegionRouter::Impl {
 
   // region_prepare.cpp
   void prepare();
+  void groupKeptTerminals(NetState& ns) const;
   // routedNearby of each candidate: nodes in its terminal box that new routing uses.
   void refreshNearby(std::vector<NetCandidate>& cands) const;
 

@@ -124,6 +124,7 @@ MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& te
       if (s.joined != (pass == 0)) continue;
       MazeTerminal mt;
       mt.joined = s.joined;
+      mt.group = s.joined ? s.group : -1;
       std::vector<std::pair<int32_t, int64_t>> nodes;
       for (size_t k = 0; k < s.points.size(); ++k) {
         const int32_t v = nodeAt(s.points[k], s.zs[k]);
@@ -260,18 +261,26 @@ void RegionRouter::Impl::routeNetPaths(int32_t index, std::vector<std::vector<in
   ns.routed = true;
   order.push_back(index);
   ns.result.routed = true;
-  int unreached = 0;
-  bool first = true;  // as in the maze, the tree starts on the first terminal with nodes
-  for (const MazeTerminal& t : mn.terminals) {
+  // As in the maze, the tree starts on the first terminal with nodes; a terminal is reached when a
+  // path touches it or another terminal of its group (one conductor beyond the box).
+  std::vector<uint8_t> hit(mn.terminals.size(), 0);
+  bool first = true;
+  for (size_t k = 0; k < mn.terminals.size(); ++k) {
+    const MazeTerminal& t = mn.terminals[k];
     if (t.nodes.empty()) continue;
-    if (first) {
-      first = false;
-      continue;
-    }
-    bool hit = false;
+    hit[k] = first;
+    first = false;
     for (const auto& p : paths)
-      for (int32_t v : p) hit = hit || std::binary_search(t.nodes.begin(), t.nodes.end(), v);
-    if (!hit) ++unreached;
+      for (int32_t v : p) hit[k] = hit[k] || std::binary_search(t.nodes.begin(), t.nodes.end(), v);
+  }
+  int unreached = 0;
+  for (size_t k = 0; k < mn.terminals.size(); ++k) {
+    const MazeTerminal& t = mn.terminals[k];
+    if (t.nodes.empty() || hit[k]) continue;
+    bool viaGroup = false;
+    for (size_t j = 0; j < mn.terminals.size() && t.group >= 0; ++j)
+      viaGroup = viaGroup || (hit[j] && mn.terminals[j].group == t.group);
+    if (!viaGroup) ++unreached;
   }
   ns.result.unreached = mn.terminals.size() < 2 ? 0 : unreached;
   if (paths.empty() || mn.terminals.size() < 2) return;

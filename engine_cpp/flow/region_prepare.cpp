@@ -38,6 +38,7 @@ void RegionRouter::Impl::gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>&
         }
         ns.terms.push_back(std::move(spec));
       }
+      groupKeptTerminals(ns);
     }
     if (plan) {
       for (int32_t cid : t.crossings) {
@@ -61,6 +62,29 @@ void RegionRouter::Impl::gatherTerminals(std::vector<Dbu>& xs, std::vector<Dbu>&
     }
     nets.push_back(std::move(ns));
   }
+}
+
+// TermSpec::group of a ripped-up net's terminals: a net passing the box twice, joined beyond it,
+// has boundary terminals that its kept routing joins already; the new route joins only the rest.
+void RegionRouter::Impl::groupKeptTerminals(NetState& ns) const {
+  const int32_t net = ns.task.net;
+  const int32_t first = ctx.design.netPinStart[net];
+  const int32_t pins = ctx.design.netPinStart[net + 1] - first;
+  std::vector<PinContact> contacts;
+  for (int32_t p = 0; p < pins; ++p)
+    for (const AccessPoint* ap = ctx.access.begin(first + p); ap != ctx.access.end(first + p); ++ap)
+      contacts.push_back({p, {ap->z, ap->at}});
+  std::vector<ConductorQuery> queries;
+  for (const TermSpec& s : ns.terms) {
+    ConductorQuery q;
+    if (s.pinRef >= 0) q.pin = s.pinRef - first;
+    else if (!s.points.empty()) q.point = {s.zs[0], s.points[0]};
+    queries.push_back(q);
+  }
+  NetRouting kept = ns.kept;
+  for (const Rect& other : ns.task.reroutedElsewhere) kept = clipOutside(ctx.tech, ctx.design, kept, other, nullptr);
+  const std::vector<int32_t> groups = keptConductors(ctx.tech, ctx.design, pins, kept, contacts, queries);
+  for (size_t t = 0; t < ns.terms.size(); ++t) ns.terms[t].group = groups[t];
 }
 
 // TermSpec::touch of a pin terminal: on every layer but the access point's, where a rect of the pin

@@ -26,6 +26,9 @@ struct RegionNetTask {
   bool ripup = false;                     // remove its routing inside the box first
   std::vector<int32_t> pins;              // pinRefs whose access points inside the box are terminals
   std::vector<int32_t> crossings;         // iteration 0: CrossingPlan ids touching this region
+  // Rip-up: the boxes of the other regions that reroute this net at the same time. Its routing
+  // there may change, so it joins none of the terminals here (TermSpec::group).
+  std::vector<Rect> reroutedElsewhere;
 };
 
 struct RegionTask {

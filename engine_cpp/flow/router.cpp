@@ -7,8 +7,10 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <unordered_map>
 
 #include "flow/crossings.hpp"
+#include "flow/dangling.hpp"
 #include "flow/region_router.hpp"
 #include "flow/regions.hpp"
 #include "flow/search_policy.hpp"
@@ -87,6 +89,7 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
+      if (s_.trimDangling) trimAll();
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
@@ -258,12 +261,38 @@ class Flow {
         RegionTask t = it == 0 ? initialTask(r, plan, it) : repairTask(r, it);
         if (!t.nets.empty()) tasks.push_back(std::move(t));
       }
+      if (it > 0) markReroutedElsewhere(tasks);
       if (it == 0 && beforeColour_) beforeColour_(color, plan, tasks);
       std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
       ctx_.rebuildRoutedIndex();
       if (progress_) progress_(rep, rep.regions, total);
+    }
+  }
+
+  // Routing that joins nothing (flow/dangling.hpp) goes before the check.
+  void trimAll() {
+    bool any = false;
+    for (int32_t n = 0; n < static_cast<int32_t>(design_.nets.size()); ++n) {
+      const TrimCounts c = trimDangling(tech_, design_, NetId(n));
+      any = any || c.wires + c.shortened + c.vias + c.patches > 0;
+    }
+    if (any) ctx_.rebuildRoutedIndex();
+  }
+
+  // Each ripped-up net of a colour's tasks learns the boxes of the other tasks that reroute it too.
+  static void markReroutedElsewhere(std::vector<RegionTask>& tasks) {
+    std::unordered_map<int32_t, std::vector<size_t>> where;
+    for (size_t i = 0; i < tasks.size(); ++i)
+      for (const RegionNetTask& nt : tasks[i].nets)
+        if (nt.ripup) where[nt.net].push_back(i);
+    for (size_t i = 0; i < tasks.size(); ++i) {
+      for (RegionNetTask& nt : tasks[i].nets) {
+        if (!nt.ripup) continue;
+        for (size_t j : where[nt.net])
+          if (j != i) nt.reroutedElsewhere.push_back(tasks[j].region.box);
+      }
     }
   }
 

@@ -69,8 +69,15 @@ class Search {
   // on the tree are reached and bring all their nodes along, whether a path hit
   // them or they share a node with another terminal (terminalOf names one owner
   // per node, so a search never hits the second). A free crossing's
-  // alternatives are reached only by the path node that hits one of them.
+  // alternatives are reached only by the path node that hits one of them. So are the other
+  // terminals of a reached terminal's group (MazeTerminal::group).
   void reachShared(std::vector<int32_t>& tree);
+  bool groupReached(int32_t group) const {
+    for (size_t t = 0; t < net_.terminals.size(); ++t)
+      if (reached_[t] && net_.terminals[t].joined && net_.terminals[t].group == group && !net_.terminals[t].nodes.empty())
+        return true;
+    return false;
+  }
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
              std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
 
@@ -241,7 +248,7 @@ void Search::reachShared(std::vector<int32_t>& tree) {
     for (size_t t = 0; t < net_.terminals.size(); ++t) {
       const MazeTerminal& term = net_.terminals[t];
       if (reached_[t] || !term.joined) continue;
-      bool touches = false;
+      bool touches = term.group >= 0 && groupReached(term.group);
       for (int32_t v : term.nodes) touches = touches || ws_.inTree[v] == ws_.treeStamp;
       if (!touches) continue;
       reached_[t] = 1;

@@ -32,6 +32,9 @@ struct MazeTerminal {
   bool joined = true;          // true: the nodes are one conductor (a pin's access points, a via's
                                // two layers), so all of them join the tree; false: alternatives
   std::vector<int64_t> exitCost;  // optional, per node: cost added when the route ends there
+  // Joined terminals of one group >= 0 are one conductor outside the grid (a ripped-up net's kept
+  // routing): reaching one reaches them all. -1: a group of its own.
+  int32_t group = -1;
 };
 
 struct MazeNet {

@@ -151,6 +151,15 @@ class Database:
         A net's routing: wires (layer, x1, y1, x2, y2, width, ext_from, ext_to; width 0 = default, ext -1 = half width), vias (name, x, y), patches (layer, xlo, ylo, xhi, yhi); DBU.
         """
 
+    def trim_dangling(self) -> dict:
+        """
+        Cuts every net's routing back to what joins its pins, as the flow does after each iteration:
+        a wire's end past the last thing it meets on its centre line (another wire or via of the net,
+        or a pin shape) goes back to it, or the wire goes; a via with nothing on one of its layers
+        goes; then a patch touching none of the net's metal goes. Returns {wires (removed), shortened,
+        vias, patches, length_dbu (centre line removed)}.
+        """
+
     def write_def(self, path: str) -> None:
         """Writes the design as DEF (atomically: temporary file, then rename)."""
 
@@ -456,6 +465,15 @@ class RouterSettings:
 
     @late_search_budget.setter
     def late_search_budget(self, arg: int, /) -> None: ...
+
+    @property
+    def trim_dangling(self) -> bool:
+        """
+        After each iteration's routing, cut every net's routing back to what joins its pins.
+        """
+
+    @trim_dangling.setter
+    def trim_dangling(self, arg: bool, /) -> None: ...
 
 POLICY_FEATURES: tuple = ...
 
