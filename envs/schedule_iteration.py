@@ -80,12 +80,13 @@ class ScheduleIterationEnv(gym.Env):
 
     metadata = {"render_modes": []}
 
-    def __init__(self, testcase_name: str = "ispd19_sample4", region_size: int = 10, iteration_count: int = 10,
+    def __init__(self, testcase_name: str = "ispd19_sample4", region_size: int = 10, iteration_count: int | None = None,
                  *, menu: Sequence[tuple[str, dict[str, Any]]] = DEFAULT_MENU, work_weight: float = 1.0,
                  threads: int = 1, render_mode: str | None = None) -> None:
         from xroute.config import CostSection
-        from xroute.router import VIOLATION_TYPES, RouteSettings
+        from xroute.router import DEFAULT_ITERATIONS, VIOLATION_TYPES, RouteSettings
 
+        iteration_count = DEFAULT_ITERATIONS if iteration_count is None else iteration_count
         RouteSettings(region_size=region_size, iterations=iteration_count, threads=threads)  # validates them
         if not menu or not all(isinstance(change, dict) for _, change in menu):
             raise ValueError("menu: a non-empty sequence of (name, plan change) pairs")
@@ -245,7 +246,8 @@ class ScheduleIterationEnv(gym.Env):
         self._stop()
 
 
-def schedule_iteration_env(testcase_name: str = "ispd19_sample4", region_size: int = 10, iteration_count: int = 10,
+def schedule_iteration_env(testcase_name: str = "ispd19_sample4", region_size: int = 10,
+                           iteration_count: int | None = None,
                            **kwargs: Any) -> ScheduleIterationEnv:
     """The iteration-schedule env (see :class:`ScheduleIterationEnv`)."""
     return ScheduleIterationEnv(testcase_name, region_size, iteration_count, **kwargs)

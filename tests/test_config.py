@@ -135,7 +135,7 @@ def test_paper_parameters_and_cost() -> None:
     assert {"testcase_name", "testcase_loop", "region_size", "region_location", "region_loop",
             "iteration_count", "thread_count", "net_loop"} <= names
     assert CostSection().cost(100.0, 10, 2) == 0.5 * 100 + 4 * 10 + 500 * 2
-    assert RouterSection().iteration_count == 10
+    assert RouterSection().iteration_count == 16
 
 
 # The contest samples, or their generated stand-ins when the contest data is missing.

@@ -89,7 +89,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     data = json.loads(outputs.metrics_path.read_text())
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
-    assert data["settings"] == {"region_size": 10, "iterations": 10, "threads": 1, "seed": 1, "schedule": None,
+    assert data["settings"] == {"region_size": 10, "iterations": 16, "threads": 1, "seed": 1, "schedule": None,
                                 "repair_rounds": 0, "policy": "heuristic", "schedule_policy": "rule"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
@@ -331,7 +331,7 @@ def test_progress_events() -> None:
 @pytest.mark.slow
 def test_ispd18_test1_end_to_end(tmp_path: Path) -> None:
     design = fresh("ispd18_test1")
-    result = route_design(design, threads=2)  # the defaults: region size 10, up to 10 iterations
+    result = route_design(design, threads=2)  # the defaults: region size 10, up to 16 iterations
     outputs = write_route_outputs(design, result, tmp_path)
     conn = reread(design, outputs).engine.check_connectivity()
     assert conn["open_nets"] == 0 and conn["unrouted_nets"] == 0

@@ -350,7 +350,7 @@ class RouterSettings:
     The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).
     """
 
-    def __init__(self, region_size: int = 10, iterations: int = 10, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
+    def __init__(self, region_size: int = 10, iterations: int = 16, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
         """The settings; each defaults to the engine's."""
 
     @property
