@@ -113,3 +113,48 @@ def test_repair_rounds_do_not_depend_on_the_thread_count(tmp_path: Path, name: s
         d.engine.write_def(str(path))
         defs.append(path.read_bytes())
     assert defs[0] == defs[1]
+
+
+# A cell's M1 pin at (500, 1500), 0.07 um left of the wide M2 obstruction: its via's M2 pad (0.1 um
+# along the track) needs only the short-run spacing, a vertical M2 wire beside the obstruction the
+# 0.5 um one. Net a joins it to a pin far above; net b joins two pins far right.
+LANDING_LEF = library(
+    routing("M1", "HORIZONTAL", 0.2, 0.06, 0.07),
+    cut("V1", 0.06, 0.08),
+    routing("M2", "VERTICAL", 0.2, 0.06, rules=["SPACINGTABLE", "  PARALLELRUNLENGTH 0.0 0.5", "  WIDTH 0.0 0.07 0.07",
+                                               "  WIDTH 1.0 0.07 0.5 ;"]),
+    stack_via("V12", "M1", "V1", "M2", True, 0.06, metal_length=0.1),
+    macro("BIG", 2.0, 2.0, obs=[("M2", (0.0, 0.0, 2.0, 2.0))], klass="BLOCK"),
+    macro("C", 0.2, 0.2, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.13))])),
+)
+
+LANDING_DEF = WIDE_DEF.replace("COMPONENTS 1 ;\n- u1 BIG + PLACED ( 600 950 ) N ;\n", (
+    "COMPONENTS 5 ;\n- u1 BIG + PLACED ( 600 950 ) N ;\n- c1 C + PLACED ( 400 1400 ) N ;\n"
+    "- c2 C + PLACED ( 400 3400 ) N ;\n- c3 C + PLACED ( 3400 3400 ) N ;\n- c4 C + PLACED ( 3400 400 ) N ;\n")).replace(
+    "NETS 1 ;\n- a ( u1 P ) ;\n", "NETS 2 ;\n- a ( c1 A ) ( c2 A ) ;\n- b ( c3 A ) ( c4 A ) ;\n")
+
+
+def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_path: Path) -> None:
+    # The step from (300, 1500) east into the landing above pin c1/A, on M2 (wrong way: 200 x 4).
+    # For net a it costs the wire alone: it ends on its own via's pad, which pin access checked.
+    # For net b it is another net's landing and a forbidden wire (reserve and fixed penalties). The
+    # old maze charged net a the fixed penalty too, and its route went up a layer and down again.
+    lef, def_ = write_design(tmp_path, LANDING_LEF, LANDING_DEF, "landing")
+    db = load_design(lef=lef, def_=def_).engine
+    region = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000))
+    g = region.grid()
+    xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
+    nz, ny, nx = g["flags"].shape
+
+    def node(x: int, y: int, z: int) -> int:
+        return (z * ny + ys.index(y)) * nx + xs.index(x)
+
+    landing = node(500, 1500, 1)
+    assert g["fixed_owner"][1, ys.index(1500), xs.index(500)] == -2  # no M2 wire may run there
+    assert g["flags"][1, ys.index(1500), xs.index(500)] & 8  # the landing of pin access's via
+    east = 4
+    nets = region.candidates[:, 0].tolist()
+    costs = _engine.MazeCosts()
+    for net, expected in ((0, 800), (1, 800 + costs.reserve_penalty + costs.fixed_penalty)):
+        neighbours, step = region.moves(nets.index(net), node(300, 1500, 1))
+        assert (neighbours[east], step[east]) == (landing, expected), net

@@ -1,7 +1,6 @@
 #include "route/maze.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -73,9 +72,10 @@ class Search {
   // terminals of a reached terminal's group (MazeTerminal::group).
   void reachShared(std::vector<int32_t>& tree);
   bool groupReached(int32_t group) const {
-    for (size_t t = 0; t < net_.terminals.size(); ++t)
-      if (reached_[t] && net_.terminals[t].joined && net_.terminals[t].group == group && !net_.terminals[t].nodes.empty())
-        return true;
+    for (size_t t = 0; t < net_.terminals.size(); ++t) {
+      const MazeTerminal& term = net_.terminals[t];
+      if (reached_[t] && term.joined && term.group == group && !term.nodes.empty()) return true;
+    }
     return false;
   }
   void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
@@ -160,8 +160,13 @@ int64_t Search::wireNodeCost(int32_t v) const {
   if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
   const int32_t reserved = g_.reservedNet(v);
   if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased)) cost += c_.reservePenalty;
+  // The landing of the net's own access via: pin access checked the via's metal there exactly; a
+  // wire reaching it ends on that metal, and the nodes it passed paid their own footprint. The
+  // footprint's estimate for a wire along the track (beside a wide stripe, a long parallel run)
+  // made a one-track jog into the landing cost like a short, so the route went up a layer and
+  // down again (ispd19_test1: 2 vias a pin on the big nets where TritonRoute jogs).
   const int32_t fo = g_.fixedOwner[v];
-  if (fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
+  if (fo != kOwnerNone && fo != net_.net && reserved != net_.net) cost += c_.fixedPenalty;
   if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
   return cost;
 }
