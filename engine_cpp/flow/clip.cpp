@@ -88,7 +88,8 @@ NetRouting clipOutside(const Tech& tech, const Design& design, const NetRouting&
 }
 
 std::vector<int32_t> keptConductors(const Tech& tech, const Design& design, int32_t pins, const NetRouting& kept,
-                                    const std::vector<PinContact>& contacts, const std::vector<ConductorQuery>& queries) {
+                                    const std::vector<PinContact>& contacts,
+                                    const std::vector<ConductorQuery>& queries) {
   // Nodes: the pins, then one per kept wire and via; a via is a point wire on each of its layers.
   CentreLineIndex index;
   std::vector<LayerPoint> ends;  // the pieces' vertices
@@ -117,7 +118,8 @@ std::vector<int32_t> keptConductors(const Tech& tech, const Design& design, int3
     ++node;
   }
   UnionFind sets(static_cast<size_t>(node));
-  for (size_t k = 0; k < ends.size(); ++k) index.at(ends[k].z, ends[k].at, [&](int32_t e) { sets.unite(endPiece[k], e); });
+  for (size_t k = 0; k < ends.size(); ++k)
+    index.at(ends[k].z, ends[k].at, [&](int32_t e) { sets.unite(endPiece[k], e); });
   for (const PinContact& c : contacts) {
     if (c.pin < 0 || c.pin >= pins) continue;
     index.at(c.point.z, c.point.at, [&](int32_t e) { sets.unite(c.pin, e); });

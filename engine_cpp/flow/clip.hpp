@@ -48,7 +48,8 @@ struct ConductorQuery {
 // piece through a pin contact. Metal that merely overlaps joins nothing here: a region that
 // reroutes that metal later keeps only its own terminals joined, and could take such a join away.
 std::vector<int32_t> keptConductors(const Tech& tech, const Design& design, int32_t pins, const NetRouting& kept,
-                                    const std::vector<PinContact>& contacts, const std::vector<ConductorQuery>& queries);
+                                    const std::vector<PinContact>& contacts,
+                                    const std::vector<ConductorQuery>& queries);
 
 // True when some piece of `routing` lies inside the closed box.
 bool routingTouches(const NetRouting& routing, const Rect& box);

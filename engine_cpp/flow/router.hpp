@@ -33,8 +33,8 @@ inline constexpr int kMaxRepairRounds = 64;   // repair rounds per region at mos
 
 struct RouterSettings {
   int regionSize = 10;             // GCells per region side (C); see flow/README.md for the measurement
-  // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16: ispd19_test1
-  // reaches zero in its iteration 12 (2026-11-27, 2 threads).
+  // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
+  // ispd19_test1 reaches zero in its iteration 7, ispd19_test3 in its iteration 8 (2026-11-27, 2 threads).
   int iterations = 16;
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...
