@@ -18,12 +18,15 @@ from xroute import _engine, load_design
 # M2 (vertical) has a wide-metal row: 0.07 um for short parallel runs, 0.5 um once a
 # shape at least 1 um wide runs parallel for more than 0.5 um. The macro's M2
 # obstruction is 2 um x 2 um at (0.6..2.6, 0.95..2.95).
-WIDE_LEF = library(
+WIDE_LAYERS = (
     routing("M1", "HORIZONTAL", 0.2, 0.06, 0.07),
     cut("V1", 0.06, 0.08),
     routing("M2", "VERTICAL", 0.2, 0.06, rules=["SPACINGTABLE", "  PARALLELRUNLENGTH 0.0 0.5", "  WIDTH 0.0 0.07 0.07",
                                                "  WIDTH 1.0 0.07 0.5 ;"]),
     stack_via("V12", "M1", "V1", "M2", True, 0.06, metal_length=0.1),
+)
+WIDE_LEF = library(
+    *WIDE_LAYERS,
     macro("BIG", 2.0, 2.0, pin("P", "INPUT", [("M1", (0.0, 0.0, 0.2, 0.06))]), obs=[("M2", (0.0, 0.0, 2.0, 2.0))],
           klass="BLOCK"),
 )
@@ -119,11 +122,7 @@ def test_repair_rounds_do_not_depend_on_the_thread_count(tmp_path: Path, name: s
 # along the track) needs only the short-run spacing, a vertical M2 wire beside the obstruction the
 # 0.5 um one. Net a joins it to a pin far above; net b joins two pins far right.
 LANDING_LEF = library(
-    routing("M1", "HORIZONTAL", 0.2, 0.06, 0.07),
-    cut("V1", 0.06, 0.08),
-    routing("M2", "VERTICAL", 0.2, 0.06, rules=["SPACINGTABLE", "  PARALLELRUNLENGTH 0.0 0.5", "  WIDTH 0.0 0.07 0.07",
-                                               "  WIDTH 1.0 0.07 0.5 ;"]),
-    stack_via("V12", "M1", "V1", "M2", True, 0.06, metal_length=0.1),
+    *WIDE_LAYERS,
     macro("BIG", 2.0, 2.0, obs=[("M2", (0.0, 0.0, 2.0, 2.0))], klass="BLOCK"),
     macro("C", 0.2, 0.2, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.13))])),
 )

@@ -386,11 +386,7 @@ void bindDatabaseRouting(DatabaseClass& cls) {
             TrimCounts sum;
             {
               nb::gil_scoped_release release;
-              for (int32_t n = 0; n < static_cast<int32_t>(d.design.nets.size()); ++n) {
-                const TrimCounts c = trimDangling(d.tech, d.design, NetId(n));
-                sum.wires += c.wires, sum.shortened += c.shortened, sum.vias += c.vias;
-                sum.patches += c.patches, sum.length += c.length;
-              }
+              sum = trimDanglingAll(d.tech, d.design);
             }
             nb::dict r;
             r["wires"] = sum.wires;

@@ -9,13 +9,6 @@ namespace xroute {
 
 namespace {
 
-// Overlap, or a shared boundary segment of positive length (the connectivity check's contact).
-bool contacts(const Rect& a, const Rect& b) {
-  const int64_t ox = int64_t(std::min(a.xhi, b.xhi)) - std::max(a.xlo, b.xlo);
-  const int64_t oy = int64_t(std::min(a.yhi, b.yhi)) - std::max(a.ylo, b.ylo);
-  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
-}
-
 class Trimmer {
  public:
   Trimmer(const Tech& tech, Design& design, NetId n)
@@ -154,7 +147,7 @@ class Trimmer {
 
   // Drops the removed pieces, then the patches that touch none of the metal left.
   void finish(TrimCounts& out) {
-    if (out.wires + out.vias == 0 && out.shortened == 0) return;
+    if (!out.any()) return;
     NetRouting kept;
     for (size_t i = 0; i < r_.wires.size(); ++i)
       if (wireAlive_[i]) kept.wires.push_back(r_.wires[i]);
@@ -171,7 +164,7 @@ class Trimmer {
     }
     for (const RoutePatch& p : r_.patches) {
       const bool touches = std::any_of(metal.begin(), metal.end(), [&](const auto& m) {
-        return m.first == p.layer && contacts(m.second, p.rect);
+        return m.first == p.layer && m.second.contacts(p.rect);
       });
       if (touches) kept.patches.push_back(p);
       else ++out.patches;
@@ -194,6 +187,12 @@ class Trimmer {
 TrimCounts trimDangling(const Tech& tech, Design& design, NetId n) {
   if (design.nets[*n].routing.empty()) return {};
   return Trimmer(tech, design, n).run();
+}
+
+TrimCounts trimDanglingAll(const Tech& tech, Design& design) {
+  TrimCounts sum;
+  for (int32_t n = 0; n < static_cast<int32_t>(design.nets.size()); ++n) sum += trimDangling(tech, design, NetId(n));
+  return sum;
 }
 
 }  // namespace xroute

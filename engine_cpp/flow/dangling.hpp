@@ -14,6 +14,12 @@ struct TrimCounts {
   int64_t vias = 0;     // vias removed
   int64_t patches = 0;  // patches removed
   int64_t length = 0;   // DBU of centre line removed
+
+  bool any() const { return wires + shortened + vias + patches > 0; }
+  TrimCounts& operator+=(const TrimCounts& o) {
+    wires += o.wires, shortened += o.shortened, vias += o.vias, patches += o.patches, length += o.length;
+    return *this;
+  }
 };
 
 // Cuts net n's routing back to what joins its pins and pieces, read on centre lines
@@ -24,5 +30,7 @@ struct TrimCounts {
 // touches none of the net's wires or vias left then goes too. Pins stay joined: every removed
 // piece was an end, and an end holds no pin.
 TrimCounts trimDangling(const Tech& tech, Design& design, NetId n);
+// trimDangling on every net; the sum.
+TrimCounts trimDanglingAll(const Tech& tech, Design& design);
 
 }  // namespace xroute

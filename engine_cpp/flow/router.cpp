@@ -273,12 +273,7 @@ class Flow {
 
   // Routing that joins nothing (flow/dangling.hpp) goes before the check.
   void trimAll() {
-    bool any = false;
-    for (int32_t n = 0; n < static_cast<int32_t>(design_.nets.size()); ++n) {
-      const TrimCounts c = trimDangling(tech_, design_, NetId(n));
-      any = any || c.wires + c.shortened + c.vias + c.patches > 0;
-    }
-    if (any) ctx_.rebuildRoutedIndex();
+    if (trimDanglingAll(tech_, design_).any()) ctx_.rebuildRoutedIndex();
   }
 
   // Each ripped-up net of a colour's tasks learns the boxes of the other tasks that reroute it too.

@@ -46,6 +46,13 @@ struct Rect {
   bool overlaps(const Rect& o) const {
     return xlo <= o.xhi && o.xlo <= xhi && ylo <= o.yhi && o.ylo <= yhi;
   }
+  // Conductors in contact: overlap, or a shared boundary segment of positive length (a single
+  // common corner point is no contact).
+  bool contacts(const Rect& o) const {
+    const int64_t ox = int64_t(std::min(xhi, o.xhi)) - std::max(xlo, o.xlo);
+    const int64_t oy = int64_t(std::min(yhi, o.yhi)) - std::max(ylo, o.ylo);
+    return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
+  }
   Rect translated(Point d) const { return {xlo + d.x, ylo + d.y, xhi + d.x, yhi + d.y}; }
   void expandToInclude(const Rect& o) {
     xlo = std::min(xlo, o.xlo);

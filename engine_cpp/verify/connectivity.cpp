@@ -16,14 +16,6 @@ namespace {
 // index instead of the x sweep (whose cost grows with overlapping x spans).
 constexpr size_t kSweepLimit = 256;
 
-// Overlap, or a shared boundary segment of positive length; a single common
-// corner point is not a contact.
-bool touches(const Rect& a, const Rect& b) {
-  const int64_t ox = int64_t(std::min(a.xhi, b.xhi)) - std::max(a.xlo, b.xlo);
-  const int64_t oy = int64_t(std::min(a.yhi, b.yhi)) - std::max(a.ylo, b.ylo);
-  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
-}
-
 struct NetShape {
   LayerId layer;
   Rect rect;     // DBU
@@ -107,7 +99,7 @@ void NetChecker::connectLayer(size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Rect& a = shapes_[i].rect;
       for (size_t j = i + 1; j < end && shapes_[j].rect.xlo <= a.xhi; ++j) {
-        if (shapes_[i].node != shapes_[j].node && touches(a, shapes_[j].rect)) sets_.unite(shapes_[i].node, shapes_[j].node);
+        if (shapes_[i].node != shapes_[j].node && a.contacts(shapes_[j].rect)) sets_.unite(shapes_[i].node, shapes_[j].node);
       }
     }
     return;
@@ -120,7 +112,7 @@ void NetChecker::connectLayer(size_t begin, size_t end) {
     const NetShape& a = shapes_[i];
     index.query(a.rect, [&](int32_t k) {
       const NetShape& b = shapes_[begin + k];
-      if (begin + k > i && a.node != b.node && touches(a.rect, b.rect)) sets_.unite(a.node, b.node);
+      if (begin + k > i && a.node != b.node && a.rect.contacts(b.rect)) sets_.unite(a.node, b.node);
     });
   }
 }
