@@ -91,7 +91,7 @@ void bindRouterSettings(nb::module_& m) {
       .def_rw("late_search_budget", &RouterSettings::lateSearchBudget,
               "Trial routings per region of that late search (0: never; at most max_search_budget).")
       .def_rw("trim_dangling", &RouterSettings::trimDangling,
-              "After each iteration's routing, cut every net's routing back to what joins its pins.");
+              "After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins.");
 }
 
 }  // namespace

@@ -264,6 +264,7 @@ void RegionRouter::Impl::routeNetPaths(int32_t index, std::vector<std::vector<in
   // As in the maze, the tree starts on the first terminal with nodes; a terminal is reached when a
   // path touches it or another terminal of its group (one conductor beyond the box).
   std::vector<uint8_t> hit(mn.terminals.size(), 0);
+  std::vector<int32_t> groupsHit;
   bool first = true;
   for (size_t k = 0; k < mn.terminals.size(); ++k) {
     const MazeTerminal& t = mn.terminals[k];
@@ -272,15 +273,13 @@ void RegionRouter::Impl::routeNetPaths(int32_t index, std::vector<std::vector<in
     first = false;
     for (const auto& p : paths)
       for (int32_t v : p) hit[k] = hit[k] || std::binary_search(t.nodes.begin(), t.nodes.end(), v);
+    if (hit[k] && t.group >= 0) groupsHit.push_back(t.group);
   }
   int unreached = 0;
   for (size_t k = 0; k < mn.terminals.size(); ++k) {
     const MazeTerminal& t = mn.terminals[k];
-    if (t.nodes.empty() || hit[k]) continue;
-    bool viaGroup = false;
-    for (size_t j = 0; j < mn.terminals.size() && t.group >= 0; ++j)
-      viaGroup = viaGroup || (hit[j] && mn.terminals[j].group == t.group);
-    if (!viaGroup) ++unreached;
+    const bool viaGroup = t.group >= 0 && std::find(groupsHit.begin(), groupsHit.end(), t.group) != groupsHit.end();
+    if (!t.nodes.empty() && !hit[k] && !viaGroup) ++unreached;
   }
   ns.result.unreached = mn.terminals.size() < 2 ? 0 : unreached;
   if (paths.empty() || mn.terminals.size() < 2) return;

@@ -81,9 +81,14 @@ void RegionRouter::Impl::groupKeptTerminals(NetState& ns) const {
     else if (!s.points.empty()) q.point = {s.zs[0], s.points[0]};
     queries.push_back(q);
   }
-  NetRouting kept = ns.kept;
-  for (const Rect& other : ns.task.reroutedElsewhere) kept = clipOutside(ctx.tech, ctx.design, kept, other, nullptr);
-  const std::vector<int32_t> groups = keptConductors(ctx.tech, ctx.design, pins, kept, contacts, queries);
+  // The routing inside other regions rerouting the net now joins nothing.
+  NetRouting clipped;
+  const NetRouting* kept = &ns.kept;
+  for (const Rect& other : ns.task.reroutedElsewhere) {
+    clipped = clipOutside(ctx.tech, ctx.design, *kept, other, nullptr);
+    kept = &clipped;
+  }
+  const std::vector<int32_t> groups = keptConductors(ctx.tech, ctx.design, pins, *kept, contacts, queries);
   for (size_t t = 0; t < ns.terms.size(); ++t) ns.terms[t].group = groups[t];
 }
 

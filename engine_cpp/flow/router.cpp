@@ -89,7 +89,7 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
-      if (s_.trimDangling) trimAll();
+      if (s_.trimDangling) trimRerouted();
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
@@ -271,9 +271,16 @@ class Flow {
     }
   }
 
-  // Routing that joins nothing (flow/dangling.hpp) goes before the check.
-  void trimAll() {
-    if (trimDanglingAll(tech_, design_).any()) ctx_.rebuildRoutedIndex();
+  // Routing that joins nothing (flow/dangling.hpp) goes before the check. Only the nets this
+  // iteration rerouted can have any: the others were cut back when they were last rerouted.
+  void trimRerouted() {
+    bool any = false;
+    for (int32_t n = 0; n < static_cast<int32_t>(rerouted_.size()); ++n) {
+      if (!rerouted_[n]) continue;
+      rerouted_[n] = 0;
+      any = trimDangling(tech_, design_, NetId(n)).any() || any;
+    }
+    if (any) ctx_.rebuildRoutedIndex();
   }
 
   // Each ripped-up net of a colour's tasks learns the boxes of the other tasks that reroute it too.
@@ -326,6 +333,7 @@ class Flow {
   void commit(const RegionTask& task, const RegionResult& res, CrossingPlan& plan, IterationReport& rep) {
     commitRegion(tech_, design_, task.region.box, res);
     for (const RegionNetResult& nr : res.nets) {
+      rerouted_[nr.net] = 1;
       if (!nr.routed) continue;
       ++rep.netRoutes;
       rep.unreached += nr.unreached;
@@ -354,6 +362,7 @@ class Flow {
   std::vector<int> ages_;            // per marker of markers_: age()
   std::vector<int> prevAges_;        // per marker of prevMarkers_
   std::vector<MarkerCost> history_;
+  std::vector<uint8_t> rerouted_ = std::vector<uint8_t>(design_.nets.size(), 0);  // per net, this iteration
 };
 
 }  // namespace

@@ -60,7 +60,7 @@ struct RouterSettings {
   // are few by then: on ispd19_test3 the search costs about 1 s an iteration (flow/README.md).
   int lateSearchMarkers = 50;
   int lateSearchBudget = 4;
-  // After each iteration's routing, cut every net's routing back to what joins its pins
+  // After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins
   // (flow/dangling.hpp): a rip-up whose terminals were joined beyond the box leaves ends that join
   // nothing.
   bool trimDangling = true;

@@ -46,4 +46,11 @@ struct NodeAllocator {
 template <class T>
 using NodeArray = std::vector<T, NodeAllocator<T>>;
 
+// Bytes a node takes in the given per-node arrays (for the static_asserts that hold a struct's
+// per-node size).
+template <class... Arrays>
+constexpr size_t bytesPerNode() {
+  return (sizeof(typename Arrays::value_type) + ...);
+}
+
 }  // namespace xroute

@@ -84,11 +84,7 @@ RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu>
   }
 }
 
-template <class... Arrays>
-constexpr size_t elementBytes() {
-  return (sizeof(typename Arrays::value_type) + ...);
-}
-static_assert(elementBytes<decltype(RegionGrid::flags), decltype(RegionGrid::fixedOwner),
+static_assert(bytesPerNode<decltype(RegionGrid::flags), decltype(RegionGrid::fixedOwner),
                            decltype(RegionGrid::viaFixedOwner), decltype(RegionGrid::wireUse),
                            decltype(RegionGrid::wireUseOwner), decltype(RegionGrid::viaUse),
                            decltype(RegionGrid::viaUseOwner), decltype(RegionGrid::cutUse),

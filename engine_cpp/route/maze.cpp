@@ -12,11 +12,9 @@ namespace {
 
 constexpr int64_t kInf = std::numeric_limits<int64_t>::max() / 4;
 
-static_assert(sizeof(decltype(MazeWorkspace::cost)::value_type) + sizeof(decltype(MazeWorkspace::parent)::value_type) +
-                      sizeof(decltype(MazeWorkspace::visit)::value_type) +
-                      sizeof(decltype(MazeWorkspace::inTree)::value_type) +
-                      sizeof(decltype(MazeWorkspace::terminalSlot)::value_type) ==
-                  kSearchBytesPerNode,
+static_assert(bytesPerNode<decltype(MazeWorkspace::cost), decltype(MazeWorkspace::parent),
+                           decltype(MazeWorkspace::visit), decltype(MazeWorkspace::inTree),
+                           decltype(MazeWorkspace::terminalSlot)>() == kSearchBytesPerNode,
               "a per-node search array was added or changed: update kSearchBytesPerNode");
 
 // A terminal node of the net being routed: its terminal and the cost of ending there.

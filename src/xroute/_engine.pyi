@@ -469,7 +469,7 @@ class RouterSettings:
     @property
     def trim_dangling(self) -> bool:
         """
-        After each iteration's routing, cut every net's routing back to what joins its pins.
+        After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins.
         """
 
     @trim_dangling.setter
