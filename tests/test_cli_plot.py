@@ -16,14 +16,15 @@ from xroute.cli.app import app
 from xroute.cli.plot_data import read_drc_report
 from xroute.cli.plot_design import _outside_guides, _uncovered
 
-MARKED = "standin_sample4"  # a generated design that ends its second iteration with markers
+MARKED = "standin_marked"  # a generated design that ends its second iteration at region size 2 with markers
 
 
 @pytest.fixture
 def marked(runner: CliRunner, testcase, tmp_path: Path) -> Path:
     testcase(MARKED)
     out = tmp_path / "marked"
-    assert runner.invoke(app, ["route", MARKED, "--iterations", "2", "--quiet", "--out", str(out)]).exit_code == 0
+    args = ["route", MARKED, "--iterations", "2", "--region-size", "2", "--quiet", "--out", str(out)]
+    assert runner.invoke(app, args).exit_code == 0
     return out
 
 
@@ -35,9 +36,11 @@ def test_plot_shows_the_violations_by_type(runner: CliRunner, marked: Path, tmp_
     result = runner.invoke(app, ["plot", str(marked), "--out", str(svg)])
     assert result.exit_code == 0, result.stderr
     total = sum(counts.values())
-    assert result.stdout == f"plot: {MARKED}: {total:,} violations, 0.0 um out of guide -> {svg}\n"
+    said = re.fullmatch(rf"plot: {MARKED}: {total:,} violations, ([\d,]+\.\d) um out of guide -> "
+                        rf"{re.escape(str(svg))}\n", result.stdout)
+    assert said, result.stdout
     text = svg.read_text()
-    assert f"{total:,} violations; out-of-guide wire 0.0 µm" in text
+    assert f"{total:,} violations; out-of-guide wire {said.group(1)} µm" in text
     for kind, n in counts.items():
         assert f"{kind} ({n:,})" in text  # the legend of the points
         assert re.search(rf">\s*{n:,}\s*<", text)  # the count written on its bar

@@ -154,7 +154,7 @@ def test_report_bad_training_log_is_one_line(runner: CliRunner, tmp_path: Path) 
     assert result.stderr.count("\n") == 1
 
 
-MARKED = "standin_sample4"  # a generated design whose violations fall 54 -> 26 -> 2 -> 0 at region size 5
+MARKED = "standin_marked"  # a generated design whose violations go 15 -> 21 -> 0 at region size 2
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,2400"]
 
 
@@ -163,7 +163,7 @@ def twin_runs(runner: CliRunner, testcase, tmp_path: Path) -> Path:
     """Two runs of the same settings (same seed): every series of the one equals the other's."""
     testcase(MARKED)
     for name in ("first", "second"):
-        result = runner.invoke(app, ["route", MARKED, "--iterations", "4", "--region-size", "5", "--quiet",
+        result = runner.invoke(app, ["route", MARKED, "--iterations", "4", "--region-size", "2", "--quiet",
                                      "--out", str(tmp_path / "twins" / name)])
         assert result.exit_code == 0, result.stderr
     return tmp_path / "twins"

@@ -46,29 +46,36 @@ def test_route_checks_the_settings_fields() -> None:
         _engine.route(db, iterations=0, settings=_engine.RouterSettings(iterations=3))
 
 
+# A generated design that, at region size 2, ends its first two iterations with markers (15, 21); the
+# demo routes clean in its first pass.
+MARKED = "standin_marked"
+
+
 def _search_budgets(**settings: int) -> list[tuple[int, int]]:
-    """(violations, the plan's search budget) per iteration of the demo routed with these settings."""
-    s = _engine.RouterSettings()
+    """(violations, the plan's search budget) per iteration of MARKED routed at region size 2 with these settings."""
+    s = _engine.RouterSettings(region_size=2)
     for key, value in settings.items():
         setattr(s, key, value)
-    out = _engine.route(load_design(DEMO).engine, settings=s, threads=2)
+    out = _engine.route(load_design(MARKED).engine, settings=s, threads=2)
     return [(r["violations"], r["plan"]["search_budget"]) for r in out["iterations"]]
 
 
-def test_the_late_search_starts_once_a_check_leaves_few_markers() -> None:
+def test_the_late_search_starts_once_a_check_leaves_few_markers(testcase) -> None:
+    testcase(MARKED)
     late = _search_budgets(late_search_markers=50, late_search_budget=3)
     assert len(late) >= 3
     assert late[0][1] == 0  # iteration 0 routes every net with the run's policy
     for (before, _), (_, budget) in zip(late, late[1:]):
         assert budget == (3 if 0 < before <= 50 else 0)
-    assert any(budget == 3 for _, budget in late)  # the demo gets there: the rule is exercised
+    assert any(budget == 3 for _, budget in late)  # the design gets there: the rule is exercised
     assert all(budget == 0 for _, budget in _search_budgets(late_search_budget=0))
 
 
-def test_the_late_search_leaves_a_python_policy_alone() -> None:
-    s = _engine.RouterSettings(iterations=4)
+def test_the_late_search_leaves_a_python_policy_alone(testcase) -> None:
+    testcase(MARKED)
+    s = _engine.RouterSettings(iterations=4, region_size=2)
     s.late_search_markers = 10**6
-    out = _engine.route(load_design(DEMO).engine, settings=s, policy_fn=lambda region, features: list(
+    out = _engine.route(load_design(MARKED).engine, settings=s, policy_fn=lambda region, features: list(
         range(len(features))))
     assert len(out["iterations"]) > 1  # markers were left: the rule would have searched
     assert [r["plan"]["search_budget"] for r in out["iterations"]] == [0] * len(out["iterations"])

@@ -157,3 +157,52 @@ def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_
     for net, expected in ((0, 800), (1, 800 + costs.reserve_penalty + costs.fixed_penalty)):
         neighbours, step = region.moves(nets.index(net), node(300, 1500, 1))
         assert (neighbours[east], step[east]) == (landing, expected), net
+
+
+# M1 is vertical with an end-of-line rule (0.12 um within 0.05 of an end narrower than 0.12). Pin P
+# is a bar along x, 0.1 um tall: its end at x = 1.0 is a line end across the tracks. In BARHELD a
+# 0.06 um wide rect of the pin runs up from that end, so the end is no line end.
+EOL_LAYERS = (
+    routing("M1", "VERTICAL", 0.2, 0.06, 0.06, rules=["SPACING 0.12 ENDOFLINE 0.12 WITHIN 0.05 ;"]),
+    cut("V1", 0.06, 0.08),
+    routing("M2", "HORIZONTAL", 0.2, 0.06, 0.06),
+    stack_via("V12", "M1", "V1", "M2", False, 0.06, metal_length=0.1),
+)
+EOL_LEF = library(
+    *EOL_LAYERS,
+    macro("BAR", 2.0, 2.0, pin("P", "INPUT", [("M1", (0.4, 0.95, 1.0, 1.05))])),
+    macro("BARHELD", 2.0, 2.0, pin("P", "INPUT", [("M1", (0.4, 0.95, 1.0, 1.05)), ("M1", (0.94, 0.95, 1.0, 1.6))])),
+)
+
+
+def eol_owners(tmp_path: Path, cell: str, points: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """(fixed_owner, via_fixed_owner) on M1 at each (x, y) around cell u1 placed at the origin."""
+    def_ = WIDE_DEF.replace("DESIGN wide", "DESIGN eol").replace(
+        "u1 BIG + PLACED ( 600 950 )", f"u1 {cell} + PLACED ( 0 0 )").replace(
+        "TRACKS Y 100 DO 20 STEP 200 LAYER M1 ;\nTRACKS X 100 DO 20 STEP 200 LAYER M2 ;",
+        "TRACKS X 100 DO 20 STEP 200 LAYER M1 ;\nTRACKS Y 100 DO 20 STEP 200 LAYER M2 ;")
+    lef, def_path = write_design(tmp_path, EOL_LEF, def_, "eol")
+    db = load_design(lef=lef, def_=def_path).engine
+    g = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000)).grid()
+    xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
+    return [(int(g["fixed_owner"][0, ys.index(y), xs.index(x)]), int(g["via_fixed_owner"][0, ys.index(y), xs.index(x)]))
+            for x, y in points]
+
+
+def test_an_open_line_end_of_a_fixed_pin_claims_its_end_of_line_window(tmp_path: Path) -> None:
+    # A via's M1 pad at (1.1, 1.1) (0.06 x 0.1) is 0.07 um from the open end: enough for the
+    # spacing (0.06), not for the end of line (0.12), and it lies within 0.05 of the end. The old
+    # footprint claimed cross ends of routed metal only, and the router put another net's via
+    # there (the EndOfLine markers that stayed on ispd19_test1 beside cells' B0 pins).
+    net_a = 0
+    assert eol_owners(tmp_path, "BAR", [(1100, 1100), (1300, 1100), (1100, 1300)]) == [
+        (net_a, net_a),  # the pin's own net may go there, no other
+        (-1, -1),  # 0.27 um from the end: free
+        (-1, -1),  # beyond the within band: free
+    ]
+
+
+def test_a_held_end_of_a_fixed_pin_claims_only_the_spacing(tmp_path: Path) -> None:
+    # The rect running up from the end makes it an edge of the pin's outline: the pad 0.07 um away
+    # keeps the spacing.
+    assert eol_owners(tmp_path, "BARHELD", [(1100, 1100)]) == [(-1, -1)]

@@ -14,8 +14,8 @@ from conftest import load_file, require_testcase  # noqa: E402
 
 pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
 
-DESIGN = "standin_sample4"  # generated (conftest)
-LOCATION = (1, 3)  # a 1x1 region of 7 nets: 20 random orders cost 39.7 to 1,039.4, 714.4 on average
+DESIGN = "standin_marked"  # generated (conftest)
+LOCATION = (6, 11)  # a 1x1 region of 7 nets: 20 random orders cost 5,589.6 to 6,097.3, 5,868.9 on average
 M = 8
 
 

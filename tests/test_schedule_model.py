@@ -127,7 +127,7 @@ def test_cli_routes_with_a_model_file_and_records_it(runner: Any, tmp_path: Path
     from xroute.cli.app import app
     from xroute.testcases.generator import make_testcase
 
-    folder = make_testcase(400, 5, tmp_path / "gen")
+    folder = make_testcase(400, 3, tmp_path / "gen")  # at region size 2: 7 violations, then 1, then 0
     model = tmp_path / "half.json"
     model.write_text(json.dumps(model_document(SwitchSchedule(late_size=3, switch_ratio=0.5))))
     out = tmp_path / "out"

@@ -19,7 +19,10 @@ from xroute.router import route_design
 from xroute.schedule import CallableSchedule, IterationPlan, IterationReport, RuleSchedule
 
 SAMPLE4 = pick("ispd19_sample4")
-SAMPLE = pick("ispd18_sample")  # where the victims search changes the routing at region size 1
+# A generated design where the victims search changes the routing at region size 2 (on
+# ispd18_sample at region size 1 it stopped doing so once fixed pins' open line ends across the
+# tracks were in the footprint, as on ispd19_sample4 before).
+SEARCHED = "standin_marked"
 SIZE = 1  # GCells: several iterations with markers on the sample
 
 
@@ -102,21 +105,20 @@ def test_weights_and_repair_rounds_reach_the_engine() -> None:
 
 def test_a_search_budget_in_every_plan_routes_as_the_victims_policy() -> None:
     """search_budget B in every iteration's plan orders each region's nets by the victims search with
-    budget B: the same DEF byte for byte as --policy victims --search-budget B (on ispd18_sample at
-    region size 1, where that search changes the routing: on ispd19_sample4 it stopped doing so at
-    any size once open line ends across the tracks were in the footprint); asked from the second
-    iteration on, the first iteration is the heuristic's."""
+    budget B: the same DEF byte for byte as --policy victims --search-budget B (on SEARCHED at region
+    size 2, where that search changes the routing); asked from the second iteration on, the first
+    iteration is the heuristic's."""
     from xroute.net_order import VictimsPolicy
 
-    heuristic, plain = routed(name=SAMPLE)
-    victims, _ = routed(name=SAMPLE, policy=VictimsPolicy(3))
+    heuristic, plain = routed(size=2, name=SEARCHED)
+    victims, _ = routed(size=2, name=SEARCHED, policy=VictimsPolicy(3))
     assert victims != heuristic
     search = CallableSchedule(lambda h, r: {"search_budget": 3}, name="search")
-    text, result = routed(name=SAMPLE, schedule_policy=search)
+    text, result = routed(size=2, name=SEARCHED, schedule_policy=search)
     assert text == victims
     assert all(it.plan.search_budget == 3 for it in result.iterations)
     late = CallableSchedule(lambda h, r: {"search_budget": 3} if h else None, name="late")
-    _, late_result = routed(name=SAMPLE, schedule_policy=late)
+    _, late_result = routed(size=2, name=SEARCHED, schedule_policy=late)
     assert figures(late_result.iterations[:1]) == figures(plain.iterations[:1])
     assert [it.plan.search_budget for it in late_result.iterations][:2] == [0, 3]
 
@@ -228,7 +230,7 @@ def test_the_metrics_log_every_iterations_plan_as_transitions(tmp_path: Path) ->
 
 def test_a_policy_file_may_decide_the_search_region_by_region(tmp_path: Path) -> None:
     """NEEDS_REGION = True lends each region to a policy file's order(): one that runs the victims
-    search in every region routes as --policy victims (on ispd18_sample at region size 1, where that
+    search in every region routes as --policy victims (on SEARCHED at region size 2, where that
     search changes the routing); the example that searches only regions with three nets or more
     from the second iteration on routes without opens."""
     from xroute.net_order import VictimsPolicy
@@ -241,8 +243,8 @@ def test_a_policy_file_may_decide_the_search_region_by_region(tmp_path: Path) ->
                       "    return heuristic_order(features)\n")
     policy = load_policy_file(always)
     assert policy.needs_region
-    text, _ = routed(name=SAMPLE, policy=policy)
-    assert text == routed(name=SAMPLE, policy=VictimsPolicy(4))[0] != routed(name=SAMPLE)[0]
+    text, _ = routed(size=2, name=SEARCHED, policy=policy)
+    assert text == routed(size=2, name=SEARCHED, policy=VictimsPolicy(4))[0] != routed(size=2, name=SEARCHED)[0]
     example = load_policy_file(Path(__file__).resolve().parent.parent / "examples" / "region_search.py")
     assert example.needs_region and example.name == "region-search"
     from xroute.design import load_design
