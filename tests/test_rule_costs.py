@@ -12,7 +12,7 @@ import pytest
 
 from conftest import require_testcase
 from drawn import write_design
-from lef_text import cut, library, macro, pin, routing, stack_via
+from lef_text import cut, library, macro, pin, routing, stack_via, via
 from xroute import _engine, load_design
 
 # M2 (vertical) has a wide-metal row: 0.07 um for short parallel runs, 0.5 um once a
@@ -206,3 +206,60 @@ def test_a_held_end_of_a_fixed_pin_claims_only_the_spacing(tmp_path: Path) -> No
     # The rect running up from the end makes it an edge of the pin's outline: the pad 0.07 um away
     # keeps the spacing.
     assert eol_owners(tmp_path, "BARHELD", [(1100, 1100)]) == [(-1, -1)]
+
+
+# Two default vias up from M1 (vertical, end of line 0.12 within 0.05): V12 with its M1 pad along
+# the tracks (the one the grid's footprints assume) and V12H with it across. Pin A is a bar 0.1 x
+# 0.06 at (1.02..1.12, 1.07..1.13) of cell u1: V12H at (1.1, 1.1) leaves less metal outside it, so
+# pin access chooses it, and its pad's end sticks out 0.05 to x = 1.17. Net b runs a vertical M1
+# wire on x = 1.3 (its metal from 1.27): 0.1 from that end, enough for the spacing (0.06) and for
+# V12's pad, not for the end of line.
+VARIANT_LEF = library(
+    routing("M1", "VERTICAL", 0.2, 0.06, 0.06, rules=["SPACING 0.12 ENDOFLINE 0.12 WITHIN 0.05 ;"]),
+    cut("V1", 0.06, 0.08),
+    routing("M2", "HORIZONTAL", 0.2, 0.06, 0.06),
+    via("V12", [("M1", (-0.03, -0.07, 0.03, 0.07)), ("V1", (-0.03, -0.03, 0.03, 0.03)),
+                ("M2", (-0.07, -0.03, 0.07, 0.03))]),
+    via("V12H", [("M1", (-0.07, -0.03, 0.07, 0.03)), ("V1", (-0.03, -0.03, 0.03, 0.03)),
+                 ("M2", (-0.07, -0.03, 0.07, 0.03))]),
+    macro("BARA", 2.0, 2.0, pin("A", "INPUT", [("M1", (1.02, 1.07, 1.12, 1.13))])),
+    macro("POST", 0.4, 0.4, pin("P", "INPUT", [("M1", (0.07, 0.1, 0.13, 0.3))])),
+)
+
+VARIANT_DEF = WIDE_DEF.replace("DESIGN wide", "DESIGN variant").replace(
+    "TRACKS Y 100 DO 20 STEP 200 LAYER M1 ;\nTRACKS X 100 DO 20 STEP 200 LAYER M2 ;",
+    "TRACKS X 100 DO 20 STEP 200 LAYER M1 ;\nTRACKS Y 100 DO 20 STEP 200 LAYER M2 ;").replace(
+    "COMPONENTS 1 ;\n- u1 BIG + PLACED ( 600 950 ) N ;\n", (
+        "COMPONENTS 4 ;\n- u1 BARA + PLACED ( 0 0 ) N ;\n- u4 BARA + PLACED ( 2000 2000 ) N ;\n"
+        "- u2 POST + PLACED ( 1200 300 ) N ;\n- u3 POST + PLACED ( 1200 1500 ) N ;\n")).replace(
+    "NETS 1 ;\n- a ( u1 P ) ;\n", "NETS 2 ;\n- a ( u1 A ) ( u4 A ) ;\n- b ( u2 P ) ( u3 P ) ;\n")
+
+
+def test_an_access_via_of_another_variant_is_judged_as_placed(tmp_path: Path) -> None:
+    # The via step down into net a's access point at (1.1, 1.1) costs use_penalty more once net b's
+    # wire is there: V12H's pad end faces it. The grid's footprints, made for V12's pad, see no
+    # conflict, and the old maze charged nothing for a via that breaks the end-of-line rule.
+    lef, def_ = write_design(tmp_path, VARIANT_LEF, VARIANT_DEF, "variant")
+    db = load_design(lef=lef, def_=def_).engine
+    region = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000))
+    g = region.grid()
+    xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
+    nz, ny, nx = g["flags"].shape
+
+    def node(x: int, y: int, z: int) -> int:
+        return (z * ny + ys.index(y)) * nx + xs.index(x)
+
+    nets = region.candidates[:, 0].tolist()
+    a, b = nets.index(0), nets.index(1)
+    assert g["flags"][0, ys.index(1100), xs.index(1100)] & 16  # pin access's via up at (1.1, 1.1)
+    access = db.pin_access()
+    chosen = [access["via_names"][v] for p, v in zip(access["points"].tolist(), access["via"].tolist())
+              if p[:2] == [1100, 1100]]
+    assert chosen == ["V12H"]
+    down = 1
+    before = region.moves(a, node(1100, 1100, 1))
+    assert before[0][down] == node(1100, 1100, 0)
+    region.route_net(b)
+    assert g["routed_net"][0, ys.index(1100), xs.index(1300)] == 1  # b's M1 wire passes (1.3, 1.1)
+    after = region.moves(a, node(1100, 1100, 1))
+    assert after[1][down] - before[1][down] == _engine.MazeCosts().use_penalty

@@ -31,7 +31,37 @@ bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i,
   return false;
 }
 
+// Whether `r` (of `net`, on layer z) and another net's metal `o` break the spacing table, the
+// end-of-line spacing where a line end of either faces the other (`lineEnd`: o's facing edge may
+// be one) or the NONDEFAULTRULE spacing of either net.
+bool breaksSpacing(const RouteContext& ctx, int z, const Rect& r, int32_t net, const Rect& o, int32_t other,
+                   bool lineEnd) {
+  const Layer& layer = *ctx.rules.layers[z];
+  const Dbu rule = std::max(ctx.netRules.spacing(net, z), ctx.netRules.spacing(other, z));
+  return drc::rectGap(o, r) < std::max(drc::metalNeed(layer, r, o, true, lineEnd), rule);
+}
+
+// How far from r another net's metal can still break a rule with it.
+Dbu ruleReach(const RouteContext& ctx, int32_t net, int z, const Rect& r) {
+  const Layer& layer = *ctx.rules.layers[z];
+  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], ctx.netRules.spacing(net, z)});
+  return std::max({s, ctx.netRules.maxSpacing(z),
+                   requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, r.minSide(),
+                                   std::numeric_limits<Dbu>::max() / 4)});
+}
+
 }  // namespace
+
+bool breaksRoutedMetal(const RouteContext& ctx, const RoutedMetal& routedMetal, int32_t net, int z, const Rect& r) {
+  const Dbu reach = ruleReach(ctx, net, z, r);
+  const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
+  const auto& metal = routedMetal[z];
+  for (size_t i = 0; i < metal.size(); ++i) {
+    if (metal[i].second == net || !metal[i].first.overlaps(far)) continue;
+    if (breaksSpacing(ctx, z, r, net, metal[i].first, metal[i].second, !edgeContinues(metal, i, r))) return true;
+  }
+  return false;
+}
 
 // Fixed shapes and routed metal are judged by the spacing table with the run
 // length (a patch runs along them, so a wide one, a power rail, may need its
@@ -40,20 +70,14 @@ bool edgeContinues(const std::vector<std::pair<Rect, int32_t>>& metal, size_t i,
 int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& routedMetal, int32_t net, int z,
                    const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
-  const Dbu pw = r.minSide();
-  const Dbu own = ctx.netRules.spacing(net, z);  // the patch's net's NONDEFAULTRULE spacing
-  const Dbu widest = ctx.netRules.maxSpacing(z);  // any net's on the layer
-  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], own});
-  const Dbu reach = std::max({s, widest, requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, pw,
-                                                         std::numeric_limits<Dbu>::max() / 4)});
+  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], ctx.netRules.spacing(net, z)});
+  const Dbu reach = ruleReach(ctx, net, z, r);
   const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
   const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};
   int64_t bad = 0;
   // `lineEnd`: whether o's edge facing the patch may be a line end.
   auto judge = [&](const Rect& o, int32_t other, bool lineEnd) {
-    const Dbu rule = std::max(own, ctx.netRules.spacing(other, z));
-    const Dbu need = std::max(drc::metalNeed(layer, r, o, true, lineEnd), rule);
-    if (drc::rectGap(o, r) < need) bad += kPatchConflict;
+    if (breaksSpacing(ctx, z, r, net, o, other, lineEnd)) bad += kPatchConflict;
     else if (o.overlaps(grown)) bad += 10;
   };
   ctx.fixedIndex.query(far, [&](int32_t id) {

@@ -17,4 +17,8 @@ namespace xroute {
 int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& metal, int32_t net, int z,
                    const Rect& r);
 
+// Whether other nets' routed metal (`metal`) on layer z breaks a spacing rule with `r` of `net`
+// (as patchScore judges it; fixed shapes not counted).
+bool breaksRoutedMetal(const RouteContext& ctx, const RoutedMetal& metal, int32_t net, int z, const Rect& r);
+
 }  // namespace xroute

@@ -108,6 +108,9 @@ struct RegionRouter::Impl {
 
   // region_paths.cpp
   NodeArray<uint8_t> guideMask(int32_t net) const;
+  // The net's access vias of another variant than the cut's default via, priced against other
+  // nets' routed metal as they are (MazeNet::accessVia).
+  void accessViaCosts(const NetState& ns, MazeNet& mn) const;
   void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
   void releaseLandings(const NetState& ns);
   // True when a wire end at `at` (a wire of width `width` along x when `alongX`, ending towards

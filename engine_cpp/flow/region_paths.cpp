@@ -149,6 +149,30 @@ MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& te
   return mn;
 }
 
+// Each pad of such a via that breaks a rule with another net's routed metal costs usePenalty at
+// the access node (a via step pays the node costs of both its ends). The footprints of routed
+// metal assume the default via's landing: on ispd19_test1 pin access chose VIA12_1C_H (wider than
+// tall) at a pin, and its line end stayed 106 DBU from the next pin's access-via pad.
+void RegionRouter::Impl::accessViaCosts(const NetState& ns, MazeNet& mn) const {
+  const RegionGrid& g = *grid;
+  for (const TermSpec& s : ns.terms) {
+    if (s.pinRef < 0) continue;
+    for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
+      if (!(ap->dirs & kAccessUp) || !ap->upVia.valid() || ap->z + 1 >= g.nz()) continue;
+      if (ap->upVia == ctx.vias.cuts[ap->z].via) continue;
+      const int32_t v = nodeAt(ap->at, ap->z);
+      if (v < 0) continue;
+      int conflicts = 0;  // pads that break a rule
+      for (const ViaShape& sh : ctx.tech.vias[*ap->upVia].shapes) {
+        const int z = ctx.tech.layer(sh.layer).routingIndex;
+        if (z == ap->z || z == ap->z + 1)
+          conflicts += breaksRoutedMetal(ctx, routedMetal, ns.task.net, z, sh.rect.translated(ap->at));
+      }
+      if (conflicts > 0) mn.accessVia.emplace_back(v, int64_t(conflicts) * task.costs.usePenalty);
+    }
+  }
+}
+
 void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
   NetState& ns = nets[index];
   if (ns.routed) return;
@@ -165,6 +189,7 @@ void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
     mn.ruleWire = &rule.wire;
     mn.ruleVia = &rule.via;
   }
+  accessViaCosts(ns, mn);
   std::vector<std::vector<int32_t>> paths;
   ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
   rounds += static_cast<int64_t>(paths.size());
@@ -303,6 +328,7 @@ void RegionRouter::Impl::moves(int32_t index, int32_t node, std::array<MazeMove,
     mn.ruleWire = &ns.rule.wire;
     mn.ruleVia = &ns.rule.via;
   }
+  accessViaCosts(ns, mn);
   mazeMoves(*grid, task.costs, mn, node, out);
 }
 

@@ -172,6 +172,10 @@ int64_t Search::wireNodeCost(int32_t v) const {
 int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (net_.ruleVia) cost += (*net_.ruleVia)[v];
+  if (!net_.accessVia.empty() && (g_.flags[v] & kAccessVia)) {
+    for (const auto& [node, extra] : net_.accessVia)
+      if (node == v) cost += extra;
+  }
   if (own(v)) {
     if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
     // Pin access checked the via only where it offers one (kAccessVia); a

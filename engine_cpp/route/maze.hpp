@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "grid/region_grid.hpp"
@@ -45,6 +46,10 @@ struct MazeNet {
   // metal kept at the rule's spacing (ruleVia) adds there; null for a net of the default rule.
   const NodeArray<int32_t>* ruleWire = nullptr;
   const NodeArray<int32_t>* ruleVia = nullptr;
+  // (node, cost units) added to a via step from or to the node: the net's access points whose via
+  // pin access chose is not the one the grid's footprints assume, where that via's metal breaks a
+  // rule with another net's routed metal.
+  std::vector<std::pair<int32_t, int64_t>> accessVia;
 };
 
 // Reusable search buffers (one per thread), per node of the region's grid.
