@@ -133,21 +133,28 @@ LANDING_DEF = WIDE_DEF.replace("COMPONENTS 1 ;\n- u1 BIG + PLACED ( 600 950 ) N 
     "NETS 1 ;\n- a ( u1 P ) ;\n", "NETS 2 ;\n- a ( c1 A ) ( c2 A ) ;\n- b ( c3 A ) ( c4 A ) ;\n")
 
 
+def drawn_region(tmp_path: Path, lef_text: str, def_text: str, name: str) -> tuple[Any, Any, dict[str, Any], Any]:
+    """(database, the whole die opened as one region, its grid, node(x, y, z) -> flat node index)."""
+    lef, def_ = write_design(tmp_path, lef_text, def_text, name)
+    db = load_design(lef=lef, def_=def_).engine
+    region = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000))
+    g = region.grid()
+    xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
+    _, ny, nx = g["flags"].shape
+
+    def node(x: int, y: int, z: int) -> int:
+        return (z * ny + ys.index(y)) * nx + xs.index(x)
+
+    return db, region, g, node
+
+
 def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_path: Path) -> None:
     # The step from (300, 1500) east into the landing above pin c1/A, on M2 (wrong way: 200 x 4).
     # For net a it costs the wire alone: it ends on its own via's pad, which pin access checked.
     # For net b it is another net's landing and a forbidden wire (reserve and fixed penalties). The
     # old maze charged net a the fixed penalty too, and its route went up a layer and down again.
-    lef, def_ = write_design(tmp_path, LANDING_LEF, LANDING_DEF, "landing")
-    db = load_design(lef=lef, def_=def_).engine
-    region = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000))
-    g = region.grid()
+    _, region, g, node = drawn_region(tmp_path, LANDING_LEF, LANDING_DEF, "landing")
     xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
-    nz, ny, nx = g["flags"].shape
-
-    def node(x: int, y: int, z: int) -> int:
-        return (z * ny + ys.index(y)) * nx + xs.index(x)
-
     landing = node(500, 1500, 1)
     assert g["fixed_owner"][1, ys.index(1500), xs.index(500)] == -2  # no M2 wire may run there
     assert g["flags"][1, ys.index(1500), xs.index(500)] & 8  # the landing of pin access's via
@@ -239,16 +246,8 @@ def test_an_access_via_of_another_variant_is_judged_as_placed(tmp_path: Path) ->
     # The via step down into net a's access point at (1.1, 1.1) costs use_penalty more once net b's
     # wire is there: V12H's pad end faces it. The grid's footprints, made for V12's pad, see no
     # conflict, and the old maze charged nothing for a via that breaks the end-of-line rule.
-    lef, def_ = write_design(tmp_path, VARIANT_LEF, VARIANT_DEF, "variant")
-    db = load_design(lef=lef, def_=def_).engine
-    region = _engine.RoutingSession(db).open_region((0, 0, 4000, 4000))
-    g = region.grid()
+    db, region, g, node = drawn_region(tmp_path, VARIANT_LEF, VARIANT_DEF, "variant")
     xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
-    nz, ny, nx = g["flags"].shape
-
-    def node(x: int, y: int, z: int) -> int:
-        return (z * ny + ys.index(y)) * nx + xs.index(x)
-
     nets = region.candidates[:, 0].tolist()
     a, b = nets.index(0), nets.index(1)
     assert g["flags"][0, ys.index(1100), xs.index(1100)] & 16  # pin access's via up at (1.1, 1.1)
