@@ -149,8 +149,9 @@ MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& te
   return mn;
 }
 
-// Each pad of such a via that breaks a rule with another net's routed metal costs usePenalty at
-// the access node (a via step pays the node costs of both its ends). The footprints of routed
+// The net's access vias of another variant than the cut's default via: each pad that breaks a rule
+// with another net's routed metal costs usePenalty at the access node (a via step pays the node
+// costs of both its ends, so the landing carries nothing). The footprints of routed
 // metal assume the default via's landing: on ispd19_test1 pin access chose VIA12_1C_H (wider than
 // tall) at a pin, and its line end stayed 106 DBU from the next pin's access-via pad.
 void RegionRouter::Impl::accessViaCosts(const NetState& ns, MazeNet& mn) const {
