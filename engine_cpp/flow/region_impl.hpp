@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "flow/region_marks.hpp"
@@ -50,6 +51,7 @@ struct NetState {
   NodeArray<uint8_t> guide;                 // guideMask, built on first use by moves()
   RuleCosts rule;                           // ruleCosts for moves(), as of ruleAt routed nets
   bool hasRule = false;
+  std::vector<std::pair<int32_t, int64_t>> accessVia;  // accessViaCosts for moves(), as of ruleAt
   size_t ruleAt = std::numeric_limits<size_t>::max();
 };
 
@@ -110,7 +112,7 @@ struct RegionRouter::Impl {
   NodeArray<uint8_t> guideMask(int32_t net) const;
   // The net's access vias of another variant than the cut's default via, priced against other
   // nets' routed metal as they are (MazeNet::accessVia).
-  void accessViaCosts(const NetState& ns, MazeNet& mn) const;
+  std::vector<std::pair<int32_t, int64_t>> accessViaCosts(const NetState& ns) const;
   void addPathGeometry(int32_t net, const std::vector<int32_t>& path, NetRouting& out);
   void releaseLandings(const NetState& ns);
   // True when a wire end at `at` (a wire of width `width` along x when `alongX`, ending towards

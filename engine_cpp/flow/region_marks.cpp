@@ -21,37 +21,13 @@ int cutBelow(const RouteContext& ctx, LayerId cut) {
   return -1;
 }
 
-namespace {
-
-// The CrossEnd bits of r (routing layer z) that none of the rects `gather` puts in `others` (the
-// other shapes of its net on the layer touching it) continues; 0 unless r is narrower across than
-// the layer's EOL width.
-template <class Gather>
-uint8_t crossEnds(const RouteContext& ctx, const Rect& r, int z, std::vector<Rect>& others, Gather&& gather) {
-  const bool hz = ctx.rules.horizontal[z] != 0;
-  if (ctx.rules.eolSpace[z] <= 0 || (hz ? r.width() : r.height()) >= ctx.rules.eolWidth[z]) return 0;
-  others.clear();
-  gather();
-  return openCrossEnds(r, hz, others);
-}
-
-}  // namespace
-
 void markFixed(const RouteContext& ctx, const Rect& box, RegionGrid& g) {
-  std::vector<Rect> others;
   ctx.fixedIndex.query(grownBox(box, ctx.halo), [&](int32_t id) {
     const DrcShape& s = ctx.fixedShapes[id];
     const Layer& l = ctx.tech.layer(s.layer);
     if (l.routingIndex >= 0) {
       const int z = l.routingIndex;
-      // A pin drawn as several rects: its other rects continue an end.
-      const uint8_t ends = crossEnds(ctx, s.rect, z, others, [&] {
-        ctx.fixedIndex.query(s.rect, [&](int32_t j) {
-          const DrcShape& o = ctx.fixedShapes[j];
-          if (j != id && o.layer == s.layer && o.net == s.net && o.rect.overlaps(s.rect)) others.push_back(o.rect);
-        });
-      });
-      markMetal(g, ctx.rules, z, s.rect, s.net, true, ctx.netRules.spacing(s.net, z), ends);
+      markMetal(g, ctx.rules, z, s.rect, s.net, true, ctx.netRules.spacing(s.net, z), ctx.fixedCrossEnds[id]);
     } else if (l.cutIndex >= 0) {
       const int z = cutBelow(ctx, s.layer);
       if (z >= 0) markCut(g, ctx.rules, z, s.rect, s.net);
@@ -68,10 +44,14 @@ void markShapes(const RouteContext& ctx, int32_t net, const std::vector<NetShape
     const Layer& l = ctx.tech.layer(s.layer);
     if (l.routingIndex >= 0) {
       const int z = l.routingIndex;
-      const uint8_t ends = crossEnds(ctx, s.rect, z, others, [&] {
+      // Its cross ends that no other shape of the net on the layer touching it continues.
+      uint8_t ends = 0;
+      if (narrowAcross(ctx.rules, z, s.rect)) {
+        others.clear();
         for (size_t j = 0; j < shapes.size(); ++j)
           if (j != i && shapes[j].layer == s.layer && shapes[j].rect.overlaps(s.rect)) others.push_back(shapes[j].rect);
-      });
+        ends = openCrossEnds(s.rect, ctx.rules.horizontal[z] != 0, others);
+      }
       markMetal(g, ctx.rules, z, s.rect, net, false, ctx.netRules.spacing(net, z), ends);
       metal[l.routingIndex].emplace_back(s.rect, net);
     } else if (l.cutIndex >= 0) {

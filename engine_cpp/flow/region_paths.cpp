@@ -154,8 +154,9 @@ MazeNet RegionRouter::Impl::mazeNet(const NetState& ns, std::vector<int32_t>& te
 // costs of both its ends, so the landing carries nothing). The footprints of routed
 // metal assume the default via's landing: on ispd19_test1 pin access chose VIA12_1C_H (wider than
 // tall) at a pin, and its line end stayed 106 DBU from the next pin's access-via pad.
-void RegionRouter::Impl::accessViaCosts(const NetState& ns, MazeNet& mn) const {
+std::vector<std::pair<int32_t, int64_t>> RegionRouter::Impl::accessViaCosts(const NetState& ns) const {
   const RegionGrid& g = *grid;
+  std::vector<std::pair<int32_t, int64_t>> out;
   for (const TermSpec& s : ns.terms) {
     if (s.pinRef < 0) continue;
     for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
@@ -169,9 +170,10 @@ void RegionRouter::Impl::accessViaCosts(const NetState& ns, MazeNet& mn) const {
         if (z == ap->z || z == ap->z + 1)
           conflicts += breaksRoutedMetal(ctx, routedMetal, ns.task.net, z, sh.rect.translated(ap->at));
       }
-      if (conflicts > 0) mn.accessVia.emplace_back(v, int64_t(conflicts) * task.costs.usePenalty);
+      if (conflicts > 0) out.emplace_back(v, int64_t(conflicts) * task.costs.usePenalty);
     }
   }
+  return out;
 }
 
 void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
@@ -190,7 +192,7 @@ void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
     mn.ruleWire = &rule.wire;
     mn.ruleVia = &rule.via;
   }
-  accessViaCosts(ns, mn);
+  mn.accessVia = accessViaCosts(ns);
   std::vector<std::vector<int32_t>> paths;
   ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
   rounds += static_cast<int64_t>(paths.size());
@@ -323,13 +325,14 @@ void RegionRouter::Impl::moves(int32_t index, int32_t node, std::array<MazeMove,
   mn.inGuide = &ns.guide;
   if (ns.ruleAt != order.size()) {  // the costs change as nets are routed
     ns.hasRule = ruleCosts(ns.task.net, ns.rule);
+    ns.accessVia = accessViaCosts(ns);
     ns.ruleAt = order.size();
   }
   if (ns.hasRule) {
     mn.ruleWire = &ns.rule.wire;
     mn.ruleVia = &ns.rule.via;
   }
-  accessViaCosts(ns, mn);
+  mn.accessVia = ns.accessVia;
   mazeMoves(*grid, task.costs, mn, node, out);
 }
 

@@ -37,6 +37,20 @@ RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPoin
   rects.reserve(fixedShapes.size());
   for (const DrcShape& s : fixedShapes) rects.push_back(s.rect);
   fixedIndex = BoxIndex(std::move(rects));
+  fixedCrossEnds.assign(fixedShapes.size(), 0);
+  std::vector<Rect> others;
+  for (size_t i = 0; i < fixedShapes.size(); ++i) {
+    const DrcShape& s = fixedShapes[i];
+    const int z = tech.layer(s.layer).routingIndex;
+    if (z < 0 || z >= static_cast<int>(tracks.layers.size()) || !narrowAcross(rules, z, s.rect)) continue;
+    others.clear();
+    fixedIndex.query(s.rect, [&](int32_t j) {
+      const DrcShape& o = fixedShapes[j];
+      if (j != static_cast<int32_t>(i) && o.layer == s.layer && o.net == s.net && o.rect.overlaps(s.rect))
+        others.push_back(o.rect);
+    });
+    fixedCrossEnds[i] = openCrossEnds(s.rect, rules.horizontal[z] != 0, others);
+  }
 
   netRules = NetRules(tech, design, tracks, vias);
   Dbu maxPitch = 0;

@@ -43,6 +43,9 @@ struct RouteContext {
   std::vector<int32_t> pinNet;      // per pinRef: its net id
   std::vector<DrcShape> fixedShapes;  // pins, OBS, special nets (DRC net ids: regular nets keep their id)
   BoxIndex fixedIndex;               // over fixedShapes' rects
+  // Per fixed shape: its open cross ends (CrossEnd bits; a pin's other rects on the layer hold an
+  // end), 0 on cut layers and for shapes wide across the tracks.
+  std::vector<uint8_t> fixedCrossEnds;
   Dbu halo = 0;                      // DBU, how far outside a region shapes still matter
   NetRules netRules;                 // each net's NONDEFAULTRULE: widths, spacings, vias per layer
   // The design-rule options of the flow's checks: fixed-only pairs skipped, the nets' rule

@@ -86,6 +86,10 @@ uint8_t openCrossEnds(const Rect& r, bool horizontal, const std::vector<Rect>& o
   return open;
 }
 
+bool narrowAcross(const FootprintRules& rules, int z, const Rect& r) {
+  return rules.eolSpace[z] > 0 && (rules.horizontal[z] ? r.width() : r.height()) < rules.eolWidth[z];
+}
+
 MetalReach metalReach(const FootprintRules& rules, int z, const Rect& r, Dbu half, Dbu minSpace,
                       const Rect* landing, uint8_t crossEnds) {
   const Layer& layer = *rules.layers[z];

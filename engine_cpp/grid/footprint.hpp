@@ -42,6 +42,9 @@ enum CrossEnd : uint8_t { kCrossLow = 1, kCrossHigh = 2 };
 // `r`'s open cross ends among `others`, the other rects of its net on the same layer (DBU):
 // an end is closed by a rect that overlaps `r` and covers the end's edge or continues it.
 uint8_t openCrossEnds(const Rect& r, bool horizontal, const std::vector<Rect>& others);
+// Whether `r` on routing layer z can have line ends across the tracks at all: the layer has an
+// end-of-line rule and `r` is narrower across than its EOL width.
+bool narrowAcross(const FootprintRules& rules, int z, const Rect& r);
 
 // Where metal `r` on routing layer z forbids a wire `half` wide through a node (wire: its line
 // end, its side, its end of line, the end of line of `r`'s open cross ends) and a via's landing
