@@ -39,7 +39,7 @@ class SettingsEntry:
     """One column of the matrix: a name and the settings it overrides (None: the base config's)."""
 
     name: str = setting(check="name")
-    region_size: int | None = setting(None, min=1, max=1000, unit="GCells")
+    region_size: int | None = setting(None, min=0, max=1000, unit="GCells")
     iteration_count: int | None = setting(None, min=1, max=MAX_ITERATIONS)
     thread_count: int | None = setting(None, min=1, max=1024)
     seed: int | None = setting(None, min=0, max=2**64 - 1)

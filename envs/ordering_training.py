@@ -67,9 +67,10 @@ class NetOrderingTrainingEnv(RegionEnv):
         if region_size is None:
             from xroute.defaults import REGION_SIZE
 
-            region_size = REGION_SIZE if in_context else 1
+            region_size = REGION_SIZE if in_context else 1  # in context 0: the router's (the first pass's)
         for name, value in (("region_size", region_size), ("testcase_loop", testcase_loop), ("region_loop", region_loop)):
-            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            auto = name == "region_size" and in_context and value == 0
+            if isinstance(value, bool) or not isinstance(value, int) or (value < 1 and not auto):
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
         if region_order not in ("sequential", "random"):
             raise ValueError(f"region_order must be 'sequential' or 'random', got {region_order!r}")
@@ -109,6 +110,7 @@ class NetOrderingTrainingEnv(RegionEnv):
                 self._design = load_design(self.testcase_name)
                 self._session = open_session(self._design)
                 self._first_pass = first_pass(self._session, self.region_size)
+                self.region_size = int(self._first_pass.report["region_size"])  # 0 resolved
             walk = [(tuple(loc), tuple(box), i) for i, (loc, box, _colour, _nets) in enumerate(self._first_pass.regions)]
         else:
             if self._dirty or self._design is None:

@@ -20,7 +20,7 @@ BASELINE = REPO / "configs" / "baselines" / "ci-smoke.json"
 # first run of the same jobs (the stored baseline holds the contest samples' figures).
 S1, S2, S4 = available("ispd18_sample", "ispd18_sample2", "ispd19_sample4")
 CONTEST = (S1, S2, S4) == ("ispd18_sample", "ispd18_sample2", "ispd19_sample4")
-SMOKE_JOBS = [f"{t}__{p}__rs10" for t in (S1, S2, S4) for p in ("heuristic", "random")]
+SMOKE_JOBS = [f"{t}__{p}__defaults" for t in (S1, S2, S4) for p in ("heuristic", "random")]
 
 
 def smoke_lines(baseline: Path | None) -> list[str]:
@@ -97,8 +97,8 @@ def test_ci_smoke_batch_passes_and_writes_junit_and_summaries(smoke, smoke_files
     assert result.exit_code == 0, result.stdout + result.stderr
     assert result.stderr == ""
     # CI=true: plain log lines (no Rich progress), one per job start, iteration and end
-    assert f"{S1}__heuristic__rs10: started" in result.stdout
-    assert f"{S4}__random__rs10: iteration 0:" in result.stdout
+    assert f"{S1}__heuristic__defaults: started" in result.stdout
+    assert f"{S4}__random__defaults: iteration 0:" in result.stdout
     assert "\r" not in result.stdout and "\x1b[" not in result.stdout
     cases = junit_cases(out / "junit.xml")
     assert sorted(cases) == sorted(SMOKE_JOBS)
@@ -113,7 +113,7 @@ def test_ci_smoke_batch_passes_and_writes_junit_and_summaries(smoke, smoke_files
     for job, figures in stored.items():  # the stored baseline is what this router writes today
         assert {k: rows[job][k] for k in figures} == figures, job
     if CONTEST:
-        assert rows["ispd19_sample4__heuristic__rs10"]["violations"] == 0  # was 7 before the PRL-aware footprint
+        assert rows["ispd19_sample4__heuristic__defaults"]["violations"] == 0  # was 7 before the PRL-aware footprint
     with open(out / "summary.csv") as f:
         table = list(csv.DictReader(f))
     assert [r["id"] for r in table] == [r["id"] for r in doc["jobs"]] and {r["gates"] for r in table} == {"pass"}
@@ -132,7 +132,7 @@ def test_ci_smoke_batch_passes_and_writes_junit_and_summaries(smoke, smoke_files
 def test_rerun_resumes_finished_jobs(smoke, smoke_files) -> None:
     out, first = smoke
     assert first.exit_code == 0
-    stale = out / "jobs" / f".{S1}__heuristic__rs10.tmp-999999999"  # an interrupted job (its process is gone)
+    stale = out / "jobs" / f".{S1}__heuristic__defaults.tmp-999999999"  # an interrupted job (its process is gone)
     stale.mkdir()
     (stale / f"{S1}.routed.def").write_text("half")
     result = make_runner().invoke(app, ["batch", str(smoke_files[0]), "--out", str(out), "--json"],
@@ -152,7 +152,7 @@ def test_tightened_threshold_fails_naming_job_and_gate(smoke, smoke_files, tmp_p
     base = json.loads(smoke_files[1].read_text())
     expected = []
     for policy in ("heuristic", "random"):
-        job = f"{S4}__{policy}__rs10"
+        job = f"{S4}__{policy}__defaults"
         vias = base["jobs"][job]["vias"]
         base["jobs"][job]["vias"] = tight = vias * 9 // 10
         pct = 100.0 * (vias - tight) / tight
@@ -164,15 +164,15 @@ def test_tightened_threshold_fails_naming_job_and_gate(smoke, smoke_files, tmp_p
     failures = sorted(line for line in result.stderr.splitlines() if line.startswith("gate failed:"))
     assert failures == [f"gate failed: {e}" for e in expected]
     cases = junit_cases(out / "junit.xml")
-    failure = cases[f"{S4}__heuristic__rs10"].find("failure")
+    failure = cases[f"{S4}__heuristic__defaults"].find("failure")
     assert failure is not None and failure.get("message") == expected[0]
-    assert cases[f"{S1}__heuristic__rs10"].find("failure") is None
+    assert cases[f"{S1}__heuristic__defaults"].find("failure") is None
 
 
 def test_wirelength_gate_against_a_baseline(smoke, smoke_files, tmp_path: Path) -> None:
     out, first = smoke
     assert first.exit_code == 0
-    job = f"{S2}__random__rs10"
+    job = f"{S2}__random__defaults"
     base = json.loads(smoke_files[1].read_text())
     # The job now looks longer: 100 um for ispd18_sample2 (about 104 um), half its length for the stand-in.
     low = 100.0 if CONTEST else round(base["jobs"][job]["wirelength_um"] / 2, 2)
@@ -185,7 +185,7 @@ def test_wirelength_gate_against_a_baseline(smoke, smoke_files, tmp_path: Path) 
     wl = {r["id"]: r for r in wl["jobs"]}[job]["wirelength_um"]
     assert wl > 1.01 * low
     if CONTEST:
-        assert result.stderr == (f"gate failed: job ispd18_sample2__random__rs10: wirelength_um {wl} is +{wl - 100.0:.2f}% "
+        assert result.stderr == (f"gate failed: job ispd18_sample2__random__defaults: wirelength_um {wl} is +{wl - 100.0:.2f}% "
                                  "over the baseline 100.0 > max_wirelength_increase_pct 1.0\n")
     else:
         assert result.stderr == (f"gate failed: job {job}: wirelength_um {wl:,} is {100.0 * (wl - low) / low:+.2f}% over "
@@ -238,5 +238,5 @@ def test_ray_backend_on_a_local_instance(tmp_path: Path, testcase, smoke_files) 
     assert doc["backend"] == "ray" and doc["counts"] == {"jobs": 2, "failed": 0, "errors": 0, "resumed": 0}
     stored = json.loads(smoke_files[1].read_text())["jobs"]
     # The figures of the local backend's run of the same policies (the stored baseline).
-    assert [r["wirelength_um"] for r in doc["jobs"]] == [stored[f"{S1}__{p}__rs10"]["wirelength_um"]
+    assert [r["wirelength_um"] for r in doc["jobs"]] == [stored[f"{S1}__{p}__defaults"]["wirelength_um"]
                                                          for p in ("heuristic", "random")]

@@ -58,7 +58,7 @@ def test_route_default_output_folder_and_progress_lines(runner: CliRunner, testc
     assert all(p.is_file() for p in outputs(tmp_path / "out" / SAMPLE2, SAMPLE2))
     out = result.stdout
     # Not a terminal: plain progress lines, then the table, then the final line.
-    assert out.startswith(f"routing {SAMPLE2}: {nets_of(SAMPLE2)} nets, region size 10, up to 16 iterations, "
+    assert out.startswith(f"routing {SAMPLE2}: {nets_of(SAMPLE2)} nets, region size 10 (auto), up to 16 iterations, "
                           "1 thread(s), policy heuristic\niteration 0: ")
     assert "open nets" in out and "wirelength (µm)" in out
     assert out.strip().splitlines()[-1].startswith(f"{SAMPLE2}: routed: {nets_of(SAMPLE2)} nets, 0 open")
@@ -121,7 +121,7 @@ def test_route_bad_policy_is_a_one_line_error(runner: CliRunner, testcase, tmp_p
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--region-size", "0"], "error: region size must be at least 1 GCell, got 0"),
+        (["--region-size", "-1"], "error: region size must be at least 1 GCell (0: auto), got -1"),
         (["--iterations", "65"], "error: iterations must be between 1 and 64, got 65"),
         (["--threads", "0"], "error: threads must be at least 1, got 0"),
         (["--schedule", "5:0,x"], "error: --schedule: 'x' is not SIZE:OFFSET (two integers, GCells)"),

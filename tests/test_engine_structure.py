@@ -40,8 +40,8 @@ def test_router_settings_reject_unknown_fields() -> None:
 
 def test_route_checks_the_settings_fields() -> None:
     db = load_design(DEMO).engine
-    with pytest.raises(ValueError, match="region_size must be in 1"):
-        _engine.route(db, settings=_engine.RouterSettings(region_size=0))
+    with pytest.raises(ValueError, match=r"region_size must be in 0\.\.1000 \(0: auto\)"):
+        _engine.route(db, settings=_engine.RouterSettings(region_size=-1))
     with pytest.raises(ValueError, match="iterations must be in 1"):
         _engine.route(db, iterations=0, settings=_engine.RouterSettings(iterations=3))
 

@@ -88,7 +88,7 @@ def test_first_pass_bad_arguments() -> None:
     require_testcase(DESIGN)
     session = open_session(load_design(DESIGN))
     with pytest.raises(ValueError, match="region_size"):
-        first_pass(session, 0)
+        first_pass(session, -1)
     with pytest.raises(ValueError, match="unknown policy"):
         first_pass(session, 2, policy="nope")
 

@@ -291,7 +291,7 @@ YAML_CASES = {
                    0, "more than 50,000 nodes"),
     "bad date": ("output: {out_dir: 2020-13-45}\nregion: {region_size: 2020-01-01}\n", 2, "expected an integer"),
     "two documents": ("--- {}\n--- {}\n", 2, "invalid YAML"),
-    "huge region size": ("region: {region_size: 2147483648}\n", 1, "must be between 1 and 1000"),
+    "huge region size": ("region: {region_size: 2147483648}\n", 1, "must be between 0 and 1000"),
     "huge schedule": ("router: {iteration_schedule: [{region_size: 99999999999999999999, offset: 0}]}\n", 1,
                       "must be between 1 and 1000"),
 }

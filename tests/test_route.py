@@ -20,7 +20,7 @@ from xroute.policies import CallablePolicy, HeuristicPolicy, PolicyError, Random
 from xroute.net_order import FEATURE_COLUMNS
 from xroute.errors import XrouteError
 from xroute.outputs import RouteOutputs, write_route_outputs
-from xroute.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, route_design
+from xroute.router import VIOLATION_TYPES, RouteArgumentError, RouteResult, region_size_for, route_design
 from xroute.testcases import DEMO
 
 SAMPLES = available("ispd18_sample", "ispd18_sample2", "ispd19_sample4")
@@ -89,7 +89,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     data = json.loads(outputs.metrics_path.read_text())
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
-    assert data["settings"] == {"region_size": 10, "iterations": 16, "threads": 1, "seed": 1, "schedule": None,
+    assert data["settings"] == {"region_size": region_size_for(design, 0), "iterations": 16, "threads": 1, "seed": 1, "schedule": None,
                                 "repair_rounds": 0, "policy": "heuristic", "schedule_policy": "rule"}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
@@ -287,7 +287,7 @@ def test_exception_inside_a_policy_propagates() -> None:
 @pytest.mark.parametrize(
     ("kw", "message"),
     [
-        ({"region_size": 0}, "region size must be at least 1 GCell, got 0"),
+        ({"region_size": -1}, "region size must be at least 1 GCell (0: auto), got -1"),
         ({"iterations": 65}, "iterations must be between 1 and 64, got 65"),
         ({"iterations": 0}, "iterations must be between 1 and 64, got 0"),
         ({"threads": 0}, "threads must be at least 1, got 0"),
@@ -331,7 +331,7 @@ def test_progress_events() -> None:
 @pytest.mark.slow
 def test_ispd18_test1_end_to_end(tmp_path: Path) -> None:
     design = fresh("ispd18_test1")
-    result = route_design(design, threads=2)  # the defaults: region size 10, up to 16 iterations
+    result = route_design(design, threads=2)  # the defaults: region size 0 (10 here), up to 16 iterations
     outputs = write_route_outputs(design, result, tmp_path)
     conn = reread(design, outputs).engine.check_connectivity()
     assert conn["open_nets"] == 0 and conn["unrouted_nets"] == 0

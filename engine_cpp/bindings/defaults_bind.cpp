@@ -2,6 +2,7 @@
 // settings structs themselves, so that Python states none of them a second time.
 #include <nanobind/nanobind.h>
 
+#include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/search_policy.hpp"
 #include "grid/region_grid.hpp"
@@ -16,7 +17,9 @@ void bindDefaults(nb::module_& m) {
   const GlobalRouteSettings groute;
   const PinAccessSettings pa;
   nb::dict d;
-  d["region_size"] = router.regionSize;
+  d["region_size"] = router.regionSize;  // 0: auto (autoRegionSize)
+  d["region_gcells"] = kRegionGCells;
+  d["region_tracks"] = kRegionTracks;
   d["iterations"] = router.iterations;
   d["max_iterations"] = kMaxIterations;
   d["max_region_size"] = kMaxRegionSize;

@@ -32,8 +32,8 @@ struct FirstPassHandle {
 
 void initFirstPass(FirstPassHandle* self, RoutingSession& s, int regionSize, const std::string& policy,
                    uint64_t seed, int threads) {
-  if (regionSize < 1 || regionSize > kMaxRegionSize) {
-    throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
+  if (regionSize < 0 || regionSize > kMaxRegionSize) {
+    throw nb::value_error(("region_size must be in 0.." + std::to_string(kMaxRegionSize) + " (0: auto)").c_str());
   }
   if (threads < 1 || threads > kMaxThreads) {
     throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());

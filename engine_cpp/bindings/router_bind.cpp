@@ -21,6 +21,7 @@
 #include "bindings/report_dict.hpp"
 #include "db/database.hpp"
 #include "flow/policy.hpp"
+#include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/search_policy.hpp"
 
@@ -117,8 +118,8 @@ RouterSettings runSettings(const RouterSettings* base, std::optional<int> region
   if (regionSize) s.regionSize = *regionSize;
   if (iterations) s.iterations = *iterations;
   if (threads) s.threads = *threads;
-  if (s.regionSize < 1 || s.regionSize > kMaxRegionSize) {
-    throw nb::value_error(("region_size must be in 1.." + std::to_string(kMaxRegionSize)).c_str());
+  if (s.regionSize < 0 || s.regionSize > kMaxRegionSize) {
+    throw nb::value_error(("region_size must be in 0.." + std::to_string(kMaxRegionSize) + " (0: auto)").c_str());
   }
   if (s.iterations < 1 || s.iterations > kMaxIterations) {
     throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
@@ -200,9 +201,18 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
   return result;
 }
 
+// GCells per region side of a run whose region size is 0 (flow/regions.hpp autoRegionSize).
+int autoRegionSizeOf(const Database& db) {
+  const TrackSet tracks = buildTracks(db.tech, db.design);
+  return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, kMaxRegionSize);
+}
+
 }  // namespace
 
 void bindRouter(nb::module_& m) {
+  m.def("auto_region_size", &autoRegionSizeOf, "db"_a,
+        "GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more where that "
+        "spans fewer than DEFAULTS['region_tracks'] tracks (of the routing layers' median pitch).");
   nb::list columns;
   for (const char* c : kFeatureColumns) columns.append(c);
   m.attr("POLICY_FEATURES") = nb::tuple(columns);
@@ -222,8 +232,8 @@ void bindRouter(nb::module_& m) {
       "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
       "route nets with it; the order applies to the rest). progress(report, "
       "regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, "
-      "penalties, repair rounds; None: the defaults); region_size, iterations and threads, when given, replace its "
-      "fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration "
+      "penalties, repair rounds; None: the defaults); region_size (0: auto_region_size(db)), iterations and "
+      "threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration "
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
       "planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the "
       "iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, "

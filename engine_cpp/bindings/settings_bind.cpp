@@ -64,7 +64,7 @@ void bindRouterSettings(nb::module_& m) {
            "history_penalty"_a = d.historyPenalty, "stop_at_zero"_a = d.stopAtZero,
            "repair_rounds"_a = d.repairRounds, "first_repair_rounds"_a = d.firstRepairRounds,
            "repair_penalty"_a = d.repairPenalty, "The settings; each defaults to the engine's.")
-      .def_rw("region_size", &RouterSettings::regionSize, "GCells per region side.")
+      .def_rw("region_size", &RouterSettings::regionSize, "GCells per region side (0: auto_region_size(db)).")
       .def_rw("iterations", &RouterSettings::iterations, "Iterations at most (1..max_iterations).")
       .def_rw("threads", &RouterSettings::threads, "Worker threads for the regions of one colour.")
       .def_rw("costs", &RouterSettings::costs, "Maze costs of iteration 0.")

@@ -1,6 +1,7 @@
 #include "flow/regions.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace xroute {
 
@@ -83,6 +84,35 @@ std::vector<int> cuts(int n, int size, int offset) {
 
 GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks) {
   return GCellGrid{derivedLines(design, tracks, true), derivedLines(design, tracks, false)};
+}
+
+namespace {
+
+// The median of `v` (the lower middle one of an even count); 0 when empty.
+Dbu median(std::vector<Dbu> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + (v.size() - 1) / 2, v.end());
+  return v[(v.size() - 1) / 2];
+}
+
+}  // namespace
+
+int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, int maxSize) {
+  // Tracks per GCell along one axis: the median GCell side over the median pitch of the layers whose
+  // tracks cross that axis (vertical layers' tracks are x coordinates); 0 when either is unknown.
+  auto tracksPerGCell = [&](const std::vector<Dbu>& lines, bool horizontalLayers) {
+    std::vector<Dbu> pitches, sides;
+    for (const LayerTracks& t : tracks.layers)
+      if (t.horizontal == horizontalLayers && t.pitch > 0) pitches.push_back(t.pitch);
+    for (size_t i = 1; i < lines.size(); ++i) sides.push_back(lines[i] - lines[i - 1]);
+    const Dbu pitch = median(std::move(pitches)), side = median(std::move(sides));
+    return pitch > 0 && side > 0 ? static_cast<double>(side) / static_cast<double>(pitch) : 0.0;
+  };
+  const double tx = tracksPerGCell(grid.xs, false), ty = tracksPerGCell(grid.ys, true);
+  const double perGCell = tx > 0 && ty > 0 ? (tx + ty) / 2 : std::max(tx, ty);
+  const double widened = perGCell > 0 ? std::round(kRegionTracks / perGCell) : 0.0;
+  const double size = std::max(static_cast<double>(kRegionGCells), widened);
+  return static_cast<int>(std::clamp(size, 1.0, static_cast<double>(maxSize)));
 }
 
 std::vector<Region> partitionRegions(const GCellGrid& grid, int size, int offset) {

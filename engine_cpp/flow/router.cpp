@@ -65,7 +65,9 @@ class Flow {
   Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress,
        const ColourHook& beforeColour, const IterationPlanner& planner)
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
-        planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {}
+        planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
+    if (s_.regionSize <= 0) s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, kMaxRegionSize);
+  }
 
   // The design's routing is empty (routeDesign cleared it before the context was made).
   RouteOutcome run() {
@@ -349,7 +351,7 @@ class Flow {
 
   const Tech& tech_;
   Design& design_;
-  const RouterSettings& s_;
+  RouterSettings s_;  // regionSize 0 resolved for the design
   NetOrderPolicy& policy_;
   const RouteProgress& progress_;
   const ColourHook& beforeColour_;

@@ -32,7 +32,9 @@ inline constexpr int kMaxThreads = 1024;      // worker threads at most
 inline constexpr int kMaxRepairRounds = 64;   // repair rounds per region at most
 
 struct RouterSettings {
-  int regionSize = 10;             // GCells per region side (C); see flow/README.md for the measurement
+  // GCells per region side (C); 0 = 10, widened to 150 tracks where GCells are small (autoRegionSize,
+  // flow/regions.hpp): 10 on ispd18_test1 and ispd19_test3, 15 on ispd19_test1.
+  int regionSize = 0;
   // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
   // ispd19_test1 reaches zero in its iteration 7, ispd19_test3 in its iteration 8 (2026-11-27, 2 threads).
   int iterations = 16;

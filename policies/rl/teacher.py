@@ -50,9 +50,10 @@ def route_order(first_pass: Any, index: int, order: np.ndarray, dbu_per_micron: 
 
 
 def training_indices(first_pass: Any, region_size: int, hold_out_every: int) -> list[int]:
-    """Indices of the first pass's regions that are not held out."""
+    """Indices of the first pass's regions that are not held out (region_size 0: the pass's own)."""
+    size = region_size or int(first_pass.report["region_size"])
     return [i for i, (loc, _box, _colour, _nets) in enumerate(first_pass.regions)
-            if not held_out(tuple(loc), hold_out_every, region_size)]
+            if not held_out(tuple(loc), hold_out_every, size)]
 
 
 def load_first_pass(testcase: str, region_size: int) -> tuple[Any, int]:

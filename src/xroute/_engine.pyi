@@ -350,12 +350,12 @@ class RouterSettings:
     The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).
     """
 
-    def __init__(self, region_size: int = 10, iterations: int = 16, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
+    def __init__(self, region_size: int = 0, iterations: int = 16, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
         """The settings; each defaults to the engine's."""
 
     @property
     def region_size(self) -> int:
-        """GCells per region side."""
+        """GCells per region side (0: auto_region_size(db))."""
 
     @region_size.setter
     def region_size(self, arg: int, /) -> None: ...
@@ -475,11 +475,16 @@ class RouterSettings:
     @trim_dangling.setter
     def trim_dangling(self, arg: bool, /) -> None: ...
 
+def auto_region_size(db: Database) -> int:
+    """
+    GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more where that spans fewer than DEFAULTS['region_tracks'] tracks (of the routing layers' median pitch).
+    """
+
 POLICY_FEATURES: tuple = ...
 
 def route(db: Database, region_size: int | None = None, iterations: int | None = None, threads: int | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, settings: RouterSettings | None = None, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None, planner: object | None = None) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, penalties, repair rounds; None: the defaults); region_size, iterations and threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; stop: end the run, from iteration 1 on). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, penalties, repair rounds; None: the defaults); region_size (0: auto_region_size(db)), iterations and threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; stop: end the run, from iteration 1 on). Returns {'iterations': [report, ...]}.
     """
 
 ACCESS_UP: int = 1
@@ -612,7 +617,7 @@ class FirstPass:
     The flow's first pass (iteration 0) of a session's design, kept so that each of its regions can be opened again in context (flow/first_pass.hpp).
     """
 
-    def __init__(self, session: RoutingSession, region_size: int = 10, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:
+    def __init__(self, session: RoutingSession, region_size: int = 0, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:
         """
         Routes iteration 0 of the session's design as `xroute route` does (regions of region_size GCells, colour by colour; policy 'heuristic' or 'random' (seeded)), keeping the design's routing and crossing choices before each colour. The design is left with the whole pass routed.
         """

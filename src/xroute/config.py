@@ -137,7 +137,7 @@ class TestcaseSection:
 class RegionSection:
     """How the design is cut into regions (XRoute: region_size, region_location, region_loop)."""
 
-    region_size: int = setting(DEFAULT_REGION_SIZE, min=1, max=1000, unit="GCells")
+    region_size: int = setting(DEFAULT_REGION_SIZE, min=0, max=1000, unit="GCells", help="0: auto")
     region_location: tuple[int, int] | None = setting(None, items={"min": 0}, unit="GCell index (x, y)")
     region_loop: int = setting(1, min=1, help="episodes per region (training environments)")
 

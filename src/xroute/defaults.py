@@ -10,7 +10,9 @@ from xroute import _engine
 
 _D: dict = dict(_engine.DEFAULTS)
 
-REGION_SIZE: int = int(_D["region_size"])  # GCells per region side (measured best on ispd18_test1)
+REGION_SIZE: int = int(_D["region_size"])  # GCells per region side; 0: auto (xroute.router.region_size_for)
+REGION_GCELLS: int = int(_D["region_gcells"])  # the auto region's side, GCells at least
+REGION_TRACKS: int = int(_D["region_tracks"])  # ... and tracks at least (widened where GCells are small)
 ITERATIONS: int = int(_D["iterations"])  # iteration limit; the flow stops earlier at zero violations
 MAX_ITERATIONS: int = int(_D["max_iterations"])
 MAX_REGION_SIZE: int = int(_D["max_region_size"])  # GCells per region side at most

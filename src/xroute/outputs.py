@@ -170,7 +170,7 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
         "global_route": gr.to_dict() if (gr := design.global_route_stats) is not None else None,
         "outputs": {"def": str(def_path), "metrics": str(metrics_path), "drc_report": str(drc_path)},
         "settings": {
-            "region_size": result.settings.region_size,
+            "region_size": result.region_size,  # 0 (auto) resolved
             "iterations": result.settings.iterations,
             "threads": result.settings.threads,
             "seed": result.settings.seed,

@@ -31,8 +31,9 @@ from xroute.schedule import IterationReport, SchedulePolicy, engine_planner, is_
 if TYPE_CHECKING:
     from xroute.design import Design
 
-# From the engine's RouterSettings and limits (xroute.defaults): GCells per region side,
-# iteration limit, the largest region side and thread count a run may ask for.
+# From the engine's RouterSettings and limits (xroute.defaults): GCells per region side (0: auto,
+# region_size_for), iteration limit, the largest region side and thread count a
+# run may ask for.
 DEFAULT_REGION_SIZE = defaults.REGION_SIZE
 DEFAULT_ITERATIONS = defaults.ITERATIONS
 MAX_ITERATIONS = defaults.MAX_ITERATIONS
@@ -56,7 +57,7 @@ VIOLATION_TYPES: tuple[str, ...] = (
 class RouteSettings:
     """The settings of one routing run (validated on construction)."""
 
-    region_size: int = DEFAULT_REGION_SIZE  # GCells per region side
+    region_size: int = DEFAULT_REGION_SIZE  # GCells per region side; 0: region_size_for(design, 0)
     iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..MAX_ITERATIONS)
     threads: int = 1  # worker threads for the regions of one colour
     seed: int = 1  # seed of the random policy
@@ -97,8 +98,8 @@ class RouteSettings:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
                 raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
-        if self.region_size < 1:
-            raise RouteArgumentError(f"region size must be at least 1 GCell, got {self.region_size}")
+        if self.region_size < 0:
+            raise RouteArgumentError(f"region size must be at least 1 GCell (0: auto), got {self.region_size}")
         if self.region_size > MAX_REGION_SIZE:
             raise RouteArgumentError(f"region size must be at most {MAX_REGION_SIZE} GCells, got {self.region_size}")
         if not 1 <= self.iterations <= MAX_ITERATIONS:
@@ -145,6 +146,12 @@ class RouteResult:
         return self.iterations[-1]
 
     @property
+    def region_size(self) -> int:
+        """GCells per region side the run used (settings.region_size 0 resolved; a schedule's sizes are per
+        iteration)."""
+        return self.settings.region_size or (self.iterations[0].region_size if self.iterations else 0)
+
+    @property
     def violations(self) -> int:
         return sum(self.violations_by_type.values())
 
@@ -155,6 +162,13 @@ class RouteResult:
     @property
     def vias(self) -> int:
         return self.final.vias
+
+
+def region_size_for(design: Design, region_size: int = 0) -> int:
+    """GCells per region side of a run with ``region_size`` on ``design``: itself, or for 0 the engine's
+    choice: ``defaults.REGION_GCELLS`` GCells, widened to span ``defaults.REGION_TRACKS`` tracks where GCells
+    are small (15 GCells on ispd19_test1, 10 on ispd18_test1)."""
+    return int(region_size) if region_size else int(_engine().auto_region_size(design.engine))
 
 
 def _engine() -> Any:
@@ -278,6 +292,8 @@ def route_design(
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
     raises, the design holds a partial routing.
+
+    ``region_size``: GCells per region side; 0 (the default): :func:`region_size_for` the design.
 
     ``schedule``: per-iteration ``(region_size, offset)`` pairs in GCells, cycled over the
     iterations (iteration ``i`` uses step ``i % len(schedule)``); it overrides ``region_size``.

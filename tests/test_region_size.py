@@ -1,0 +1,77 @@
+"""The default region size (region_size 0): 10 GCells, widened to span 150 tracks where GCells are small."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import contest_found
+from xroute.config import load_config
+from xroute.design import load_design
+from xroute.errors import XrouteError
+from xroute.router import RouteArgumentError, RouteSettings, region_size_for, route_design
+
+
+def generated(tmp_path: Path, split: int) -> Path:
+    """A generated design (its GCells span 15 tracks across x and 20 across y) with every GCell cut into
+    split x split; its DEF's path."""
+    from xroute.testcases.generator import make_testcase
+
+    folder = make_testcase(120, 3, tmp_path / "small_gcells")
+    def_path = folder / "small_gcells.def"
+    text = def_path.read_text()
+
+    def finer(m: re.Match[str]) -> str:
+        axis, start, count, step = m.group(1), int(m.group(2)), int(m.group(3)), int(m.group(4))
+        assert step % split == 0
+        return f"GCELLGRID {axis} {start} DO {(count - 1) * split + 1} STEP {step // split} ;"
+
+    text, n = re.subn(r"GCELLGRID ([XY]) (\d+) DO (\d+) STEP (\d+) ;", finer, text)
+    assert n == 2
+    def_path.write_text(text)
+    return def_path
+
+
+def load(def_path: Path) -> object:
+    return load_design(lef=sorted(def_path.parent.glob("*.lef")), def_=def_path, use_guide=False)
+
+
+def test_the_default_region_is_widened_only_where_gcells_span_few_tracks(tmp_path: Path) -> None:
+    # 15 and 20 tracks a GCell: 10 GCells span 150 already
+    assert region_size_for(load(generated(tmp_path / "a", 1)), 0) == 10
+    # 7.5 and 10 tracks a GCell: 150 / 8.75 = 17.1 GCells
+    design = load(generated(tmp_path / "b", 2))
+    assert region_size_for(design, 0) == 17
+    assert region_size_for(design, 4) == 4  # a size given is kept
+
+
+def test_a_run_at_the_default_routes_with_the_widened_region(tmp_path: Path) -> None:
+    design = load(generated(tmp_path, 2))
+    result = route_design(design, iterations=2)
+    assert result.settings.region_size == 0
+    assert [it.region_size for it in result.iterations] == [17] * len(result.iterations)
+    assert result.region_size == 17
+    given = route_design(load(generated(tmp_path / "given", 2)), iterations=1, region_size=6)
+    assert given.iterations[0].region_size == 6 and given.region_size == 6
+
+
+def test_a_negative_region_size_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(RouteArgumentError, match="at least 1 GCell"):
+        RouteSettings(region_size=-1)
+    config = tmp_path / "c.yaml"
+    config.write_text("region:\n  region_size: 0\n")
+    assert load_config(config).region.region_size == 0
+    config.write_text("region:\n  region_size: -1\n")
+    with pytest.raises(XrouteError, match=r"c.yaml:2: .*region_size"):
+        load_config(config)
+
+
+@pytest.mark.parametrize(("name", "size"), [("ispd18_test1", 10), ("ispd19_test1", 15), ("ispd19_test3", 10)])
+def test_contest_designs_default_region_sizes(name: str, size: int) -> None:
+    if not contest_found(name):
+        pytest.skip(f"{name} is not on the search path (../shared/testcases)")
+    # ispd18_test1: GCells of 3 x 2.85 um, tracks 0.2 / 0.19 um; ispd19_test1: 1 um, 0.1 um;
+    # ispd19_test3: 1.5 um, 0.1 um
+    assert region_size_for(load_design(name), 0) == size
