@@ -10,7 +10,7 @@ imports, load, route, outputs) and its peak RSS as the kernel reports it (wait4)
 opens and violations found on the written DEF. Routing is deterministic, so the iteration
 figures are printed once; the times of every run are listed, then min and median.
 
-Default: ispd18_test1 with the router's defaults (region size 10, up to 10 iterations, 1 thread).
+Default: ispd18_test1 with the router's region size (0: 10 GCells there), up to 10 iterations, 1 thread.
 Issue 3's reference on this machine: TritonRoute 25 s wall with 2 threads, 600 MB, 86,456 um,
 35,443 vias, 0 violations. `--policy examples/python_heuristic_policy.py` routes with the built-in
 heuristic written in Python (same order, one Python call per region): the cost of the seam.
@@ -91,7 +91,7 @@ def print_iterations(run: dict) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("testcase", nargs="?", default="ispd18_test1")
-    ap.add_argument("--region-size", type=int, default=5)
+    ap.add_argument("--region-size", type=int, default=0, help="GCells (0: the router's for the design)")
     ap.add_argument("--iterations", type=int, default=10)
     ap.add_argument("--threads", type=int, default=1)
     ap.add_argument("--policy", default="heuristic", help="heuristic, random or a .py policy file")
@@ -101,7 +101,7 @@ def main() -> None:
     if args.policy.endswith(".py"):
         args.policy = str(Path(args.policy).resolve())
 
-    print(f"{args.testcase}: region size {args.region_size}, up to {args.iterations} iterations, "
+    print(f"{args.testcase}: region size {args.region_size or 'auto'}, up to {args.iterations} iterations, "
           f"{args.threads} thread(s), policy {args.policy}, seed {args.seed}, {args.repeat} run(s), "
           f"{os.cpu_count()} CPUs")
     runs = []
