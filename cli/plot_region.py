@@ -63,7 +63,7 @@ def collect_shapes(design: Design, box: Box) -> list[Shape]:
                 shapes.append(Shape(layer, r, net))
         for name, x, y in routing["vias"]:
             if name not in via_shapes:
-                via_shapes[name] = design.via(name)["shapes"]
+                via_shapes[name] = design.routed_via_shapes(name)
             for layer, xlo, ylo, xhi, yhi in via_shapes[name]:
                 r = (x + xlo, y + ylo, x + xhi, y + yhi)
                 if overlaps(r, box):

@@ -140,3 +140,31 @@ def test_plot_region_unknown_net_and_format_are_one_line(runner: CliRunner, mark
     result = runner.invoke(app, ["plot-region", str(marked), "--box", "0,0,9000,9000", "--out", str(tmp_path / "a.jpg")])
     assert result.exit_code == 2 and result.stderr == "error: --out must be a .png or .svg file, got 'a.jpg'\n"
     assert list(tmp_path.glob("a.*")) == []
+
+
+def test_plot_region_draws_vias_of_the_defs_vias_section(runner: CliRunner, routed: Path, testcase,
+                                                           tmp_path: Path) -> None:
+    # Other routers write their vias in the DEF's VIAS section; a net names them there first.
+    need_matplotlib()
+    import re
+
+    from xroute.cli.plot_region import collect_shapes
+    from xroute.design import load_design
+
+    found = testcase(SAMPLE4)
+    text = (routed / f"{SAMPLE4}.routed.def").read_text()
+    lef_via = re.search(r"\) (\S+)\s*$", next(l for l in text.splitlines() if "NEW" in l and "VIA" in l.upper()
+                                              and re.search(r"\) [A-Za-z]\S*\s*$", l))).group(1)
+    design = load_design(lef=[str(found.lef)], def_=str(routed / f"{SAMPLE4}.routed.def"))
+    rects = " ".join(f"+ RECT {layer} ( {x0} {y0} ) ( {x1} {y1} )" for layer, x0, y0, x1, y1 in design.via(lef_via)["shapes"])
+    text = re.sub(rf"\) {re.escape(lef_via)}(\s*)$", r") DVIA\1", text, flags=re.M)
+    text = text.replace("\nCOMPONENTS ", f"\nVIAS 1 ;\n- DVIA {rects} ;\nEND VIAS\n\nCOMPONENTS ", 1)
+    moved = tmp_path / "dvia.def"
+    moved.write_text(text)
+    redrawn = load_design(lef=[str(found.lef)], def_=str(moved))
+    assert redrawn.routed_via_shapes("DVIA") == [tuple(s) for s in design.via(lef_via)["shapes"]]
+    whole = (-10**9, -10**9, 10**9, 10**9)
+    assert sorted(map(repr, collect_shapes(redrawn, whole))) == sorted(map(repr, collect_shapes(design, whole)))
+    png = tmp_path / "dvia.png"
+    result = runner.invoke(app, ["plot-region", str(moved), "--lef", str(found.lef), "--box", BOX, "--out", str(png)])
+    assert result.exit_code == 0, result.stderr

@@ -270,6 +270,14 @@ class Design:
         """LEF SITEs in order: ``name``, ``class``, ``size`` (DBU), ``symmetry``."""
         return [dict(s) for s in self._db.sites()]
 
+    def routed_via_shapes(self, name: str) -> list[tuple[str, int, int, int, int]]:
+        """Shapes of the via a net's routing names, as (layer, xlo, ylo, xhi, yhi) in DBU relative to its
+        origin: the DEF VIAS entry of that name, else the LEF VIA (the DEF reader's order). KeyError if neither."""
+        try:
+            return list(self._db.def_via(name)["shapes"])
+        except KeyError:
+            return list(self._db.via(name)["shapes"])
+
     def def_via(self, name: str) -> dict[str, Any]:
         """A DEF VIAS entry: ``generated``, ``rule``, ``rowcol``, ``bottom``/``cut``/``top``
         layer names and ``shapes`` as (layer, xlo, ylo, xhi, yhi) in DBU. KeyError if absent."""
