@@ -64,12 +64,36 @@ def test_out_of_guide_pieces() -> None:
 
 def test_plot_errors_are_one_line(runner: CliRunner, marked: Path, tmp_path: Path) -> None:
     result = runner.invoke(app, ["plot", str(tmp_path / "nowhere"), "--out", str(tmp_path / "a.png")])
-    assert result.exit_code == 2 and result.stderr == f"error: {tmp_path / 'nowhere'}: not a folder: give a route output folder\n"
+    assert result.exit_code == 2 and result.stderr == (f"error: {tmp_path / 'nowhere'}: no such folder or file: give a "
+                                                       "route output folder, or a DEF file with --lef\n")
+    result = runner.invoke(app, ["plot", str(marked / f"{MARKED}.routed.def"), "--lef", str(tmp_path / "no.lef"),
+                                 "--out", str(tmp_path / "a.png")])
+    assert result.exit_code == 2 and "no.lef" in result.stderr and result.stderr.count("\n") == 1
+    result = runner.invoke(app, ["plot", str(marked / f"{MARKED}.routed.def"), "--out", str(tmp_path / "a.png")])
+    assert result.exit_code == 2 and "a DEF file needs --lef" in result.stderr and result.stderr.count("\n") == 1
     result = runner.invoke(app, ["plot", str(tmp_path), "--out", str(tmp_path / "a.png")])
     assert result.exit_code == 2 and "no *.metrics.json here" in result.stderr and result.stderr.count("\n") == 1
     result = runner.invoke(app, ["plot", str(marked), "--out", str(tmp_path / "a.pdf")])
     assert result.exit_code == 2 and result.stderr == "error: --out must be a .png or .svg file, got 'a.pdf'\n"
     assert not list(tmp_path.glob("a.*"))
+
+
+def test_plot_of_a_def_with_its_lef_guide_and_drc_report(runner: CliRunner, marked: Path, tmp_path: Path) -> None:
+    # another router's DEF has no metrics JSON beside it: its LEF, guide and DRC report are given
+    need_matplotlib()
+    import json
+
+    inputs = json.loads((marked / f"{MARKED}.metrics.json").read_text())["inputs"]
+    folder = runner.invoke(app, ["plot", str(marked), "--out", str(tmp_path / "a.svg")])
+    assert folder.exit_code == 0, folder.stderr
+    args = ["plot", str(marked / f"{MARKED}.routed.def"), "--out", str(tmp_path / "b.svg")]
+    for lef in inputs["lef"]:
+        args += ["--lef", lef]
+    given = runner.invoke(app, args + ["--guide", inputs["guide"], "--drc", str(marked / f"{MARKED}.drc.rpt")])
+    assert given.exit_code == 0, given.stderr
+    assert given.stdout.replace("b.svg", "a.svg") == folder.stdout
+    bare = runner.invoke(app, args)  # no guide, no report: no out-of-guide wire, no markers
+    assert bare.exit_code == 0 and bare.stdout == f"plot: {MARKED}: 0 violations, no guide file -> {tmp_path / 'b.svg'}\n"
 
 
 @pytest.mark.slow
