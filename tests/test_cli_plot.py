@@ -93,7 +93,8 @@ def test_plot_of_a_def_with_its_lef_guide_and_drc_report(runner: CliRunner, mark
     assert given.exit_code == 0, given.stderr
     assert given.stdout.replace("b.svg", "a.svg") == folder.stdout
     bare = runner.invoke(app, args)  # no guide, no report: no out-of-guide wire, no markers
-    assert bare.exit_code == 0 and bare.stdout == f"plot: {MARKED}: 0 violations, no guide file -> {tmp_path / 'b.svg'}\n"
+    assert bare.exit_code == 0
+    assert bare.stdout == f"plot: {MARKED}: 0 violations, no guide file -> {tmp_path / 'b.svg'}\n"
 
 
 @pytest.mark.slow

@@ -153,10 +153,10 @@ def test_plot_region_draws_vias_of_the_defs_vias_section(runner: CliRunner, rout
 
     found = testcase(SAMPLE4)
     text = (routed / f"{SAMPLE4}.routed.def").read_text()
-    lef_via = re.search(r"\) (\S+)\s*$", next(l for l in text.splitlines() if "NEW" in l and "VIA" in l.upper()
-                                              and re.search(r"\) [A-Za-z]\S*\s*$", l))).group(1)
     design = load_design(lef=[str(found.lef)], def_=str(routed / f"{SAMPLE4}.routed.def"))
-    rects = " ".join(f"+ RECT {layer} ( {x0} {y0} ) ( {x1} {y1} )" for layer, x0, y0, x1, y1 in design.via(lef_via)["shapes"])
+    lef_via = next(name for n in range(design.num_nets) for name, _x, _y in design.net_routing(n)["vias"])
+    rects = " ".join(f"+ RECT {layer} ( {x0} {y0} ) ( {x1} {y1} )"
+                     for layer, x0, y0, x1, y1 in design.via(lef_via)["shapes"])
     text = re.sub(rf"\) {re.escape(lef_via)}(\s*)$", r") DVIA\1", text, flags=re.M)
     text = text.replace("\nCOMPONENTS ", f"\nVIAS 1 ;\n- DVIA {rects} ;\nEND VIAS\n\nCOMPONENTS ", 1)
     moved = tmp_path / "dvia.def"

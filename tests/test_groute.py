@@ -233,3 +233,30 @@ def test_cli_route_without_guide_runs_the_global_router(tmp_path: Path) -> None:
     metrics = json.loads((tmp_path / f"{SAMPLE}.metrics.json").read_text())
     assert metrics["guide"] == "built-in" and metrics["inputs"]["guide"] is None
     assert metrics["final"]["open_nets"] == 0
+
+
+def test_built_in_guides_cost_nothing_to_leave(tmp_path: Path) -> None:
+    # No scorer counts wire outside the built-in global router's guides: the maze's out-of-guide factor
+    # is built_in_guide_factor (1) there, out_of_guide_factor (2) for guides read from a file.
+    from xroute.testcases.generator import make_testcase
+
+    folder = make_testcase(800, 3, tmp_path / "gen")
+    lef, def_ = sorted(folder.glob("*.lef")), folder / "gen.def"
+
+    def routed(guide: Path | None, costs: Any = None) -> bytes:
+        design = load_design(lef=lef, def_=def_, guide=guide, use_guide=guide is not None)
+        if guide is None:
+            global_route(design)
+        settings = _engine.RouterSettings(iterations=2, costs=costs or _engine.MazeCosts())
+        _engine.route(design.engine, settings=settings)
+        out = tmp_path / f"r{len(list(tmp_path.glob('r*.def')))}.def"
+        design.engine.write_def(str(out))
+        return out.read_bytes()
+
+    global_route(load_design(lef=lef, def_=def_, use_guide=False), tmp_path / "built_in.guide")
+    from_file = routed(tmp_path / "built_in.guide")  # the same guides, read from a file: factor 2
+    assert routed(None, _engine.MazeCosts(built_in_guide_factor=2)) == from_file
+    built_in = routed(None)
+    assert built_in != from_file
+    assert routed(None, _engine.MazeCosts(out_of_guide_factor=5)) == built_in  # the file's factor is not used
+    assert routed(tmp_path / "built_in.guide", _engine.MazeCosts(out_of_guide_factor=1)) == built_in

@@ -425,10 +425,12 @@ def test_a_net_crossing_two_regions_meets_at_the_shared_edge(tmp_path: Path) -> 
     # in the pins' GCells), so the crossing is on M3, on the pins' track y = 1100: each region
     # routes its half to that point, on the same layer.
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]})
-    global_route(d)
+    global_route(d, tmp_path / "built_in.guide")
     rects, layers = d.net_guides(0)
     crossing = [(tuple(r), z) for r, z in zip(rects.tolist(), layers.tolist()) if r[0] < 2000 < r[2]]
     assert crossing == [((0, 1000, 3000, 2000), 4)]  # layer 4: M3 (M1 V1 M2 V2 M3)
+    # Read from a file, wire outside them costs twice (built-in ones cost nothing to leave)
+    d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, guide=(tmp_path / "built_in.guide").read_text())
     result = route_design(d, region_size=2, iterations=1)
     assert [(it.regions, it.net_routes) for it in result.iterations] == [(2, 2)]
     r = d.net_routing(0)

@@ -25,7 +25,8 @@ def plot(
     guide file the run read, named in its metrics JSON, is still there), and the design-rule
     markers of the run's DRC report as points, one colour and shape per type, beside a bar chart
     of the violations by type with their counts. Axes in µm. Another router's DEF: give it with
-    --lef (and --guide, --drc when there are). Needs matplotlib (pip install 'xroute\\[plot]').
+    --lef (and --guide, --drc when there are). Needs matplotlib
+    (pip install 'xroute\\[plot]').
 
     Example: xroute plot out/ispd19_test1 --out ispd19_test1.png
     Example: xroute plot other.def --lef tech.lef --guide design.guide --out other.png

@@ -14,9 +14,10 @@ namespace {
 void bindMazeCosts(nb::module_& m) {
   const MazeCosts d;
   nb::class_<MazeCosts>(m, "MazeCosts", "The maze's costs (cost units: DBU of wire), as in route/maze.hpp.")
-      .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t>(),
+      .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t>(),
            "via_cost"_a = d.viaCost, "wrong_way_factor"_a = d.wrongWayFactor,
-           "out_of_guide_factor"_a = d.outOfGuideFactor, "fixed_penalty"_a = d.fixedPenalty,
+           "out_of_guide_factor"_a = d.outOfGuideFactor, "built_in_guide_factor"_a = d.builtInGuideFactor,
+           "fixed_penalty"_a = d.fixedPenalty,
            "use_penalty"_a = d.usePenalty, "marker_unit"_a = d.markerUnit,
            "bottom_layer_factor"_a = d.bottomLayerFactor, "reserve_penalty"_a = d.reservePenalty,
            "crossing_pull"_a = d.crossingPull, "The costs; each defaults to the engine's.")
@@ -24,6 +25,8 @@ void bindMazeCosts(nb::module_& m) {
       .def_rw("wrong_way_factor", &MazeCosts::wrongWayFactor, "Wrong-way wire length multiplier.")
       .def_rw("out_of_guide_factor", &MazeCosts::outOfGuideFactor,
               "Wire length / via multiplier outside the net's guides.")
+      .def_rw("built_in_guide_factor", &MazeCosts::builtInGuideFactor,
+              "out_of_guide_factor where the guides are the built-in global router's.")
       .def_rw("fixed_penalty", &MazeCosts::fixedPenalty, "Entering a node a fixed shape of another net forbids.")
       .def_rw("use_penalty", &MazeCosts::usePenalty,
               "Per routed shape of another net a wire or via there would violate (iteration 0).")

@@ -222,6 +222,7 @@ struct Design {
   std::vector<int32_t> guideStart;   // size nets.size() + 1, or 0
   std::vector<Rect> guideRects;      // DBU
   std::vector<LayerId> guideLayers;
+  bool guidesBuiltIn = false;  // the guides are the built-in global router's (installGuides), not a file's
 
   StringMap<CompId> compIndex;
   StringMap<NetId> netIndex;

@@ -67,6 +67,7 @@ class Flow {
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
     if (s_.regionSize <= 0) s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, kMaxRegionSize);
+    s_.costs = guideCosts(s_.costs, design.guidesBuiltIn);
   }
 
   // The design's routing is empty (routeDesign cleared it before the context was made).
@@ -351,7 +352,7 @@ class Flow {
 
   const Tech& tech_;
   Design& design_;
-  RouterSettings s_;  // regionSize 0 resolved for the design
+  RouterSettings s_;  // regionSize 0 and the out-of-guide factor resolved for the design
   NetOrderPolicy& policy_;
   const RouteProgress& progress_;
   const ColourHook& beforeColour_;

@@ -36,7 +36,7 @@ struct RouterSettings {
   // flow/regions.hpp): 10 on ispd18_test1 and ispd19_test3, 15 on ispd19_test1.
   int regionSize = 0;
   // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
-  // ispd19_test1 reaches zero in its iteration 7, ispd19_test3 in its iteration 8 (2026-11-27, 2 threads).
+  // ispd19_test1 reaches zero in its iteration 5, ispd19_test3 in its iteration 8 (2026-11-27, 2 threads).
   int iterations = 16;
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...

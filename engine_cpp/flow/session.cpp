@@ -16,7 +16,8 @@ std::vector<Region> RoutingSession::regions(int size, int offset) const {
 
 std::unique_ptr<SessionRegion> RoutingSession::openRegion(const Rect& box, int iteration) {
   auto r = std::make_unique<SessionRegion>();
-  r->task = makeStandaloneTask(*ctx_, box, regionsOpened_++, iteration, costs_, r->plan);
+  r->task = makeStandaloneTask(*ctx_, box, regionsOpened_++, iteration, guideCosts(costs_, db_.design.guidesBuiltIn),
+                               r->plan);
   r->owned = std::make_unique<RegionRouter>(*ctx_, r->task, &r->plan);
   r->router = r->owned.get();
   r->router->prepare();

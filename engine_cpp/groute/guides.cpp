@@ -78,6 +78,7 @@ void installGuides(Design& design, const GuideSet& g) {
   design.guideStart = g.start;
   design.guideRects = g.rects;
   design.guideLayers = g.layers;
+  design.guidesBuiltIn = true;
 }
 
 std::string guideText(const Tech& tech, const Design& design, const GuideSet& g) {

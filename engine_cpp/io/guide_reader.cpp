@@ -85,6 +85,7 @@ void parseGuides(Lexer& lex, const Tech& tech, Design& design) {
   }
   // Counting sort by net id: stable, so file order is kept within a net.
   design.guideStart.assign(design.nets.size() + 1, 0);
+  design.guidesBuiltIn = false;
   for (size_t i = 0; i < perNet.size(); ++i) design.guideStart[i + 1] = design.guideStart[i] + perNet[i];
   design.guideRects.assign(rows.size(), Rect{});
   design.guideLayers.assign(rows.size(), LayerId{});
