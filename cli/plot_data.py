@@ -156,6 +156,21 @@ def run_dir_inputs(folder: Path) -> tuple[list[str], Path, str | None, Path | No
     return f.lef, f.def_path, f.guide, f.drc
 
 
+def picture_inputs(source: Path, lef: list[Path] | None, guide: Path | None,
+                   drc: Path | None) -> tuple[list[str], Path, str | None, Path | None]:
+    """(LEF files, routed DEF, guide or None, DRC report or None) of a picture's source: a route output
+    folder (its files; --guide and --drc given replace them), or a DEF file with the LEF, guide and
+    report given. InputError naming the source when it is neither."""
+    if not source.exists():
+        raise InputError("no such folder or file: give a route output folder, or a DEF file with --lef", str(source), 0)
+    if source.is_dir():
+        lef_paths, def_path, found_guide, found_drc = run_dir_inputs(source)
+        return lef_paths, def_path, str(guide) if guide else found_guide, drc or found_drc
+    if not lef:
+        raise InputError("a DEF file needs --lef (or give a route output folder)", str(source), 0)
+    return [str(p) for p in lef], source, str(guide) if guide else None, drc
+
+
 def parse_ints(text: str, count: int, what: str) -> tuple[int, ...]:
     try:
         values = tuple(int(v) for v in text.split(","))

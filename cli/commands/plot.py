@@ -32,22 +32,12 @@ def plot(
     Example: xroute plot other.def --lef tech.lef --guide design.guide --out other.png
     """
     from xroute.atomic_files import atomic_write_bytes
-    from xroute.cli.plot_data import picture_format, read_drc_report, run_dir_inputs
+    from xroute.cli.plot_data import picture_format, picture_inputs, read_drc_report
     from xroute.cli.plot_design import measure, render
     from xroute.design import load_design
-    from xroute.errors import InputError
 
     fmt = picture_format(out)
-    if not source.exists():
-        raise InputError("no such folder or file: give a route output folder, or a DEF file with --lef", str(source), 0)
-    if source.is_dir():
-        lef_paths, def_path, found_guide, found_drc = run_dir_inputs(source)
-        drc = drc or found_drc
-        guide_path = str(guide) if guide else found_guide
-    else:
-        if not lef:
-            raise InputError("a DEF file needs --lef (or give a route output folder)", str(source), 0)
-        lef_paths, def_path, guide_path = [str(p) for p in lef], source, str(guide) if guide else None
+    lef_paths, def_path, guide_path, drc = picture_inputs(source, lef, guide, drc)
     design = load_design(lef=lef_paths, def_=def_path, guide=guide_path)
     markers = read_drc_report(drc) if drc is not None else []
     pic = measure(design, markers, with_guides=guide_path is not None)

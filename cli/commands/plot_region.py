@@ -43,21 +43,14 @@ def plot_region(
     """
     from xroute.design import load_design
     from xroute.atomic_files import atomic_write_bytes
-    from xroute.cli.plot_data import describe, gcell_box, parse_ints, picture_format, read_drc_report, run_dir_inputs
+    from xroute.cli.plot_data import describe, gcell_box, parse_ints, picture_format, picture_inputs, read_drc_report
     from xroute.cli.plot_region import region_content, render
 
     fmt = picture_format(out)
 
     if (box is None) == (gcell is None):
         raise typer.BadParameter("give either --box xlo,ylo,xhi,yhi or --gcell X,Y", param_hint="--box/--gcell")
-    if source.is_dir():
-        lef_paths, def_path, found_guide, found_drc = run_dir_inputs(source)
-        drc = drc or found_drc
-        guide_path = str(guide) if guide else found_guide
-    else:
-        if not lef:
-            raise typer.BadParameter("a DEF file needs --lef", param_hint="--lef")
-        lef_paths, def_path, guide_path = [str(p) for p in lef], source, str(guide) if guide else None
+    lef_paths, def_path, guide_path, drc = picture_inputs(source, lef, guide, drc)
     if box is not None:
         region = parse_ints(box, 4, "--box")
         if region[0] >= region[2] or region[1] >= region[3]:
