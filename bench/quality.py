@@ -12,7 +12,10 @@ out-of-guide wire and the contest score before violations. Reference routes: `..
 temporary file and checked the same way (their wall time and memory are not ours to measure;
 the reference folder's README has the figures its router reported).
 
-Prints a table (markdown with --markdown); the README's status table comes from it.
+Prints a table (markdown with --markdown); the README's status table comes from it. Then one line
+per xroute row on issue 29's quality floors (0 violations and 0 opens, peak RSS, and the wirelength,
+vias and score floors of ispd18_test1, ispd19_test1 and ispd19_test3): on standard output after the
+markdown table, on standard error with the JSON. Exit status 0 whether or not a floor holds.
 """
 
 from __future__ import annotations
@@ -75,6 +78,37 @@ HEADER = ["testcase", "router", "WL µm", "vias", "violations", "opens", "off-tr
           "score", "wall", "peak RSS"]
 
 
+# Issue 29's floors: testcase -> (row field, largest value allowed). Every xroute row also needs 0
+# violations, 0 opens and a peak RSS of MAX_RSS_MB at most.
+FLOORS: dict[str, list[tuple[str, float]]] = {
+    "ispd18_test1": [("score", 290_260), ("vias", 34_000)],
+    "ispd19_test1": [("wl_um", 64_000), ("vias", 38_000)],
+    "ispd19_test3": [("wl_um", 84_000)],
+}
+MAX_RSS_MB = 300
+FLOOR_NAMES = {"violations": "violations", "opens": "opens", "rss_mb": "peak RSS MB", "score": "score",
+               "vias": "vias", "wl_um": "WL µm"}
+
+
+def floor_lines(rows: list[dict]) -> list[str]:
+    """One line per xroute row (not the --policy rows, not the references): each floor, its value and
+    whether it holds."""
+    lines = []
+    for r in rows:
+        if r["router"] != "xroute":
+            continue
+        floors = [("violations", 0), ("opens", 0)] + FLOORS.get(r["testcase"], [])
+        if r["rss_mb"] is not None:
+            floors.append(("rss_mb", MAX_RSS_MB))
+        parts = []
+        for field, most in floors:
+            value = r[field]
+            shown = f"{value:,.1f}" if isinstance(value, float) and field != "score" else f"{value:,.0f}"
+            parts.append(f"{FLOOR_NAMES[field]} {shown} <= {most:,}: {'holds' if value <= most else 'NOT MET'}")
+        lines.append(f"{r['testcase']}: " + "; ".join(parts))
+    return lines
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("testcases", nargs="*", default=DEFAULT)
@@ -122,8 +156,13 @@ def main() -> None:
         print("|" + "---|" * len(HEADER))
         for r in rows:
             print("| " + " | ".join(fmt(r)) + " |")
+        print()
+        for line in floor_lines(rows):
+            print(f"- {line}")
     else:
         print(json.dumps(rows, indent=2))
+        for line in floor_lines(rows):
+            print(line, file=sys.stderr)
 
 
 if __name__ == "__main__":
