@@ -103,6 +103,9 @@ def floor_lines(rows: list[dict]) -> list[str]:
         parts = []
         for field, most in floors:
             value = r[field]
+            if value is None:  # no score without a guide file
+                parts.append(f"{FLOOR_NAMES[field]} unknown (floor {most:,})")
+                continue
             shown = f"{value:,.1f}" if isinstance(value, float) and field != "score" else f"{value:,.0f}"
             parts.append(f"{FLOOR_NAMES[field]} {shown} <= {most:,}: {'holds' if value <= most else 'NOT MET'}")
         lines.append(f"{r['testcase']}: " + "; ".join(parts))
