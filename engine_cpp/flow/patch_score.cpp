@@ -41,11 +41,16 @@ bool breaksSpacing(const RouteContext& ctx, int z, const Rect& r, int32_t net, c
   return drc::rectGap(o, r) < std::max(drc::metalNeed(layer, r, o, true, lineEnd), rule);
 }
 
+// The least spacing any other metal keeps from `net`'s metal on layer z: the layer's minimum, its
+// end-of-line spacing, the net's NONDEFAULTRULE spacing.
+Dbu baseSpacing(const RouteContext& ctx, int32_t net, int z) {
+  return std::max({ctx.rules.layers[z]->minSpacing(), ctx.rules.eolSpace[z], ctx.netRules.spacing(net, z)});
+}
+
 // How far from r another net's metal can still break a rule with it.
 Dbu ruleReach(const RouteContext& ctx, int32_t net, int z, const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
-  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], ctx.netRules.spacing(net, z)});
-  return std::max({s, ctx.netRules.maxSpacing(z),
+  return std::max({baseSpacing(ctx, net, z), ctx.netRules.maxSpacing(z),
                    requiredSpacing(layer, std::numeric_limits<Dbu>::max() / 4, r.minSide(),
                                    std::numeric_limits<Dbu>::max() / 4)});
 }
@@ -70,7 +75,7 @@ bool breaksRoutedMetal(const RouteContext& ctx, const RoutedMetal& routedMetal, 
 int64_t patchScore(const RouteContext& ctx, const RegionGrid& g, const RoutedMetal& routedMetal, int32_t net, int z,
                    const Rect& r) {
   const Layer& layer = *ctx.rules.layers[z];
-  const Dbu s = std::max({layer.minSpacing(), ctx.rules.eolSpace[z], ctx.netRules.spacing(net, z)});
+  const Dbu s = baseSpacing(ctx, net, z);
   const Dbu reach = ruleReach(ctx, net, z, r);
   const Rect grown{r.xlo - s, r.ylo - s, r.xhi + s, r.yhi + s};
   const Rect far{r.xlo - reach, r.ylo - reach, r.xhi + reach, r.yhi + reach};

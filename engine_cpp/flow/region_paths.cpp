@@ -192,7 +192,8 @@ void RegionRouter::Impl::routeNet(int32_t index, MazeWorkspace& ws) {
     mn.ruleWire = &rule.wire;
     mn.ruleVia = &rule.via;
   }
-  mn.accessVia = accessViaCosts(ns);
+  const std::vector<std::pair<int32_t, int64_t>> accessVia = accessViaCosts(ns);
+  mn.accessVia = &accessVia;
   std::vector<std::vector<int32_t>> paths;
   ns.result.unreached = routeMaze(*grid, task.costs, mn, ws, paths);
   rounds += static_cast<int64_t>(paths.size());
@@ -332,7 +333,7 @@ void RegionRouter::Impl::moves(int32_t index, int32_t node, std::array<MazeMove,
     mn.ruleWire = &ns.rule.wire;
     mn.ruleVia = &ns.rule.via;
   }
-  mn.accessVia = ns.accessVia;
+  mn.accessVia = &ns.accessVia;
   mazeMoves(*grid, task.costs, mn, node, out);
 }
 

@@ -172,8 +172,8 @@ int64_t Search::wireNodeCost(int32_t v) const {
 int64_t Search::viaNodeCost(int32_t v) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (net_.ruleVia) cost += (*net_.ruleVia)[v];
-  if (!net_.accessVia.empty() && (g_.flags[v] & kAccessVia)) {
-    for (const auto& [node, extra] : net_.accessVia)
+  if (net_.accessVia && (g_.flags[v] & kAccessVia)) {
+    for (const auto& [node, extra] : *net_.accessVia)
       if (node == v) cost += extra;
   }
   if (own(v)) {

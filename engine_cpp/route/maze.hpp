@@ -58,8 +58,8 @@ struct MazeNet {
   const NodeArray<int32_t>* ruleVia = nullptr;
   // (node, cost units) added to a via step from or to the node: the net's access points whose via
   // pin access chose is not the one the grid's footprints assume, where that via's metal breaks a
-  // rule with another net's routed metal.
-  std::vector<std::pair<int32_t, int64_t>> accessVia;
+  // rule with another net's routed metal; null: none.
+  const std::vector<std::pair<int32_t, int64_t>>* accessVia = nullptr;
 };
 
 // Reusable search buffers (one per thread), per node of the region's grid.
