@@ -75,7 +75,10 @@ void markRoutedNodes(const RouteContext& ctx, int32_t net, const NetRouting& r, 
 
 Dbu markerReach(const RouteContext& ctx, const Marker& m) {
   const int z = ctx.tech.layer(m.layer).routingIndex;
-  return m.type == MarkerType::EndOfLine && z >= 0 ? ctx.rules.eolSpace[z] : 0;
+  if (z < 0) return 0;
+  const Rect& v = ctx.rules.viaLanding[z];
+  const Dbu landing = std::max({Dbu(0), -v.xlo, v.xhi, -v.ylo, v.yhi});
+  return std::max(landing, m.type == MarkerType::EndOfLine ? ctx.rules.eolSpace[z] : Dbu(0));
 }
 
 void markMarker(const RouteContext& ctx, const MarkerCost& m, RegionGrid& g) {

@@ -21,9 +21,11 @@ struct MarkerCost {
   Dbu reach = 0;    // DBU beyond the usual pitch that "near" extends (see markerReach)
 };
 
-// How much farther than a pitch the nodes that caused marker `m` may lie from its box: for an
-// EndOfLine marker the largest end-of-line spacing of its layer (FootprintRules::eolSpace: its
-// box is in front of the line end, which lies up to that far away), else 0.
+// How much farther than a pitch the nodes that caused marker `m` may lie from its box: the farthest
+// a via's metal on the marker's layer reaches from the via's node (FootprintRules::viaLanding: a
+// long landing pad's corner or end may be the marker's shape), and for an EndOfLine marker at least
+// the largest end-of-line spacing of its layer (FootprintRules::eolSpace: its box is in front of the
+// line end, which lies up to that far away); 0 on a cut layer.
 Dbu markerReach(const RouteContext& ctx, const Marker& m);
 
 // Per routing layer: routed metal (rect in DBU, net) of every net marked in

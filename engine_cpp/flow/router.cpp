@@ -121,14 +121,16 @@ class Flow {
            static_cast<int>(markers_.size()) <= s_.lateSearchMarkers && policy_.builtinHeuristic();
   }
 
-  // How many checks in a row before this one had a marker on m's layer touching it (the
-  // previous check's markers with their own ages).
+  // How many checks in a row before this one had a marker touching m on m's layer or between the
+  // same two nets (an access-via conflict turns from a Metal1 EndOfLine into a Via1 CutSpacing and
+  // back as its nets take turns); the previous check's markers carry their own ages.
   int age(const Marker& m) const {
     int best = 0;
     for (size_t j = 0; j < prevMarkers_.size(); ++j) {
       const Marker& p = prevMarkers_[j];
-      if (p.layer == m.layer && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi && p.box.ylo <= m.box.yhi &&
-          m.box.ylo <= p.box.yhi)
+      const bool sameNets = m.net2 >= 0 && std::minmax(p.net1, p.net2) == std::minmax(m.net1, m.net2);
+      if ((p.layer == m.layer || sameNets) && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi &&
+          p.box.ylo <= m.box.yhi && m.box.ylo <= p.box.yhi)
         best = std::max(best, 1 + prevAges_[j]);
     }
     return best;
@@ -137,12 +139,13 @@ class Flow {
   std::vector<MarkerCost> markersNear(const Rect& box) const {
     std::vector<MarkerCost> out;
     const Rect win{box.xlo - ctx_.halo, box.ylo - ctx_.halo, box.xhi + ctx_.halo, box.yhi + ctx_.halo};
-    // A marker that two reroutes in a row left (age 2) also costs around the shapes that cause
-    // it beyond the pitch (markerReach: the line end in front of an EndOfLine marker's box).
+    // A marker costs more the longer it lasts. One that two reroutes in a row left (age 2) also
+    // costs around the shapes that cause it beyond the pitch (markerReach: a via whose landing pad
+    // reaches the box, the line end in front of an EndOfLine marker's box).
     for (size_t i = 0; i < markers_.size(); ++i) {
       const Marker& m = markers_[i];
       const Dbu reach = ages_[i] >= 2 ? markerReach(ctx_, m) : 0;
-      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty, reach});
+      if (m.box.overlaps(win)) out.push_back({m.layer, m.box, plan_.markerPenalty * (1 + ages_[i]), reach});
     }
     for (const MarkerCost& h : history_) {
       if (h.box.overlaps(win)) out.push_back(h);

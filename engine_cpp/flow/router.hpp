@@ -36,14 +36,16 @@ struct RouterSettings {
   // flow/regions.hpp): 10 on ispd18_test1 and ispd19_test3, 15 on ispd19_test1.
   int regionSize = 0;
   // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
-  // ispd19_test1 reaches zero in its iteration 5, ispd19_test3 in its iteration 8 (2026-11-27, 2 threads).
+  // ispd19_test1 reaches zero in its iteration 5, ispd19_test3 in its iteration 7 (2026-11-27, 2 threads).
   int iterations = 16;
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...
   MazeCosts costs;                 // maze costs of iteration 0
   int64_t usePenaltyStep = 4000;   // added to costs.usePenalty at each later iteration
   int accessPointsPerPin = kAccessPointsPerPin;  // access points kept per pin
-  int64_t markerPenalty = 3000;    // cost units per node near a marker of the last iteration
+  // Cost units per node near a marker of the last iteration, times 1 + the marker's age (the checks in
+  // a row before it that had it; counted when ripNeighboursOfPersistent).
+  int64_t markerPenalty = 3000;
   int64_t historyPenalty = 1000;   // cost units per node near any earlier marker
   bool stopAtZero = true;          // stop when an iteration ends without markers
   // Check-and-reroute rounds inside each region before it is committed, in iterations after the
