@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -273,6 +276,9 @@ class Flow {
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
       ctx_.rebuildRoutedIndex();
+#ifdef __GLIBC__
+      malloc_trim(0);
+#endif
       if (progress_) progress_(rep, rep.regions, total);
     }
   }
