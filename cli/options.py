@@ -26,7 +26,8 @@ OutOption = Annotated[
 ]
 RegionSizeOption = Annotated[
     int | None,
-    typer.Option("--region-size", help="Region side in GCells (0: auto, 10 or more to span 150 tracks). Default: 0.",
+    typer.Option("--region-size",
+                 help="Region side in GCells (0: auto, 10 or more while the regions' grids stay small). Default: 0.",
                  show_default=False),
 ]
 IterationsOption = Annotated[

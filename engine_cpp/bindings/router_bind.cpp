@@ -24,6 +24,7 @@
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/search_policy.hpp"
+#include "pa/pin_access.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -204,15 +205,18 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
 // GCells per region side of a run whose region size is 0 (flow/regions.hpp autoRegionSize).
 int autoRegionSizeOf(const Database& db) {
   const TrackSet tracks = buildTracks(db.tech, db.design);
-  return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, kMaxRegionSize);
+  const PinAccessTable access = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{});
+  return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, access.locations(), kMaxRegionSize);
 }
 
 }  // namespace
 
 void bindRouter(nb::module_& m) {
   m.def("auto_region_size", &autoRegionSizeOf, "db"_a,
-        "GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more where that "
-        "spans fewer than DEFAULTS['region_tracks'] tracks (of the routing layers' median pitch).");
+        "GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in "
+        "four regions' grids (lines at every track and access point in the region) stay within "
+        "DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die. Computes the design's "
+        "pin access (the default access points per pin, as a run does).");
   nb::list columns;
   for (const char* c : kFeatureColumns) columns.append(c);
   m.attr("POLICY_FEATURES") = nb::tuple(columns);

@@ -86,33 +86,50 @@ GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks) {
   return GCellGrid{derivedLines(design, tracks, true), derivedLines(design, tracks, false)};
 }
 
-namespace {
-
-// The median of `v` (the lower middle one of an even count); 0 when empty.
-Dbu median(std::vector<Dbu> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + (v.size() - 1) / 2, v.end());
-  return v[(v.size() - 1) / 2];
+double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int size) {
+  // Per region: its grid lines are its edges, the tracks of every layer and the terminals within its
+  // box, as RegionGrid makes them (without the crossings a run adds).
+  const std::vector<Region> regions = partitionRegions(grid, size, 0);
+  if (regions.empty()) return 0;
+  std::vector<std::vector<Point>> inside(regions.size());
+  for (const Point& p : terminals) {
+    const int32_t r = regionAt(regions, grid, size, 0, p);
+    if (r >= 0 && regions[r].box.contains(p)) inside[r].push_back(p);
+  }
+  std::vector<double> nodes;
+  std::vector<Dbu> xs, ys;
+  for (const Region& r : regions) {
+    xs = {r.box.xlo, r.box.xhi};
+    ys = {r.box.ylo, r.box.yhi};
+    for (const LayerTracks& t : tracks.layers) {
+      for (Dbu c : tracksIn(t.pref, t.horizontal ? r.box.ylo : r.box.xlo, t.horizontal ? r.box.yhi : r.box.xhi))
+        (t.horizontal ? ys : xs).push_back(c);
+      for (Dbu c : tracksIn(t.cross, t.horizontal ? r.box.xlo : r.box.ylo, t.horizontal ? r.box.xhi : r.box.yhi))
+        (t.horizontal ? xs : ys).push_back(c);
+    }
+    for (const Point& p : inside[r.id]) {
+      xs.push_back(p.x);
+      ys.push_back(p.y);
+    }
+    std::sort(xs.begin(), xs.end());
+    std::sort(ys.begin(), ys.end());
+    const size_t nx = std::unique(xs.begin(), xs.end()) - xs.begin();
+    const size_t ny = std::unique(ys.begin(), ys.end()) - ys.begin();
+    nodes.push_back(static_cast<double>(nx) * static_cast<double>(ny));
+  }
+  const size_t q = nodes.size() * 3 / 4;  // the upper quartile
+  std::nth_element(nodes.begin(), nodes.begin() + q, nodes.end());
+  return nodes[q];
 }
 
-}  // namespace
-
-int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, int maxSize) {
-  // Tracks per GCell along one axis: the median GCell side over the median pitch of the layers whose
-  // tracks cross that axis (vertical layers' tracks are x coordinates); 0 when either is unknown.
-  auto tracksPerGCell = [&](const std::vector<Dbu>& lines, bool horizontalLayers) {
-    std::vector<Dbu> pitches, sides;
-    for (const LayerTracks& t : tracks.layers)
-      if (t.horizontal == horizontalLayers && t.pitch > 0) pitches.push_back(t.pitch);
-    for (size_t i = 1; i < lines.size(); ++i) sides.push_back(lines[i] - lines[i - 1]);
-    const Dbu pitch = median(std::move(pitches)), side = median(std::move(sides));
-    return pitch > 0 && side > 0 ? static_cast<double>(side) / static_cast<double>(pitch) : 0.0;
-  };
-  const double tx = tracksPerGCell(grid.xs, false), ty = tracksPerGCell(grid.ys, true);
-  const double perGCell = tx > 0 && ty > 0 ? (tx + ty) / 2 : std::max(tx, ty);
-  const double widened = perGCell > 0 ? std::round(kRegionTracks / perGCell) : 0.0;
-  const double size = std::max(static_cast<double>(kRegionGCells), widened);
-  return static_cast<int>(std::clamp(size, 1.0, static_cast<double>(maxSize)));
+int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int maxSize) {
+  const int lo = std::clamp(kRegionGCells, 1, maxSize);
+  int size = lo;
+  // Grow while the next size's grid stays within the budget and this one leaves the die uncovered.
+  while (size < maxSize && (size < grid.nx() || size < grid.ny()) &&
+         regionGridNodes(grid, tracks, terminals, size + 1) <= kRegionGridNodes)
+    ++size;
+  return size;
 }
 
 std::vector<Region> partitionRegions(const GCellGrid& grid, int size, int offset) {

@@ -21,18 +21,23 @@ struct GCellGrid {
 
 GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks);
 
-// The default region (RouterSettings::regionSize 0): kRegionGCells GCells a side, widened to span
-// kRegionTracks tracks where GCells are small. 10 GCells of ispd18_test1's GCells (15 tracks each)
-// measured best there; ispd19_test1's GCells span 10 tracks, and its regions of 10 GCells left
-// wirelength and vias that regions of 150 tracks do not. A region's grid grows with its tracks, so
-// the region is not widened in GCells of more tracks. flow/README.md has the measurement.
+// The default region (RouterSettings::regionSize 0): kRegionGCells GCells a side, or more while the
+// grids of most regions stay within kRegionGridNodes nodes a layer. A region's grid has a line at
+// every track of every layer and at every terminal in it, so its memory and the maze's work follow
+// its tracks and pins, not its GCells; larger regions cut fewer nets. flow/README.md has the
+// measurement (15 GCells on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3).
 inline constexpr int kRegionGCells = 10;
-inline constexpr int kRegionTracks = 150;
+inline constexpr double kRegionGridNodes = 90000;
 
-// GCells per region side of the default region: kRegionTracks over the tracks a GCell spans (per axis
-// the median GCell side over the median pitch of the layers whose tracks cross it, averaged over x
-// and y), rounded, and at least kRegionGCells; in 1..maxSize.
-int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, int maxSize);
+// The upper quartile over the regions of `size` GCells a side (offset 0) of a region's grid nodes a
+// layer: the lines in x times those in y, at its edges, every layer's tracks and the `terminals`
+// (access points) in it.
+double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int size);
+
+// GCells per region side of the default region: from kRegionGCells up while the next size's
+// regionGridNodes stays within kRegionGridNodes and the region does not yet cover the die; in
+// 1..maxSize.
+int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int maxSize);
 
 struct Region {
   int32_t id = 0;

@@ -69,7 +69,8 @@ class Flow {
        const ColourHook& beforeColour, const IterationPlanner& planner)
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
-    if (s_.regionSize <= 0) s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, kMaxRegionSize);
+    if (s_.regionSize <= 0)
+      s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.locations(), kMaxRegionSize);
     s_.costs = guideCosts(s_.costs, design.guidesBuiltIn);
   }
 

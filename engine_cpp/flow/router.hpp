@@ -32,11 +32,11 @@ inline constexpr int kMaxThreads = 1024;      // worker threads at most
 inline constexpr int kMaxRepairRounds = 64;   // repair rounds per region at most
 
 struct RouterSettings {
-  // GCells per region side (C); 0 = 10, widened to 150 tracks where GCells are small (autoRegionSize,
-  // flow/regions.hpp): 10 on ispd18_test1 and ispd19_test3, 15 on ispd19_test1.
+  // GCells per region side (C); 0 = 10, or more while most regions' grids stay within a node budget
+  // (autoRegionSize, flow/regions.hpp): 15 on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3.
   int regionSize = 0;
   // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
-  // ispd19_test1 reaches zero in its iteration 5, ispd19_test3 in its iteration 7 (2026-11-27, 2 threads).
+  // ispd19_test1 reaches zero in its iteration 8, ispd19_test3 in its iteration 7 (2026-11-27, 2 threads).
   int iterations = 16;
   int threads = 1;                 // worker threads for regions of one colour
   std::vector<ScheduleStep> schedule;  // per iteration, cycled; empty = regionSize with offsets 0, C/3, 2C/3, ...

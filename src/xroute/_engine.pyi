@@ -484,7 +484,7 @@ class RouterSettings:
 
 def auto_region_size(db: Database) -> int:
     """
-    GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more where that spans fewer than DEFAULTS['region_tracks'] tracks (of the routing layers' median pitch).
+    GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in four regions' grids (lines at every track and access point in the region) stay within DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die. Computes the design's pin access (the default access points per pin, as a run does).
     """
 
 POLICY_FEATURES: tuple = ...

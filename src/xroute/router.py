@@ -166,8 +166,9 @@ class RouteResult:
 
 def region_size_for(design: Design, region_size: int = 0) -> int:
     """GCells per region side of a run with ``region_size`` on ``design``: itself, or for 0 the engine's
-    choice: ``defaults.REGION_GCELLS`` GCells, widened to span ``defaults.REGION_TRACKS`` tracks where GCells
-    are small (15 GCells on ispd19_test1, 10 on ispd18_test1)."""
+    choice: ``defaults.REGION_GCELLS`` GCells, or more while three in four regions' grids stay within
+    ``defaults.REGION_GRID_NODES`` nodes a layer and a region does not cover the die (15 GCells on
+    ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3)."""
     return int(region_size) if region_size else int(_engine().auto_region_size(design.engine))
 
 
