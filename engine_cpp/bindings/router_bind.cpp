@@ -206,7 +206,7 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
 int autoRegionSizeOf(const Database& db) {
   const TrackSet tracks = buildTracks(db.tech, db.design);
   const PinAccessTable access = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{});
-  return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, access.locations(), kMaxRegionSize);
+  return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, access.points, kMaxRegionSize);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #include "flow/regions.hpp"
 
 #include <algorithm>
-#include <cmath>
+
+#include "grid/region_grid.hpp"
 
 namespace xroute {
 
@@ -86,45 +87,31 @@ GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks) {
   return GCellGrid{derivedLines(design, tracks, true), derivedLines(design, tracks, false)};
 }
 
-double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int size) {
-  // Per region: its grid lines are its edges, the tracks of every layer and the terminals within its
-  // box, as RegionGrid makes them (without the crossings a run adds).
+double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
+                       int size) {
+  // Per region with a terminal: the lines RegionGrid lays for it (without the crossings a run adds).
   const std::vector<Region> regions = partitionRegions(grid, size, 0);
-  if (regions.empty()) return 0;
-  std::vector<std::vector<Point>> inside(regions.size());
-  for (const Point& p : terminals) {
-    const int32_t r = regionAt(regions, grid, size, 0, p);
-    if (r >= 0 && regions[r].box.contains(p)) inside[r].push_back(p);
+  std::vector<std::vector<Dbu>> xs(regions.size()), ys(regions.size());
+  for (const AccessPoint& ap : terminals) {
+    const int32_t r = regionAt(regions, grid, size, 0, ap.at);
+    xs[r].push_back(ap.at.x);
+    ys[r].push_back(ap.at.y);
   }
   std::vector<double> nodes;
-  std::vector<Dbu> xs, ys;
   for (const Region& r : regions) {
-    xs = {r.box.xlo, r.box.xhi};
-    ys = {r.box.ylo, r.box.yhi};
-    for (const LayerTracks& t : tracks.layers) {
-      for (Dbu c : tracksIn(t.pref, t.horizontal ? r.box.ylo : r.box.xlo, t.horizontal ? r.box.yhi : r.box.xhi))
-        (t.horizontal ? ys : xs).push_back(c);
-      for (Dbu c : tracksIn(t.cross, t.horizontal ? r.box.xlo : r.box.ylo, t.horizontal ? r.box.xhi : r.box.yhi))
-        (t.horizontal ? xs : ys).push_back(c);
-    }
-    for (const Point& p : inside[r.id]) {
-      xs.push_back(p.x);
-      ys.push_back(p.y);
-    }
-    std::sort(xs.begin(), xs.end());
-    std::sort(ys.begin(), ys.end());
-    const size_t nx = std::unique(xs.begin(), xs.end()) - xs.begin();
-    const size_t ny = std::unique(ys.begin(), ys.end()) - ys.begin();
-    nodes.push_back(static_cast<double>(nx) * static_cast<double>(ny));
+    if (xs[r.id].empty()) continue;
+    regionGridLines(tracks, r.box, xs[r.id], ys[r.id]);
+    nodes.push_back(static_cast<double>(xs[r.id].size()) * static_cast<double>(ys[r.id].size()));
   }
+  if (nodes.empty()) return 0;
   const size_t q = nodes.size() * 3 / 4;  // the upper quartile
   std::nth_element(nodes.begin(), nodes.begin() + q, nodes.end());
   return nodes[q];
 }
 
-int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int maxSize) {
-  const int lo = std::clamp(kRegionGCells, 1, maxSize);
-  int size = lo;
+int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
+                   int maxSize) {
+  int size = std::clamp(kRegionGCells, 1, maxSize);
   // Grow while the next size's grid stays within the budget and this one leaves the die uncovered.
   while (size < maxSize && (size < grid.nx() || size < grid.ny()) &&
          regionGridNodes(grid, tracks, terminals, size + 1) <= kRegionGridNodes)

@@ -5,6 +5,7 @@
 
 #include "db/design.hpp"
 #include "grid/tracks.hpp"
+#include "pa/pin_access.hpp"
 
 namespace xroute {
 
@@ -29,15 +30,17 @@ GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks);
 inline constexpr int kRegionGCells = 10;
 inline constexpr double kRegionGridNodes = 90000;
 
-// The upper quartile over the regions of `size` GCells a side (offset 0) of a region's grid nodes a
-// layer: the lines in x times those in y, at its edges, every layer's tracks and the `terminals`
-// (access points) in it.
-double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int size);
+// The upper quartile over the regions of `size` GCells a side (offset 0) that hold a terminal of a
+// region's grid nodes a layer: the lines in x times those in y, at its edges, every layer's tracks
+// and the `terminals` (access points) in it (regionGridLines). 0 when no region holds one.
+double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
+                       int size);
 
 // GCells per region side of the default region: from kRegionGCells up while the next size's
 // regionGridNodes stays within kRegionGridNodes and the region does not yet cover the die; in
 // 1..maxSize.
-int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<Point>& terminals, int maxSize);
+int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
+                   int maxSize);
 
 struct Region {
   int32_t id = 0;

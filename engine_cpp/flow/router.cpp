@@ -70,7 +70,7 @@ class Flow {
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
     if (s_.regionSize <= 0)
-      s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.locations(), kMaxRegionSize);
+      s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.points, kMaxRegionSize);
     s_.costs = guideCosts(s_.costs, design.guidesBuiltIn);
   }
 
@@ -133,8 +133,7 @@ class Flow {
     for (size_t j = 0; j < prevMarkers_.size(); ++j) {
       const Marker& p = prevMarkers_[j];
       const bool sameNets = m.net2 >= 0 && std::minmax(p.net1, p.net2) == std::minmax(m.net1, m.net2);
-      if ((p.layer == m.layer || sameNets) && p.box.xlo <= m.box.xhi && m.box.xlo <= p.box.xhi &&
-          p.box.ylo <= m.box.yhi && m.box.ylo <= p.box.yhi)
+      if ((p.layer == m.layer || sameNets) && p.box.overlaps(m.box))
         best = std::max(best, 1 + prevAges_[j]);
     }
     return best;

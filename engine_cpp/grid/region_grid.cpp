@@ -27,26 +27,28 @@ int exactIndex(const std::vector<Dbu>& v, Dbu c) {
 
 }  // namespace
 
-RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu> extraXs, std::vector<Dbu> extraYs)
-    : box_(box), nz_(static_cast<int>(tracks.layers.size())) {
-  xs_ = std::move(extraXs);
-  ys_ = std::move(extraYs);
-  xs_.push_back(box.xlo);
-  xs_.push_back(box.xhi);
-  ys_.push_back(box.ylo);
-  ys_.push_back(box.yhi);
+void regionGridLines(const TrackSet& tracks, const Rect& box, std::vector<Dbu>& xs, std::vector<Dbu>& ys) {
+  xs.push_back(box.xlo);
+  xs.push_back(box.xhi);
+  ys.push_back(box.ylo);
+  ys.push_back(box.yhi);
   for (const LayerTracks& lt : tracks.layers) {
     for (Dbu c : tracksIn(lt.pref, lt.horizontal ? box.ylo : box.xlo, lt.horizontal ? box.yhi : box.xhi)) {
-      (lt.horizontal ? ys_ : xs_).push_back(c);
+      (lt.horizontal ? ys : xs).push_back(c);
     }
     for (Dbu c : tracksIn(lt.cross, lt.horizontal ? box.xlo : box.ylo, lt.horizontal ? box.xhi : box.yhi)) {
-      (lt.horizontal ? xs_ : ys_).push_back(c);
+      (lt.horizontal ? xs : ys).push_back(c);
     }
   }
-  std::erase_if(xs_, [&](Dbu x) { return x < box.xlo || x > box.xhi; });
-  std::erase_if(ys_, [&](Dbu y) { return y < box.ylo || y > box.yhi; });
-  sortUnique(xs_);
-  sortUnique(ys_);
+  std::erase_if(xs, [&](Dbu x) { return x < box.xlo || x > box.xhi; });
+  std::erase_if(ys, [&](Dbu y) { return y < box.ylo || y > box.yhi; });
+  sortUnique(xs);
+  sortUnique(ys);
+}
+
+RegionGrid::RegionGrid(const TrackSet& tracks, const Rect& box, std::vector<Dbu> extraXs, std::vector<Dbu> extraYs)
+    : box_(box), nz_(static_cast<int>(tracks.layers.size())), xs_(std::move(extraXs)), ys_(std::move(extraYs)) {
+  regionGridLines(tracks, box, xs_, ys_);
 
   const size_t n = xs_.size() * ys_.size() * static_cast<size_t>(nz_);
   if (n > kMaxRegionNodes) {

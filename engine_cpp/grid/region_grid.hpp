@@ -44,6 +44,11 @@ enum class NodeType : uint8_t { NotExist = 0, Blockage = 1, Normal = 2, Access =
 // large for the design.
 inline constexpr size_t kMaxRegionNodes = 20'000'000;
 
+// The grid lines of a region `box`: `xs` and `ys` hold extra coordinates (terminals) on entry and, on
+// return, those within the box, its edges and every layer's tracks (preferred and cross) within
+// it, sorted and unique.
+void regionGridLines(const TrackSet& tracks, const Rect& box, std::vector<Dbu>& xs, std::vector<Dbu>& ys);
+
 class RegionGrid {
  public:
   // Throws std::invalid_argument when the grid would exceed kMaxRegionNodes.

@@ -53,13 +53,6 @@ struct PinAccessTable {
   int32_t count(int32_t pinRef) const { return start[pinRef + 1] - start[pinRef]; }
   const AccessPoint* begin(int32_t pinRef) const { return points.data() + start[pinRef]; }
   const AccessPoint* end(int32_t pinRef) const { return points.data() + start[pinRef + 1]; }
-  // Where every point lies (each pin's, in order).
-  std::vector<Point> locations() const {
-    std::vector<Point> out;
-    out.reserve(points.size());
-    for (const AccessPoint& ap : points) out.push_back(ap.at);
-    return out;
-  }
 };
 
 // Computes access points for every pinRef. Unique component classes (macro,
