@@ -151,7 +151,7 @@ def drawn_region(tmp_path: Path, lef_text: str, def_text: str, name: str) -> tup
 def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_path: Path) -> None:
     # The step from (300, 1500) east into the landing above pin c1/A, on M2 (wrong way: 200 x 4).
     # For net a it costs the wire alone: it ends on its own via's pad, which pin access checked.
-    # For net b it is another net's landing and a forbidden wire (reserve and fixed penalties). The
+    # For net b it is another net's landing and a forbidden wire (landing and fixed penalties). The
     # old maze charged net a the fixed penalty too, and its route went up a layer and down again.
     _, region, g, node = drawn_region(tmp_path, LANDING_LEF, LANDING_DEF, "landing")
     xs, ys = np.asarray(g["xs"]).tolist(), np.asarray(g["ys"]).tolist()
@@ -161,7 +161,7 @@ def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_
     east = 4
     nets = region.candidates[:, 0].tolist()
     costs = _engine.MazeCosts()
-    for net, expected in ((0, 800), (1, 800 + costs.reserve_penalty + costs.fixed_penalty)):
+    for net, expected in ((0, 800), (1, 800 + costs.landing_penalty + costs.fixed_penalty)):
         neighbours, step = region.moves(nets.index(net), node(300, 1500, 1))
         assert (neighbours[east], step[east]) == (landing, expected), net
 

@@ -73,12 +73,13 @@ void bindRoutingSession(nb::module_& m) {
                              "What every region of one design shares: tracks, vias, pin access, fixed shapes.")
       .def(
           "__init__",
-          [](RoutingSession* self, Database& db, int threads) {
+          [](RoutingSession* self, Database& db, int threads, const MazeCosts& costs) {
             nb::gil_scoped_release release;
-            new (self) RoutingSession(db, threads);
+            new (self) RoutingSession(db, threads, costs);
           },
-          "db"_a, "threads"_a = 1, nb::keep_alive<1, 2>(),
-          "Prepares routing of a loaded Database (pin access is computed here, once).")
+          "db"_a, "threads"_a = 1, "costs"_a = MazeCosts(), nb::keep_alive<1, 2>(),
+          "Prepares routing of a loaded Database (pin access is computed here, once); the regions it opens "
+          "route with the maze's costs (default: the engine's).")
       .def_prop_ro(
           "gcell_lines",
           [](const RoutingSession& s) { return nb::make_tuple(s.gcells().xs, s.gcells().ys); },

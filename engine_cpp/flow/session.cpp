@@ -7,8 +7,8 @@
 
 namespace xroute {
 
-RoutingSession::RoutingSession(Database& db, int threads)
-    : db_(db), ctx_(std::make_unique<RouteContext>(db.tech, db.design, std::max(1, threads))) {}
+RoutingSession::RoutingSession(Database& db, int threads, const MazeCosts& costs)
+    : db_(db), ctx_(std::make_unique<RouteContext>(db.tech, db.design, std::max(1, threads))), costs_(costs) {}
 
 std::vector<Region> RoutingSession::regions(int size, int offset) const {
   return partitionRegions(ctx_->gcells, size, offset);

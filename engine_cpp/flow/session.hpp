@@ -30,8 +30,9 @@ struct SessionRegion {
 
 class RoutingSession {
  public:
-  // Prepares routing of `db` (pin access is computed here, once); db must outlive the session.
-  RoutingSession(Database& db, int threads);
+  // Prepares routing of `db` (pin access is computed here, once) with the maze's `costs` for the
+  // regions it opens; db must outlive the session.
+  RoutingSession(Database& db, int threads, const MazeCosts& costs = {});
 
   Database& database() const { return db_; }
   const GCellGrid& gcells() const { return ctx_->gcells; }
