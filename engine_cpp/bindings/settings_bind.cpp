@@ -14,13 +14,15 @@ namespace {
 void bindMazeCosts(nb::module_& m) {
   const MazeCosts d;
   nb::class_<MazeCosts>(m, "MazeCosts", "The maze's costs (cost units: DBU of wire), as in route/maze.hpp.")
-      .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t>(),
+      .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t,
+                    int64_t>(),
            "via_cost"_a = d.viaCost, "wrong_way_factor"_a = d.wrongWayFactor,
            "out_of_guide_factor"_a = d.outOfGuideFactor, "built_in_guide_factor"_a = d.builtInGuideFactor,
            "fixed_penalty"_a = d.fixedPenalty,
            "use_penalty"_a = d.usePenalty, "marker_unit"_a = d.markerUnit,
            "bottom_layer_factor"_a = d.bottomLayerFactor, "reserve_penalty"_a = d.reservePenalty,
-           "landing_penalty"_a = d.landingPenalty, "crossing_pull"_a = d.crossingPull, "The costs; each defaults to the engine's.")
+           "landing_penalty"_a = d.landingPenalty, "crossing_pull"_a = d.crossingPull,
+           "The costs; each defaults to the engine's.")
       .def_rw("via_cost", &MazeCosts::viaCost, "Cost units per via.")
       .def_rw("wrong_way_factor", &MazeCosts::wrongWayFactor, "Wrong-way wire length multiplier.")
       .def_rw("out_of_guide_factor", &MazeCosts::outOfGuideFactor,
