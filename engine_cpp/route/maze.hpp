@@ -31,8 +31,8 @@ struct MazeCosts {
   int64_t reservePenalty = 20000;  // entering another net's access point or boundary terminal
   // Entering the landing right above another net's access point (its via's metal) while that net is
   // unrouted. 0 measured best on ispd18_test1 (contest score 293,217 -> 291,859, 34,794 -> 34,440 vias;
-  // 2,000: 292,280; 6,000: 293,144; 20,000 before) and better on ispd19_test1 (flow/README.md): the
-  // detours it forced on the nets routed first cost more than the markers it spared.
+  // 2,000: 292,280; 6,000: 293,144; 20,000 before) and on ispd19_test1, a little worse on ispd19_test3
+  // (flow/README.md): the detours it forced on the nets routed first cost more than the markers it spared.
   int64_t landingPenalty = 0;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
 };
