@@ -54,7 +54,8 @@ def iteration_line(progress: RouteProgress) -> str:
     """One plain line for a finished iteration."""
     r = progress.report
     return (
-        f"iteration {r.iteration}: {counted(r.regions, 'region')}, {counted(r.net_routes, 'net route')}, "
+        f"iteration {r.iteration}: region size {r.region_size}, {counted(r.regions, 'region')}, "
+        f"{counted(r.net_routes, 'net route')}, "
         f"WL {r.wirelength_um:,.1f} um, {counted(r.vias, 'via')}, {counted(r.violations, 'violation')} "
         f"({by_type(r.violations_by_type)}), {r.seconds:.2f} s"
     )

@@ -58,8 +58,8 @@ def test_route_default_output_folder_and_progress_lines(runner: CliRunner, testc
     assert all(p.is_file() for p in outputs(tmp_path / "out" / SAMPLE2, SAMPLE2))
     out = result.stdout
     # Not a terminal: plain progress lines, then the table, then the final line.
-    assert out.startswith(f"routing {SAMPLE2}: {nets_of(SAMPLE2)} nets, region size 10 (auto), up to 16 iterations, "
-                          "1 thread(s), policy heuristic\niteration 0: ")
+    assert out.startswith(f"routing {SAMPLE2}: {nets_of(SAMPLE2)} nets, region size auto, up to 16 iterations, "
+                          "1 thread(s), policy heuristic\niteration 0: region size 10, ")
     assert "open nets" in out and "wirelength (µm)" in out
     assert out.strip().splitlines()[-1].startswith(f"{SAMPLE2}: routed: {nets_of(SAMPLE2)} nets, 0 open")
 

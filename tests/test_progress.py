@@ -44,7 +44,7 @@ def test_rich_progress_shows_iteration_regions_and_violations() -> None:
         display(event(False))
         display(event(True))
     text = re.sub(r"\x1b\[[0-9;?]*[A-Za-z]", "", c.file.getvalue())  # without colours and cursor moves
-    assert "job: iteration 0: 4 regions, 9 net routes, WL 1.0 um, 3 vias, 2 violations (Short 2), 0.50 s" in text
+    assert "job: iteration 0: region size 5, 4 regions, 9 net routes, WL 1.0 um, 3 vias, 2 violations (Short 2), 0.50 s" in text
     assert "regions 4/4" in text and "violations 2" in text
 
 
@@ -52,7 +52,7 @@ def test_lines_and_off(capsys) -> None:
     with ProgressDisplay(console(False), "lines", 10) as display:
         display(event(False))  # a batch of regions: no line
         display(event(True))
-    assert capsys.readouterr().out == "iteration 0: 4 regions, 9 net routes, WL 1.0 um, 3 vias, 2 violations (Short 2), 0.50 s\n"
+    assert capsys.readouterr().out == "iteration 0: region size 5, 4 regions, 9 net routes, WL 1.0 um, 3 vias, 2 violations (Short 2), 0.50 s\n"
     with ProgressDisplay(console(False), "quiet", 10) as display:
         display(event(True))
     assert capsys.readouterr().out == ""
