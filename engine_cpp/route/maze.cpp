@@ -4,6 +4,7 @@
 #include <functional>
 #include <limits>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 namespace xroute {
@@ -16,6 +17,14 @@ static_assert(bytesPerNode<decltype(MazeWorkspace::cost), decltype(MazeWorkspace
                            decltype(MazeWorkspace::visit), decltype(MazeWorkspace::inTree),
                            decltype(MazeWorkspace::terminalSlot)>() == kSearchBytesPerNode,
               "a per-node search array was added or changed: update kSearchBytesPerNode");
+
+// The open list: (cost so far + heuristic, cost so far, node), least first. Among equal
+// estimates the node nearer the tree (the lower cost so far) goes first. Which of several
+// equal-cost paths a net gets changes the nets after it: with the heuristic's layer term, the node
+// index alone (lower layers first) measured 0.75% worse on ispd18_test1 (contest score 294,050
+// against 291,944) and the higher cost so far first 0.5% worse (293,405).
+using OpenEntry = std::tuple<int64_t, int64_t, int32_t>;
+using OpenList = std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<>>;
 
 // A terminal node of the net being routed: its terminal and the cost of ending there.
 struct TerminalSlot {
@@ -76,8 +85,7 @@ class Search {
     }
     return false;
   }
-  void relax(int32_t u, int32_t v, int64_t step, std::priority_queue<std::pair<int64_t, int32_t>,
-             std::vector<std::pair<int64_t, int32_t>>, std::greater<>>& open);
+  void relax(int32_t u, int32_t v, int64_t step, OpenList& open);
 
   const RegionGrid& g_;
   const MazeCosts& c_;
@@ -98,6 +106,7 @@ class Search {
   std::vector<uint8_t> reached_;     // per terminal
   std::vector<TerminalSlot> slots_;  // per node of a terminal (terminalSlot): the first terminal naming it
   std::vector<Rect> termBox_;        // per terminal, DBU
+  std::vector<std::pair<int, int>> termLayers_;  // per terminal, its nodes' lowest and highest layer
 };
 
 template <class Fn>
@@ -195,22 +204,28 @@ int64_t Search::viaNodeCost(int32_t v) const {
   return cost;
 }
 
+// A lower bound on the cost from v to the nearest unreached terminal: the planar distance to its
+// nodes' box and a via for each layer between v and its nodes' layers (a wire step costs at least
+// its length, a via at least viaCost). It is consistent, so the search stays exact; the layer term
+// cut the nodes expanded (2 threads, one run each: ispd18_test1 19.2 -> 15.7 s, ispd19_test1
+// 126.8 -> 107.5 s).
 int64_t Search::heuristic(int32_t v) const {
   const Point p = g_.point(v);
+  const int z = g_.zOf(v);
   int64_t best = kInf;
   for (size_t t = 0; t < termBox_.size(); ++t) {
     if (reached_[t]) continue;
     const Rect& b = termBox_[t];
     const int64_t dx = p.x < b.xlo ? b.xlo - p.x : (p.x > b.xhi ? p.x - b.xhi : 0);
     const int64_t dy = p.y < b.ylo ? b.ylo - p.y : (p.y > b.yhi ? p.y - b.yhi : 0);
-    best = std::min(best, dx + dy);
+    const auto [zlo, zhi] = termLayers_[t];
+    const int64_t dz = z < zlo ? zlo - z : (z > zhi ? z - zhi : 0);
+    best = std::min(best, dx + dy + dz * c_.viaCost);
   }
   return best == kInf ? 0 : best;
 }
 
-void Search::relax(int32_t u, int32_t v, int64_t step,
-                   std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>,
-                                       std::greater<>>& open) {
+void Search::relax(int32_t u, int32_t v, int64_t step, OpenList& open) {
   if (closed(v)) return;
   int64_t nc = ws_.cost[u] + step;
   const int32_t k = ws_.terminalSlot[v];
@@ -219,7 +234,7 @@ void Search::relax(int32_t u, int32_t v, int64_t step,
   ws_.visit[v] = ws_.stamp;
   ws_.cost[v] = nc;
   ws_.parent[v] = u;
-  open.push({nc + heuristic(v), v});
+  open.push({nc + heuristic(v), nc, v});
 }
 
 int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCost) {
@@ -228,15 +243,15 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
     ws_.stamp = 0;
   }
   ws_.stamp += 2;
-  std::priority_queue<std::pair<int64_t, int32_t>, std::vector<std::pair<int64_t, int32_t>>, std::greater<>> open;
+  OpenList open;
   for (int32_t s : sources) {
     ws_.visit[s] = ws_.stamp;
     ws_.cost[s] = withExitCost ? exitCostAt(s) : 0;
     ws_.parent[s] = -1;
-    open.push({ws_.cost[s] + heuristic(s), s});
+    open.push({ws_.cost[s] + heuristic(s), ws_.cost[s], s});
   }
   while (!open.empty()) {
-    const auto [f, u] = open.top();
+    const int32_t u = std::get<2>(open.top());
     open.pop();
     if (closed(u)) continue;
     ws_.visit[u] = ws_.stamp + 1;
@@ -244,7 +259,6 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
     if (t >= 0 && !reached_[t]) return u;
 
     forEachEdge(u, [&](int32_t v, int64_t step, int) { relax(u, v, step, open); });
-    (void)f;
   }
   return -1;
 }
@@ -287,6 +301,7 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
   if (nt < 2) return 0;
   reached_.assign(nt, 0);
   termBox_.assign(nt, Rect{});
+  termLayers_.assign(nt, {0, 0});
   slots_.clear();
   for (size_t t = 0; t < nt; ++t) {
     bool first = true;
@@ -299,8 +314,14 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
       }
       const Point p = g_.point(v);
       const Rect r{p.x, p.y, p.x, p.y};
-      if (first) termBox_[t] = r;
-      else termBox_[t].expandToInclude(r);
+      const int z = g_.zOf(v);
+      if (first) {
+        termBox_[t] = r;
+        termLayers_[t] = {z, z};
+      } else {
+        termBox_[t].expandToInclude(r);
+        termLayers_[t] = {std::min(termLayers_[t].first, z), std::max(termLayers_[t].second, z)};
+      }
       first = false;
     }
     if (net_.terminals[t].nodes.empty()) reached_[t] = 1;  // nothing to reach

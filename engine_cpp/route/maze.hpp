@@ -1,6 +1,8 @@
 // Multi-terminal A* on a region grid: grows one tree from the first
 // terminal, each round searching from the whole tree to the nearest
-// terminal not yet reached, until every terminal is connected.
+// terminal not yet reached, until every terminal is connected. The
+// estimate to go is the planar distance to the nearest unreached
+// terminal's nodes plus a via for each layer between (exact search).
 #pragma once
 
 #include <array>
