@@ -237,7 +237,7 @@ def test_cli_route_without_guide_runs_the_global_router(tmp_path: Path) -> None:
 
 def test_built_in_guides_cost_nothing_to_leave(tmp_path: Path) -> None:
     # No scorer counts wire outside the built-in global router's guides: the maze's out-of-guide factor
-    # is built_in_guide_factor (1) there, out_of_guide_factor (2) for guides read from a file.
+    # is built_in_guide_factor (1) there, out_of_guide_factor (3) for guides read from a file.
     from xroute.testcases.generator import make_testcase
 
     folder = make_testcase(800, 3, tmp_path / "gen")
@@ -254,8 +254,8 @@ def test_built_in_guides_cost_nothing_to_leave(tmp_path: Path) -> None:
         return out.read_bytes()
 
     global_route(load_design(lef=lef, def_=def_, use_guide=False), tmp_path / "built_in.guide")
-    from_file = routed(tmp_path / "built_in.guide")  # the same guides, read from a file: factor 2
-    assert routed(None, _engine.MazeCosts(built_in_guide_factor=2)) == from_file
+    from_file = routed(tmp_path / "built_in.guide")  # the same guides, read from a file: factor 3
+    assert routed(None, _engine.MazeCosts(built_in_guide_factor=3)) == from_file
     built_in = routed(None)
     assert built_in != from_file
     assert routed(None, _engine.MazeCosts(out_of_guide_factor=5)) == built_in  # the file's factor is not used

@@ -356,7 +356,7 @@ def test_out_of_guide_cost_is_the_same_both_ways_across_the_guide_edge(tmp_path:
     # n1's only guide: M1 left of x = 2000. The contest scorer counts the part of a wire's centre
     # line outside its layer's guide, and a via whose centre lies outside the guide of either of its
     # layers; the maze charges a step that crosses the guide edge half the out-of-guide factor
-    # (2 by default) either way, and a via the factor when either end is outside.
+    # (3 by default) either way, and a via the factor when either end is outside.
     d = drawn(tmp_path, ROW, {"n1": ["u1", "u2"]}, guide="n1\n(\n0 0 2000 4000 M1\n)\n")
     session = _engine.RoutingSession(d.engine)
     region = session.open_region((0, 0, 4000, 4000))
@@ -368,15 +368,16 @@ def test_out_of_guide_cost_is_the_same_both_ways_across_the_guide_edge(tmp_path:
 
     inside, outside, above = node(1900, 1100, 0), node(2100, 1100, 0), node(1900, 1100, 1)
     up, east, west = 0, 4, 5
+    assert _engine.MazeCosts().out_of_guide_factor == 3
     nodes, costs = region.moves(0, inside)
-    assert (nodes[east], costs[east]) == (outside, 300)  # 200 DBU: half in, half out (1 and 2)
+    assert (nodes[east], costs[east]) == (outside, 400)  # 200 DBU: half in, half out (1 and 3)
     assert costs[west] == 200  # inside both ends
-    assert (nodes[up], costs[up]) == (above, 2400)  # M2 has no guide: the via costs 2 x 1200
+    assert (nodes[up], costs[up]) == (above, 3600)  # M2 has no guide: the via costs 3 x 1200
     nodes, costs = region.moves(0, outside)
-    assert (nodes[west], costs[west]) == (inside, 300)
-    assert costs[east] == 400  # outside both ends
+    assert (nodes[west], costs[west]) == (inside, 400)
+    assert costs[east] == 600  # outside both ends
     nodes, costs = region.moves(0, above)
-    assert (nodes[1], costs[1]) == (inside, 2400)  # down onto the guide: the via is still out of M2's
+    assert (nodes[1], costs[1]) == (inside, 3600)  # down onto the guide: the via is still out of M2's
 
 
 def claimed(grid: dict[str, Any], key: str, z: int) -> dict[tuple[int, int], int]:
