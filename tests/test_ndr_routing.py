@@ -8,13 +8,14 @@ its centre, so a cell placed at (x, y) has its pin on the track crossing (x + 10
 
     x =   500 700           1500        1900       2700
     y=2900  a2
-    y=2300      b2  (long net a: a1-a2 on column x=500; short net b: b1-b2 on column x=700,
-    y=1500      b1   y 1500..2300, beside it)
+    y=2500      b2  (long net a: a1-a2 on column x=500; short net b: b1-b2 on column x=700,
+    y=1500      b1   y 1500..2500, beside it)
     y=1100  a1                          d (d1-d2 on column x=1900)
     y= 700                  c1 ======== c2
 
 Default rules: a and b each run straight up their M2 column, 200 apart; the gap between the wires
-is 200 - 30 - 30 = 140 >= 70. With either of them on the rule the gap would be 200 - 60 - 30 =
+is 200 - 30 - 30 = 140 >= 70. b's pins are 1,000 apart: at 800 a wrong-way M1 wire (4 x 800)
+costs what two vias and the M2 wire cost (2 x 1200 + 800), and the maze may take either. With either of them on the rule the gap would be 200 - 60 - 30 =
 110 < 140, so the router must move one of them a track further away.
 """
 
@@ -38,7 +39,7 @@ from xroute.router import route_design
 
 RULE = ("NONDEFAULTRULES 1 ;\n- wide + LAYER M2 WIDTH 120 SPACING 140 + LAYER M3 WIDTH 120 SPACING 140 ;\n"
         "END NONDEFAULTRULES\n")
-CELLS = {"a1": (400, 1000), "a2": (400, 2800), "b1": (600, 1400), "b2": (600, 2200),
+CELLS = {"a1": (400, 1000), "a2": (400, 2800), "b1": (600, 1400), "b2": (600, 2400),
          "c1": (1400, 600), "c2": (2600, 600), "d1": (1800, 3000), "d2": (1800, 1000)}
 NETS = {"a": ["a1", "a2"], "b": ["b1", "b2"], "c": ["c1", "c2"], "d": ["d1", "d2"]}
 CELL = macro("PIN1", 0.2, 0.2, pin("A", "INPUT", [("M1", (0.07, 0.07, 0.13, 0.13))]))
@@ -97,7 +98,7 @@ def test_a_rule_net_routes_at_the_rules_width_and_keeps_its_spacing(tmp_path: Pa
     wa = 120 if rule_net == "a" else 0
     assert wires(db, "a") == [("M1", 500, 1100, 300, 1100, 0, -1, -1), ("M2", 300, 1100, 300, 2900, wa, -1, -1),
                               ("M1", 300, 2900, 500, 2900, 0, -1, -1)]
-    assert wires(db, "b") == [("M2", 700, 1500, 700, 2300, 120 - wa, -1, -1)]
+    assert wires(db, "b") == [("M2", 700, 1500, 700, 2500, 120 - wa, -1, -1)]
     checked = check_cli(lef, routed, tmp_path / "c")
     assert (checked["opens"], checked["violations"]) == (0, 0)
     assert doc["final"]["violations"] == 0
@@ -113,7 +114,7 @@ def test_default_width_routing_of_the_rule_net_breaks_the_rules_spacing(tmp_path
     lef, routed, _ = route_cli(tmp_path, def_text(None), "plain")
     db = _engine.load([str(lef)], str(routed))
     assert wires(db, "a") == [("M2", 500, 1100, 500, 2900, 0, -1, -1)]
-    assert wires(db, "b") == [("M2", 700, 1500, 700, 2300, 0, -1, -1)]
+    assert wires(db, "b") == [("M2", 700, 1500, 700, 2500, 0, -1, -1)]
     text = routed.read_text().replace("COMPONENTS", RULE + "COMPONENTS", 1)
     text = text.replace("( a1 A ) ( a2 A )", "( a1 A ) ( a2 A ) + NONDEFAULTRULE wide")
     as_rule = tmp_path / "as_rule.def"
@@ -121,7 +122,7 @@ def test_default_width_routing_of_the_rule_net_breaks_the_rules_spacing(tmp_path
     checked = check_cli(lef, as_rule, tmp_path / "c")
     assert checked["violations_by_type"] == {"MetalSpacing": 1}
     marker = check_design(load_design(lef=lef, def_=as_rule)).markers[0]
-    assert (marker["layer"], marker["box"]) == ("M2", (560, 1450, 670, 2350))  # a's wire edge to b's
+    assert (marker["layer"], marker["box"]) == ("M2", (560, 1450, 670, 2550))  # a's wire edge to b's
 
 
 def test_the_router_and_check_count_an_unavoidable_rule_violation_alike(tmp_path: Path) -> None:

@@ -169,16 +169,18 @@ def test_drawn_pin_with_an_on_track_point_offers_only_on_track_points(tmp_path: 
     assert [p[4] for p in points_of(r, 0)] == [1, 2, 3]
 
 
-ROUTE_DEF = tiny_def(["- u1 CELL + PLACED ( 1100 1000 ) N ;", "- u2 CELL + PLACED ( 1100 2200 ) N ;"],
+ROUTE_DEF = tiny_def(["- u1 CELL + PLACED ( 1100 1000 ) N ;", "- u2 CELL + PLACED ( 1100 2400 ) N ;"],
                      ["- n ( u1 B ) ( u2 B ) ;"], die=4000)
 
 
 def test_drawn_route_uses_on_track_access_vias(tmp_path: Path) -> None:
-    # Two B pins stacked 1.2 um apart, each crossed by track x 1500 and by
-    # track y 1500 / 2700 with room for the cut. With off-track points on
-    # offer the router reached u2 at (1500, 2600), a half-track y off M1's
-    # tracks (100 shorter); with only the on-track points both vias sit on
-    # track crossings.
+    # Two B pins stacked 1.4 um apart, each crossed by track x 1500 and by
+    # track y 1500 / 2900 with room for the cut. With off-track points on
+    # offer the router reached u2 a half-track y off M1's tracks (100
+    # shorter); with only the on-track points both vias sit on track
+    # crossings. The pins' ends are 1,000 apart: at 800 a wrong-way M1 wire
+    # (4 x 800) costs what two vias and the M2 wire cost (2 x 1200 + 800),
+    # and the maze may take either.
     lef, def_ = write_design(tmp_path, TINY_LEF, ROUTE_DEF)
     db = load_design(lef=lef, def_=def_).engine
     _engine.route(db, threads=1)
