@@ -58,9 +58,9 @@ def test_each_nets_first_maze_path_costs_what_the_cheapest_path_costs() -> None:
         joined = region.terminal_joined(i)
         first = set(terms[0])
         others = set().union(*map(set, terms[1:])) if len(terms) > 1 else set()
-        # Plain pin terminals only (no crossings: those carry an exit cost the edges do not show), and
-        # none sharing a node with the first (reached without a path).
-        if len(terms) < 2 or not all(joined) or first & others:
+        # Plain pin terminals only (no crossings: those carry an exit cost the edges do not show), the
+        # first with nodes (the maze starts there), none sharing a node with it (reached without a path).
+        if len(terms) < 2 or not all(joined) or not first or first & others:
             region.route_net(i)
             continue
         cache: dict[int, list[tuple[int, int]]] = {}

@@ -19,8 +19,9 @@ struct MazeCosts {
   int64_t wrongWayFactor = 4;      // wrong-way wire length multiplier
   // Wire length / via multiplier outside the net's guides, as the contest scorer counts them (a wire's
   // centre line, a via's centre on either layer). 3 is the scorer's weight for wire: 1 a pitch outside
-  // on top of 0.5 a pitch. Against 2 (2026-11-27, 2 threads, 0 violations either way): contest score
-  // ispd18_test1 291,944 -> 291,326, ispd19_test1 422,954 -> 421,750 (63,710.1 -> 63,958.4 um).
+  // on top of 0.5 a pitch (for a via, 1 on top of 2; the one factor serves both). Against 2
+  // (2026-11-27, 2 threads, 0 violations either way): contest score ispd18_test1 291,944 -> 291,326,
+  // ispd19_test1 422,954 -> 421,750 (63,710.1 -> 63,958.4 um).
   int64_t outOfGuideFactor = 3;
   // outOfGuideFactor where the guides are the built-in global router's (Design::guidesBuiltIn, applied
   // by guideCosts): no scorer counts wire outside them, they only plan the congestion. 1 measured
