@@ -254,8 +254,8 @@ def test_built_in_guides_cost_nothing_to_leave(tmp_path: Path) -> None:
         return out.read_bytes()
 
     global_route(load_design(lef=lef, def_=def_, use_guide=False), tmp_path / "built_in.guide")
-    from_file = routed(tmp_path / "built_in.guide")  # the same guides, read from a file: factor 3
-    assert routed(None, _engine.MazeCosts(built_in_guide_factor=3)) == from_file
+    from_file = routed(tmp_path / "built_in.guide")  # the same guides, read from a file
+    assert routed(None, _engine.MazeCosts(built_in_guide_factor=_engine.MazeCosts().out_of_guide_factor)) == from_file
     built_in = routed(None)
     assert built_in != from_file
     assert routed(None, _engine.MazeCosts(out_of_guide_factor=5)) == built_in  # the file's factor is not used

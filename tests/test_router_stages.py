@@ -532,14 +532,13 @@ def test_a_routed_pins_unused_via_landings_stop_costing_other_nets(tmp_path: Pat
     # joins u1 and u2 on M1 without a via. n2 (pins at (500, 300) and (500, 2500)) runs on the
     # M2 track x = 500 right over those landings. Before n1 is routed a step onto one costs the
     # landing penalty; once n1's pin is joined its landings are released (flag 32) and cost n2
-    # nothing more, so n2 runs straight: one M2 wire, two vias. By default (penalty None) the
-    # landing penalty is 0: the nets routed first no longer detour around later nets' pins.
+    # nothing more, so n2 runs straight: one M2 wire, two vias. With the engine's costs (penalty
+    # None; the landing penalty is 0 since 2026-11-27) the step costs the same before and after.
     tall = macro("TALL", 0.2, 0.6, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.53))]))
     comps = {"u1": (400, 1000, "TALL"), "u2": (2400, 1000), "u3": (400, 200), "u4": (400, 2400)}
     d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"]}, macros=tall)
-    session = (_engine.RoutingSession(d.engine) if penalty is None
-               else _engine.RoutingSession(d.engine, costs=_engine.MazeCosts(landing_penalty=penalty)))
-    region = session.open_region((0, 0, 4000, 4000))
+    costs = _engine.MazeCosts() if penalty is None else _engine.MazeCosts(landing_penalty=penalty)
+    region = _engine.RoutingSession(d.engine, costs=costs).open_region((0, 0, 4000, 4000))
     g = region.grid()
     xs, ys = list(g["xs"]), list(g["ys"])
     nx, ny = len(xs), len(ys)
@@ -555,7 +554,7 @@ def test_a_routed_pins_unused_via_landings_stop_costing_other_nets(tmp_path: Pat
     assert region.route_net(0) == {"net": 0, "routed": True, "wirelength_dbu": 2000, "vias": 0, "unreached": 0}
     assert [int(g["flags"][1, y, xs.index(500)]) for y in landings] == [41, 41, 41]  # + released
     after = [north_step_cost(y) for y in landings]
-    assert [b - a for a, b in zip(after, before)] == [penalty or 0] * 3
+    assert [b - a for a, b in zip(after, before)] == [costs.landing_penalty] * 3
     region.route_net(1)
     assert region.metrics()["violations"] == 0
     region.commit()

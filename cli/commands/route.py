@@ -188,7 +188,7 @@ def route(
                    f"({global_route_summary(design.global_route_stats)})")
     if mode == "lines":
         # The size a run resolves for 0 comes with each iteration's line: resolving it here would
-        # compute the design's pin access twice (2.5 s on ispd19_test3).
+        # compute the design's pin access twice (4.0 s on ispd19_test3, 2026-11-27).
         size = rs.region_size or "auto"
         typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {size}, "
                    f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
