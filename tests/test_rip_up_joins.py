@@ -16,16 +16,20 @@ from xroute import _engine
 CELL = macro("PIN1", 0.2, 0.2, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.13))]))
 
 
-def design(tmp_path: Path, routing: str):
-    """Net n1 joins the pins at (300, 300) and (1700, 300), routed as `routing` says."""
+def design(tmp_path: Path, routing: str, third: tuple[int, int] | None = None):
+    """Net n1 joins the pins at (300, 300) and (1700, 300), and a third cell's pin at `third` + (100,
+    100) if given, routed as `routing` says."""
+    cells = [(200, 200), (1600, 200)] + ([third] if third else [])
+    components = "".join(f"- u{k + 1} PIN1 + PLACED ( {x} {y} ) N ;\n" for k, (x, y) in enumerate(cells))
+    pins = " ".join(f"( u{k + 1} A )" for k in range(len(cells)))
     def_text = (
         'VERSION 5.8 ;\nDIVIDERCHAR "/" ;\nBUSBITCHARS "[]" ;\nDESIGN joins ;\nUNITS DISTANCE MICRONS 1000 ;\n'
         "DIEAREA ( 0 0 ) ( 2000 2000 ) ;\n"
         "TRACKS Y 100 DO 10 STEP 200 LAYER M1 M2 M3 ;\n"
         "TRACKS X 100 DO 10 STEP 200 LAYER M1 M2 M3 ;\n"
         "GCELLGRID X 0 DO 3 STEP 1000 ;\nGCELLGRID Y 0 DO 3 STEP 1000 ;\n"
-        "COMPONENTS 2 ;\n- u1 PIN1 + PLACED ( 200 200 ) N ;\n- u2 PIN1 + PLACED ( 1600 200 ) N ;\n"
-        "END COMPONENTS\nNETS 1 ;\n- n1 ( u1 A ) ( u2 A )\n" + routing + " ;\nEND NETS\nEND DESIGN\n")
+        f"COMPONENTS {len(cells)} ;\n{components}"
+        f"END COMPONENTS\nNETS 1 ;\n- n1 {pins}\n" + routing + " ;\nEND NETS\nEND DESIGN\n")
     return load_drawn(tmp_path, library(stack(layers=3), CELL), def_text, stem="joins")
 
 
@@ -53,6 +57,25 @@ def test_a_net_passing_a_region_twice_is_not_joined_again_inside_it(tmp_path: Pa
     assert (300, 500, 300, 900) in wires or (300, 900, 300, 500) in wires
     assert (1700, 500, 1700, 900) in wires or (1700, 900, 1700, 500) in wires
     assert db.metrics()["wirelength_dbu"] == 1200 * 2 + 1400
+
+
+def test_reaching_one_end_of_a_kept_conductor_reaches_the_other(tmp_path: Path) -> None:
+    # The U of the test above with a third pin at (1500, 700) inside the band, joined to the right leg
+    # by an M1 stub. The band's route starts at that pin and reaches the top's conductor first at its
+    # right end, (1700, 900). Its left end, (300, 900), is then part of the tree as well: the left leg
+    # joins from there (400 of M2). When the maze marked only the terminal it hit, it joined the
+    # left leg by an M1 bridge from the pin (1,200) and a via: 2,000 and 2 vias in all.
+    db = design(tmp_path, U_ROUTE + "\n  NEW M1 ( 1500 700 ) ( 1700 700 ) V12", third=(1400, 600))
+    assert db.check_connectivity()["open_nets"] == 0
+    region = _engine.RoutingSession(db).open_region((0, 500, 2000, 900))
+    region.route_rest("heuristic")
+    m = region.metrics()
+    assert (m["wirelength_dbu"], m["vias"], m["unreached"]) == (200 + 400 + 400, 1, 0)
+    region.commit()
+    assert db.check_connectivity()["open_nets"] == 0
+    wires = {tuple(sorted([tuple(w[1:3]), tuple(w[3:5])])) for w in db.net_routing(0)["wires"]}
+    assert ((300, 500), (300, 900)) in wires and ((1500, 700), (1700, 700)) in wires
+    assert not any(a[1] == b[1] == 700 and a[0] <= 300 for a, b in wires)  # no bridge to the left leg
 
 
 def test_terminals_joined_only_through_the_box_are_joined_again(tmp_path: Path) -> None:

@@ -273,11 +273,11 @@ void Search::reachShared(std::vector<int32_t>& tree) {
       for (int32_t v : term.nodes) touches = touches || ws_.inTree[v] == ws_.treeStamp;
       if (!touches) continue;
       reached_[t] = 1;
+      grew = true;  // a terminal of its group before it in the list is reached now too
       for (int32_t w : term.nodes) {
         if (ws_.inTree[w] == ws_.treeStamp) continue;
         ws_.inTree[w] = ws_.treeStamp;
         tree.push_back(w);
-        grew = true;
       }
     }
   }
