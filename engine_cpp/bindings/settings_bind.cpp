@@ -15,15 +15,18 @@ void bindMazeCosts(nb::module_& m) {
   const MazeCosts d;
   nb::class_<MazeCosts>(m, "MazeCosts", "The maze's costs (cost units: DBU of wire), as in route/maze.hpp.")
       .def(nb::init<int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t, int64_t,
-                    int64_t>(),
-           "via_cost"_a = d.viaCost, "wrong_way_factor"_a = d.wrongWayFactor,
+                    int64_t, int64_t>(),
+           "via_cost"_a = d.viaCost, "via_pitches"_a = d.viaPitches, "wrong_way_factor"_a = d.wrongWayFactor,
            "out_of_guide_factor"_a = d.outOfGuideFactor, "built_in_guide_factor"_a = d.builtInGuideFactor,
            "fixed_penalty"_a = d.fixedPenalty,
            "use_penalty"_a = d.usePenalty, "marker_unit"_a = d.markerUnit,
            "bottom_layer_factor"_a = d.bottomLayerFactor, "reserve_penalty"_a = d.reservePenalty,
            "landing_penalty"_a = d.landingPenalty, "crossing_pull"_a = d.crossingPull,
            "The costs; each defaults to the engine's.")
-      .def_rw("via_cost", &MazeCosts::viaCost, "Cost units per via.")
+      .def_rw("via_cost", &MazeCosts::viaCost, "Cost units per via (at least via_pitches pitches).")
+      .def_rw("via_pitches", &MazeCosts::viaPitches,
+              "A via costs at least this many pitches of the second routing layer (the contest scorer's via "
+              "weight); 0: via_cost alone.")
       .def_rw("wrong_way_factor", &MazeCosts::wrongWayFactor, "Wrong-way wire length multiplier.")
       .def_rw("out_of_guide_factor", &MazeCosts::outOfGuideFactor,
               "Wire length / via multiplier outside the net's guides.")

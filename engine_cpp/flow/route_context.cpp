@@ -15,6 +15,16 @@ void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& 
   for (const RoutePatch& p : routing.patches) out.push_back({p.layer, p.rect});
 }
 
+Dbu scorerPitch(const Tech& tech) {
+  if (tech.routingLayers.empty()) return 0;
+  const Layer& l = tech.layer(tech.routingLayers[std::min<size_t>(1, tech.routingLayers.size() - 1)]);
+  return l.pitchX > 0 ? l.pitchX : l.pitchY;
+}
+
+MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design) {
+  return pitchCosts(guideCosts(costs, design.guidesBuiltIn), scorerPitch(tech));
+}
+
 RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPointsPerPin) : tech(t), design(d) {
   tracks = buildTracks(tech, design);
   vias = chooseVias(tech, tracks);

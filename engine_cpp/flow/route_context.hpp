@@ -17,6 +17,7 @@
 #include "grid/tracks.hpp"
 #include "pa/pin_access.hpp"
 #include "grid/via_set.hpp"
+#include "route/maze.hpp"
 
 namespace xroute {
 
@@ -29,6 +30,13 @@ struct NetShape {
 // The shapes of a net's routing: wires (extended by half width unless an
 // extension is given), via shapes at their positions, patches.
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out);
+
+// The pitch (LEF PITCH, DBU) of the second routing layer, the first's with one: the contest scorer's
+// unit of wire. 0 with no routing layer.
+Dbu scorerPitch(const Tech& tech);
+
+// The maze's costs for a run on this design: guideCosts, then pitchCosts at scorerPitch.
+MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design);
 
 struct RouteContext {
   RouteContext(const Tech& tech, Design& design, int threads, int accessPointsPerPin = kAccessPointsPerPin);

@@ -71,7 +71,7 @@ class Flow {
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
     if (s_.regionSize <= 0)
       s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.points, kMaxRegionSize);
-    s_.costs = guideCosts(s_.costs, design.guidesBuiltIn);
+    s_.costs = designCosts(s_.costs, tech, design);
   }
 
   // The design's routing is empty (routeDesign cleared it before the context was made).
