@@ -15,7 +15,10 @@ from conftest import load_file, require_testcase  # noqa: E402
 pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
 
 DESIGN = "standin_marked"  # generated (conftest)
-LOCATION = (6, 11)  # a 1x1 region of 7 nets: 20 random orders cost 5,589.6 to 6,097.3, 5,868.9 on average
+# A 1x1 region of 7 nets. Measured 2026-11-27: 20 random orders cost 8,090.1 to 9,089.6, 8,416.2 on
+# average (three costs; 12 of the 20 at the lowest). Of the 12 1x1 regions around it only one other
+# had two costs at all (5,11: 2,584.3 to 2,588.5).
+LOCATION = (6, 11)
 M = 8
 
 
@@ -96,10 +99,15 @@ def test_set_extractor_scores_each_row_and_pools_the_legal_ones(region_dir: str)
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("observation", ["grid", "compact"])
-def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> None:
-    """384 steps (about 55 episodes) of MaskablePPO with fixed seeds take the greedy order from the
-    untrained model's cost to one no higher than the best of 20 random orders."""
+@pytest.mark.parametrize(("observation", "steps"), [("grid", 384), ("compact", 768)])
+def test_maskable_ppo_learns_the_region(region_dir: str, observation: str, steps: int) -> None:
+    """MaskablePPO with fixed seeds (384 steps are about 55 episodes) ends with a greedy order no
+    costlier than the best of 20 random orders, and no costlier than the untrained model's.
+
+    Measured 2026-11-27, greedy cost after 0 / 384 / 768 / 1,152 steps (successive calls of 384),
+    seeds 1, 2, 3: grid 8,598 / 8,090 / 8,090 / 8,090 for seeds 1 and 2 (seed 3: 9,090 until 1,152
+    steps, then 8,090); compact 8,090 throughout but seed 2's 8,598 after 384 steps. The untrained
+    compact model already picks a best order here, so only the grid model has a drop to show."""
     from xroute.envs import static_region_env
     from xroute.policies.rl.sb3 import PerViolation, greedy_cost, make_maskable_ppo, random_costs
 
@@ -108,11 +116,13 @@ def test_maskable_ppo_learns_the_region(region_dir: str, observation: str) -> No
     judge = static_region_env(region_dir, max_candidates=M, observation=observation)
     model = make_maskable_ppo(env, seed=2)
     before = greedy_cost(model, judge)
-    model.learn(total_timesteps=384)
+    model.learn(total_timesteps=steps)
     after = greedy_cost(model, judge)
     random = random_costs(judge, 20, seed=1)
-    assert after < before
     assert after <= min(random) < np.mean(random)
+    assert after <= before
+    if observation == "grid":
+        assert after < before
 
 
 def test_the_example_script_trains_and_reports(region_dir: str, capsys: pytest.CaptureFixture[str]) -> None:
