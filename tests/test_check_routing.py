@@ -74,6 +74,7 @@ def test_check_routing_figures_of_a_drawn_design(tmp_path):
     assert (r["wrong_way_wirelength_dbu"], r["wrong_way_wirelength_um"]) == (200, pytest.approx(0.2))
     assert (r["off_track_wirelength_dbu"], r["off_track_vias"]) == (1000, 1)
     assert r["has_guides"] is True
+    assert r["scorer_pitch_dbu"] == 200  # M2's PITCH 0.2 um: the contest score's unit
     assert (r["out_of_guide_wirelength_dbu"], r["out_of_guide_vias"]) == (1100, 1)
     assert r["out_of_guide_wirelength_um"] == pytest.approx(1.1)
 

@@ -151,6 +151,7 @@ void bindCheckRouting(DatabaseClass& cls) {
         d["off_track_wirelength_um"] = um(figures.offTrackWirelength);
         d["off_track_vias"] = figures.offTrackVias;
         d["has_guides"] = figures.hasGuides;
+        d["scorer_pitch_dbu"] = scorerPitch(db.tech);
         if (figures.hasGuides) {
           d["out_of_guide_wirelength_dbu"] = figures.outOfGuideWirelength;
           d["out_of_guide_wirelength_um"] = um(figures.outOfGuideWirelength);
@@ -168,7 +169,8 @@ void bindCheckRouting(DatabaseClass& cls) {
       "Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens\n"
       "(open nets), connectivity (check_connectivity's dict), markers (check_drc's list),\n"
       "wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/\n"
-      "_um, off_track_vias, has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None\n"
+      "_um, off_track_vias, scorer_pitch_dbu (the contest score's unit of length: the LEF PITCH of the\n"
+      "second routing layer), has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None\n"
       "without a guide file)}. A wire piece (from != to; length |to - from|, extensions not counted) is\n"
       "wrong-way when it runs across its layer's DIRECTION; off-track when its centre line lies on no\n"
       "track line of its layer parallel to it (TRACKS Y lines for a horizontal piece, TRACKS X for a\n"

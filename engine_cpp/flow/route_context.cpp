@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "verify/scoring.hpp"
+
 namespace xroute {
 
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out) {
@@ -13,12 +15,6 @@ void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& 
     for (const ViaShape& s : design.via(tech, v.via).shapes) out.push_back({s.layer, s.rect.translated(v.at)});
   }
   for (const RoutePatch& p : routing.patches) out.push_back({p.layer, p.rect});
-}
-
-Dbu scorerPitch(const Tech& tech) {
-  if (tech.routingLayers.empty()) return 0;
-  const Layer& l = tech.layer(tech.routingLayers[std::min<size_t>(1, tech.routingLayers.size() - 1)]);
-  return l.pitchX > 0 ? l.pitchX : l.pitchY;
 }
 
 MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design) {

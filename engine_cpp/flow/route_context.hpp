@@ -31,11 +31,8 @@ struct NetShape {
 // extension is given), via shapes at their positions, patches.
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out);
 
-// The pitch (LEF PITCH, DBU) of the second routing layer, the first's with one: the contest scorer's
-// unit of wire. 0 with no routing layer.
-Dbu scorerPitch(const Tech& tech);
-
-// The maze's costs for a run on this design: guideCosts, then pitchCosts at scorerPitch.
+// The maze's costs for a run on this design: guideCosts, then pitchCosts at the scorer's pitch
+// (verify/scoring.hpp scorerPitch).
 MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design);
 
 struct RouteContext {

@@ -106,4 +106,10 @@ GuideTrackFigures computeGuideTrackFigures(const Tech& tech, const Design& desig
   return f;
 }
 
+Dbu scorerPitch(const Tech& tech) {
+  if (tech.routingLayers.empty()) return 0;
+  // Loaded technologies have a positive PITCH on every routing layer (io/validate.cpp).
+  return tech.layer(tech.routingLayers[std::min<size_t>(1, tech.routingLayers.size() - 1)]).pitchX;
+}
+
 }  // namespace xroute

@@ -44,4 +44,8 @@ struct GuideTrackFigures {
 
 GuideTrackFigures computeGuideTrackFigures(const Tech& tech, const Design& design);
 
+// The contest score's unit of length, DBU: the LEF PITCH of the second routing layer (the first's
+// with one; 0 with none). The maze's via cost (route/maze.hpp pitchCosts) counts in it too.
+Dbu scorerPitch(const Tech& tech);
+
 }  // namespace xroute

@@ -209,7 +209,8 @@ class Database:
         Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens
         (open nets), connectivity (check_connectivity's dict), markers (check_drc's list),
         wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/
-        _um, off_track_vias, has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None
+        _um, off_track_vias, scorer_pitch_dbu (the contest score's unit of length: the LEF PITCH of the
+        second routing layer), has_guides, out_of_guide_wirelength_dbu/_um and out_of_guide_vias (None
         without a guide file)}. A wire piece (from != to; length |to - from|, extensions not counted) is
         wrong-way when it runs across its layer's DIRECTION; off-track when its centre line lies on no
         track line of its layer parallel to it (TRACKS Y lines for a horizontal piece, TRACKS X for a

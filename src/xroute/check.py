@@ -67,13 +67,6 @@ class CheckResult:
         return d
 
 
-def _m2_pitch(design: Design) -> int:
-    routing = design.routing_layers
-    if len(routing) < 2:
-        return routing[0].pitch[0] if routing else 0
-    return int(routing[1].pitch[0] or routing[1].pitch[1])
-
-
 def contest_terms(raw: dict[str, Any], pitch_dbu: int) -> dict[str, float]:
     """The contest score's weighted terms from ``check_routing``'s figures (DBU lengths)."""
     if pitch_dbu <= 0:
@@ -104,7 +97,7 @@ def check_design(design: Design, report_path: str | os.PathLike[str] | None = No
         by_type[m["type"]] = by_type.get(m["type"], 0) + 1
     conn = raw["connectivity"]
     opens = conn["opens"]
-    pitch = _m2_pitch(design)
+    pitch = int(raw["scorer_pitch_dbu"])
     terms = contest_terms(raw, pitch) if raw["has_guides"] else {}
     return CheckResult(
         design=design.name,
