@@ -28,6 +28,7 @@ def marked(runner: CliRunner, testcase, tmp_path: Path) -> Path:
     return out
 
 
+@pytest.mark.slow
 def test_plot_shows_the_violations_by_type(runner: CliRunner, marked: Path, tmp_path: Path) -> None:
     need_matplotlib()
     counts = Counter(m.kind for m in read_drc_report(marked / f"{MARKED}.drc.rpt"))

@@ -323,6 +323,7 @@ def test_hostile_batch_yaml_is_one_error_line(runner: CliRunner, tmp_path: Path)
     assert_one_error(result, f"{cfg}:3: ", "is not allowed")
 
 
+@pytest.mark.slow
 def test_batch_matrix_300_by_300_is_checked_in_linear_time(runner: CliRunner, tmp_path: Path) -> None:
     # 300 testcases x 300 policies = 90,000 jobs whose ids repeat: the old duplicate check
     # (list.count in a loop) took minutes; now the repeat is reported at once.
@@ -342,6 +343,7 @@ def test_batch_matrix_300_by_300_is_checked_in_linear_time(runner: CliRunner, tm
     assert took < 30, took
 
 
+@pytest.mark.slow
 def test_batch_config_settings_names_checked_in_linear_time(tmp_path: Path) -> None:
     from xroute.cli.batch_config import load_batch_config
     from xroute.config_schema import ConfigError
@@ -404,6 +406,7 @@ def test_policy_that_hangs_in_python_ends_with_a_clear_error(runner: CliRunner, 
     assert_one_error(result, "", "an order() call ran longer than 0.5 s (policy.call_timeout)")
 
 
+@pytest.mark.slow
 def test_policy_blocked_outside_python_ends_the_process(tmp_path: Path) -> None:
     pol = write_policy(tmp_path, "sleeps.py", "import time\ndef order(region, features):\n    time.sleep(3600)\n")
     cfg = tmp_path / "c.yaml"

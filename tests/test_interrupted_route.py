@@ -16,6 +16,9 @@ import pytest
 
 from conftest import pick
 
+# Slow set: kills and reruns routes in child processes.
+pytestmark = pytest.mark.slow
+
 REPO = Path(__file__).resolve().parent.parent
 DESIGN = pick("ispd19_sample4")  # or its generated stand-in without the contest data
 

@@ -24,6 +24,9 @@ from xroute.cli.app import app
 from xroute.output_set import NOTE, STAGE_PREFIX, file_sha256
 from xroute.outputs import clean_stale_temporaries
 
+# Slow set: kills routes and batches at each rename (many child processes).
+pytestmark = pytest.mark.slow
+
 ROUTE_RENAMES = 5  # staged metrics JSON, the publishing note, then DEF, DRC report, metrics JSON into place
 CHECK_RENAMES = 6  # staged marker database and check JSON, the note, then DRC report, lyrdb, check JSON
 BATCH_RENAMES = 8  # in the worker: the route's 5, the job's metrics JSON and job.json, the job folder

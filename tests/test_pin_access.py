@@ -493,7 +493,7 @@ def stub_length(db: Any, info: dict[str, Any]) -> int:
     return min(steps) if steps else max(info["pitch"])
 
 
-@pytest.mark.parametrize(("name", "io_pins"), [("ispd18_sample3", 5), ("ispd19_test3", 57), ("standin_noguide", None)])
+@pytest.mark.parametrize(("name", "io_pins"), [("ispd18_sample3", 5), pytest.param("ispd19_test3", 57, marks=pytest.mark.slow), ("standin_noguide", None)])
 def test_io_pin_exits_add_no_marker(loaded_design: Any, name: str, io_pins: int) -> None:
     # IO pins are checked against the design around them (pad cells, rings):
     # every exit of every point, vias and planar stubs, adds no marker.

@@ -75,7 +75,7 @@ def test_a_negative_region_size_is_refused(tmp_path: Path) -> None:
         load_config(config)
 
 
-@pytest.mark.parametrize(("name", "size"), [("ispd18_test1", 15), ("ispd19_test1", 16), ("ispd19_test3", 10)])
+@pytest.mark.parametrize(("name", "size"), [("ispd18_test1", 15), ("ispd19_test1", 16), pytest.param("ispd19_test3", 10, marks=pytest.mark.slow)])
 def test_contest_designs_default_region_sizes(name: str, size: int) -> None:
     if not contest_found(name):
         pytest.skip(f"{name} is not on the search path (../shared/testcases)")

@@ -5,6 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+# Slow set: trains the set scorer (imitation, PPO fine-tuning), Ray workers.
+pytestmark = pytest.mark.slow
+
 torch = pytest.importorskip("torch")
 
 SIZE = 2  # regions of the imitation_sample fixture (conftest): 64 of 2x2 GCells

@@ -43,6 +43,7 @@ def test_plackett_luce_prefers_the_teacher_order() -> None:
     assert torch.isclose(good, padded)
 
 
+@pytest.mark.slow
 def test_imitation_beats_a_random_order_on_held_out_regions(imitation_sample: str, tmp_path) -> None:
     """Teacher orders on the training regions, a few hundred steps of imitation (no heuristic prior, fixed
     seeds), then the held-out regions routed in the scorer's order (ties by row, not by the heuristic)
@@ -124,6 +125,7 @@ def test_an_untrained_set_scorer_routes_like_the_heuristic_through_the_router(im
         OnnxPolicy(tmp_path / "bad.onnx")
 
 
+@pytest.mark.slow
 def test_xroute_train_imitate_writes_a_model_the_router_takes(imitation_sample: str, tmp_path) -> None:
     import json
 

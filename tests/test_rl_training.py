@@ -25,6 +25,9 @@ from xroute.policies.rl.train import train  # noqa: E402
 from xroute.policies.rl.train_config import config_from_dict  # noqa: E402
 from xroute.cli.app import app  # noqa: E402
 
+# Slow set: trains PPO and DQN.
+pytestmark = pytest.mark.slow
+
 SMALL = {"ppo": {"update_every": 12, "epochs": 2, "checkpoint_every": 2},
          "dqn": {"learning_starts": 8, "target_update": 5, "checkpoint_every": 2}}
 

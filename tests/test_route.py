@@ -159,6 +159,7 @@ def test_schedule_sets_each_iterations_partition() -> None:
         : len(default.iterations)]
 
 
+@pytest.mark.slow
 def test_schedule_changes_the_routing_and_is_deterministic() -> None:
     a = route_def(SAMPLE4, schedule=[(1, 0)])
     assert a == route_def(SAMPLE4, schedule=[(1, 0)])

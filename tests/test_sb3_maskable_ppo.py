@@ -12,7 +12,8 @@ pytest.importorskip("sb3_contrib", reason="the sb3 extra (sb3-contrib) is not in
 
 from conftest import load_file, require_testcase  # noqa: E402
 
-pytestmark = pytest.mark.filterwarnings("ignore:.*infinity")
+# Slow set: trains MaskablePPO.
+pytestmark = [pytest.mark.slow, pytest.mark.filterwarnings("ignore:.*infinity")]
 
 DESIGN = "standin_marked"  # generated (conftest)
 # A 1x1 region of 7 nets. Measured 2026-11-27: 20 random orders cost 8,090.1 to 9,089.6, 8,416.2 on

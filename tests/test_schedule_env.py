@@ -47,6 +47,7 @@ def test_check_env_passes(env: Any) -> None:
     check_env(env)
 
 
+@pytest.mark.slow
 def test_the_rule_every_iteration_routes_as_the_router_and_the_return_is_the_final_cost(env: Any) -> None:
     """Choosing 'rule' throughout routes the design exactly as route_design does; the rewards add
     up to minus the final cost / 1000 minus the work (net routes per net, times 1 + the search budget)."""

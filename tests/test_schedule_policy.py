@@ -48,6 +48,7 @@ def default() -> tuple[str, Any]:
     return text, result
 
 
+@pytest.mark.slow
 def test_the_rule_and_a_policy_that_keeps_it_route_as_without_one(default: tuple[str, Any]) -> None:
     """RuleSchedule is not even called (the engine runs its rule); a Python policy returning the rule,
     or None, is called before every iteration and routes the same DEF byte for byte."""
@@ -103,6 +104,7 @@ def test_weights_and_repair_rounds_reach_the_engine() -> None:
     assert routed(size=2, schedule_policy=repair)[0] != at_two
 
 
+@pytest.mark.slow
 def test_a_search_budget_in_every_plan_routes_as_the_victims_policy() -> None:
     """search_budget B in every iteration's plan orders each region's nets by the victims search with
     budget B: the same DEF byte for byte as --policy victims --search-budget B (on SEARCHED at region
@@ -159,6 +161,7 @@ def test_get_schedule_policy_loads_a_file_and_refuses_others(tmp_path: Path) -> 
         get_schedule_policy(str(empty))
 
 
+@pytest.mark.slow
 def test_cli_routes_with_a_policy_file_and_records_it(runner, tmp_path: Path) -> None:
     """`xroute route --schedule-policy FILE` (and the config's router.schedule_policy, relative to the
     config file): the metrics name the policy and its plans; a policy that raises is one error line
@@ -228,6 +231,7 @@ def test_the_metrics_log_every_iterations_plan_as_transitions(tmp_path: Path) ->
         logged_transitions(old)
 
 
+@pytest.mark.slow
 def test_a_policy_file_may_decide_the_search_region_by_region(tmp_path: Path) -> None:
     """NEEDS_REGION = True lends each region to a policy file's order(): one that runs the victims
     search in every region routes as --policy victims (on SEARCHED at region size 2, where that

@@ -20,6 +20,9 @@ from xroute.errors import XrouteError
 from xroute.schedule_model import SwitchSchedule, load_schedule_model
 from xroute.policies.schedule_train import RunFigures, TrainCase, default_grid, feasible, score, train
 
+# Slow set: trains schedule models (many routes per test).
+pytestmark = pytest.mark.slow
+
 ITERATIONS = 3
 REGION_SIZE = 1  # GCells: the base every run shares (the rule's flow, and the models until they switch)
 CELLS = 800

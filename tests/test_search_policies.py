@@ -70,6 +70,7 @@ def boxes(session: Any, size: int = 3) -> list[tuple[int, int, int, int]]:
     return out
 
 
+@pytest.mark.slow
 def test_search_is_never_costlier_than_the_heuristic_and_better_somewhere(generated: Path) -> None:
     from xroute.session import open_session
 
@@ -111,6 +112,7 @@ def victims_of(region: Any) -> set[int]:
     return out
 
 
+@pytest.mark.slow
 def test_victims_routes_the_heuristic_routings_victims_first(generated: Path) -> None:
     """With a budget of 2 the victims search tries two orders: the heuristic's, then the nets its
     markers leave in violation first (both parts in heuristic order), and keeps the cheaper."""
@@ -146,6 +148,7 @@ def test_victims_routes_the_heuristic_routings_victims_first(generated: Path) ->
     assert moved > 0  # some region is cheaper with its victims first
 
 
+@pytest.mark.slow
 def test_a_larger_victims_budget_adds_shuffled_trials_and_is_never_costlier() -> None:
     """The victims search's trials for a budget are the first trials for any larger budget (the
     shuffles are seeded by the trial, not the budget), so a larger budget never ends costlier; once
@@ -201,6 +204,7 @@ def test_a_search_routes_the_order_it_returns(generated: Path) -> None:
 
 @pytest.mark.parametrize("policy", [RolloutPolicy(4), VictimsPolicy(4), BestOfPolicy(3, seed=2)],
                          ids=["rollout", "victims", "best-of-3"])
+@pytest.mark.slow
 def test_search_policies_route_the_same_def_for_any_thread_count(generated: Path, policy: Any) -> None:
     defs = []
     for threads in (1, 2):
@@ -214,6 +218,7 @@ def test_search_policies_route_the_same_def_for_any_thread_count(generated: Path
     assert heuristic.def_text() != defs[0]  # the search changed some region's routing
 
 
+@pytest.mark.slow
 def test_the_victims_search_shuffles_from_its_seed() -> None:
     """The seed reaches the victims search's shuffled trials: with a budget large enough to shuffle,
     two seeds adopt different orders in some region, and one seed the same orders twice (the route's
