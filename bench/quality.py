@@ -13,7 +13,7 @@ temporary file and checked the same way (their wall time and memory are not ours
 the reference folder's README has the figures its router reported).
 
 Prints a table (markdown with --markdown); the README's status table comes from it. Then one line
-per xroute row on issue 29's quality floors (0 violations and 0 opens, peak RSS, and the wirelength,
+per xroute row on the quality floors (0 violations and 0 opens, peak RSS, and the wirelength,
 vias and score floors of ispd18_test1, ispd19_test1 and ispd19_test3): on standard output after the
 markdown table, on standard error with the JSON. Exit status 0 whether or not a floor holds.
 """
@@ -78,7 +78,7 @@ HEADER = ["testcase", "router", "WL µm", "vias", "violations", "opens", "off-tr
           "score", "wall", "peak RSS"]
 
 
-# Issue 29's floors: testcase -> (row field, largest value allowed). Every xroute row also needs 0
+# The quality floors: testcase -> (row field, largest value allowed). Every xroute row also needs 0
 # violations, 0 opens and a peak RSS of MAX_RSS_MB at most.
 FLOORS: dict[str, list[tuple[str, float]]] = {
     "ispd18_test1": [("score", 290_260), ("vias", 34_000)],
