@@ -1,4 +1,4 @@
-"""``xroute check`` on a routed DEF holding copies of one wire, each shifted by 1 DBU (issue 32).
+"""``xroute check`` on a routed DEF holding copies of one wire, each shifted by 1 DBU (a hostile-input case).
 
     python bench/check_copies_bench.py [--copies 50000] [--repeat 1]
 

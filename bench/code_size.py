@@ -1,4 +1,4 @@
-"""The largest files and functions of the product, against the house limits (STYLE.md).
+"""The largest files and functions of the product, against the house limits (CONTRIBUTING.md).
 
     python bench/code_size.py [--top N] [--check]
 
@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 CPP_DIRS = ("engine_cpp",)
 PY_DIRS = ("src/xroute", "cli", "policies", "envs", "testcases")
 CPP_FILE_LIMIT = 600
-PY_FILE_LIMIT = 400  # a habit (STYLE.md), reported, not enforced
+PY_FILE_LIMIT = 400  # a habit (CONTRIBUTING.md), reported, not enforced
 FUNCTION_SOFT_LIMIT = 60
 FUNCTION_LIMIT = 120
 

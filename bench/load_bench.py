@@ -7,7 +7,7 @@ is the load's own: the figure printed is the peak RSS of the process after the
 load minus its peak RSS after importing the engine (and the whole-process peak
 beside it). Times are wall clock of the load call alone. For comparison each
 child also times reading the same files raw from the page cache (best of 3)
-and the load again, warm, in stages (LEF alone, LEF + DEF, all; best of 3). Floors from issue 2
+and the load again, warm, in stages (LEF alone, LEF + DEF, all; best of 3). The floors set
 for ispd18_test1: under 1 s and 150 MB.
 """
 

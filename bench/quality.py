@@ -2,6 +2,8 @@
 the reference routes that are present (another router's routed DEFs, judged by the same check).
 
     python bench/quality.py [TESTCASE ...] [--threads 2] [--iterations N] [--policy P ...] [--markdown]
+                            [--json-out FILE] [--note TEXT] [--readme README.md]
+    python bench/quality.py --from-json FILE [--markdown] [--readme README.md]
 
 For each testcase found on the search path (default: the demo and the seven contest testcases),
 one fresh process per `--policy` (default: heuristic) runs `xroute route TESTCASE --threads T
@@ -12,10 +14,19 @@ out-of-guide wire and the contest score before violations. Reference routes: `..
 temporary file and checked the same way (their wall time and memory are not ours to measure;
 the reference folder's README has the figures its router reported).
 
-Prints a table (markdown with --markdown); the README's status table comes from it. Then one line
-per xroute row on issue 29's quality floors (0 violations and 0 opens, peak RSS, and the wirelength,
-vias and score floors of ispd18_test1, ispd19_test1 and ispd19_test3): on standard output after the
-markdown table, on standard error with the JSON. Exit status 0 whether or not a floor holds.
+Prints a table (markdown with --markdown) and one line per xroute row on the quality floors (0
+violations and 0 opens, peak RSS, and the wirelength, vias and score floors of ispd18_test1,
+ispd19_test1 and ispd19_test3): on standard output after the markdown table, on standard error
+with the JSON. Exit status 0 whether or not a floor holds.
+
+`--json-out FILE` also writes the results with how they were measured: the date, the machine
+(cores, CPU model and memory from /proc), the load average before and after, the commit, the
+settings and `--note` (say there whether other jobs were running). `--from-json FILE` reads such a
+file instead of routing, and `--markdown` renders it: a line saying when, where and how it was
+measured, the table and the floor lines. `--readme FILE` writes that rendering into FILE between
+its two status-table markers (README.md's status table is made this way, never by hand):
+
+    python bench/quality.py --threads 2 --json-out bench/results/quality.json --readme README.md
 """
 
 from __future__ import annotations
@@ -78,7 +89,7 @@ HEADER = ["testcase", "router", "WL µm", "vias", "violations", "opens", "off-tr
           "score", "wall", "peak RSS"]
 
 
-# Issue 29's floors: testcase -> (row field, largest value allowed). Every xroute row also needs 0
+# The quality floors: testcase -> (row field, largest value allowed). Every xroute row also needs 0
 # violations, 0 opens and a peak RSS of MAX_RSS_MB at most.
 FLOORS: dict[str, list[tuple[str, float]]] = {
     "ispd18_test1": [("score", 290_260), ("vias", 34_000)],
@@ -112,34 +123,26 @@ def floor_lines(rows: list[dict]) -> list[str]:
     return lines
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("testcases", nargs="*", default=DEFAULT)
-    ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--iterations", type=int, default=None)
-    ap.add_argument("--policy", action="append",
-                    help="net-order policy of a row (repeatable; default heuristic); rows other than the heuristic's "
-                         "are named 'xroute --policy P'")
-    ap.add_argument("--markdown", action="store_true")
-    args = ap.parse_args()
+def measure(names: list[str], policies: list[str], threads: int, iterations: int | None) -> list[dict]:
+    """Route and check every testcase present, then check its reference routes: the table's rows."""
     xroute = shutil.which("xroute") or sys.exit("xroute is not installed (pip install .)")
     from xroute.errors import TestcaseNotFound
     from xroute.testcases import find_testcase
 
     rows = []
     with tempfile.TemporaryDirectory(prefix="quality_") as tmp:
-        for name in args.testcases:
+        for name in names:
             try:
                 find_testcase(name)
             except TestcaseNotFound:
                 print(f"# {name}: not on the search path, skipped", file=sys.stderr)
                 continue
-            for k, policy in enumerate(args.policy or ["heuristic"]):
+            for k, policy in enumerate(policies):
                 out = Path(tmp) / f"{name}-{k}"
-                cmd = [xroute, "route", name, "--threads", str(args.threads), "--policy", policy, "--out", str(out),
+                cmd = [xroute, "route", name, "--threads", str(threads), "--policy", policy, "--out", str(out),
                        "--json"]
-                if args.iterations:
-                    cmd += ["--iterations", str(args.iterations)]
+                if iterations:
+                    cmd += ["--iterations", str(iterations)]
                 proc, wall, rss = run_with_rss(cmd)
                 if proc.returncode not in (0, 1):
                     raise SystemExit(f"xroute route {name} --policy {policy} failed: {proc.stderr.strip()}")
@@ -154,17 +157,118 @@ def main() -> None:
                 plain.write_bytes(gzip.decompress(ref.read_bytes()))
                 rows.append(row(name, router, check(xroute, name, plain, Path(tmp) / f"{router}-check"), None, None))
                 print(" | ".join(fmt(rows[-1])), file=sys.stderr)
-    if args.markdown:
-        print("| " + " | ".join(HEADER) + " |")
-        print("|" + "---|" * len(HEADER))
-        for r in rows:
-            print("| " + " | ".join(fmt(r)) + " |")
-        print()
-        for line in floor_lines(rows):
-            print(f"- {line}")
+    return rows
+
+
+def _proc_field(path: str, key: str) -> str | None:
+    """The value of the first ``key: value`` line of a /proc file, or None."""
+    try:
+        for line in Path(path).read_text().splitlines():
+            name, _, value = line.partition(":")
+            if name.strip() == key:
+                return value.strip()
+    except OSError:
+        pass
+    return None
+
+
+def machine() -> dict:
+    """The machine the figures were measured on: cores, CPU model, memory."""
+    mem_kb = _proc_field("/proc/meminfo", "MemTotal")
+    return {"cores": os.cpu_count(), "cpu": _proc_field("/proc/cpuinfo", "model name") or "unknown",
+            "memory_gb": round(int(mem_kb.split()[0]) / 2**20) if mem_kb else None}
+
+
+def commit() -> str:
+    """The checkout's commit (short hash), with ``-dirty`` when tracked files differ from it."""
+    def git(*a: str) -> subprocess.CompletedProcess:
+        return subprocess.run(["git", "-C", str(REPO_ROOT), *a], capture_output=True, text=True)
+    head = git("rev-parse", "--short=10", "HEAD")
+    if head.returncode != 0:
+        return "unknown"
+    dirty = git("diff", "--quiet", "HEAD", "--").returncode != 0
+    return head.stdout.strip() + ("-dirty" if dirty else "")
+
+
+def caption(results: dict) -> str:
+    """The line above the table: when, where and how it was measured."""
+    m, s = results["machine"], results["settings"]
+    loads = results["load_average"]
+    memory = f", {m['memory_gb']} GB" if m.get("memory_gb") else ""
+    iterations = f"up to {s['iterations']} iterations" if s["iterations"] else "the default iterations"
+    note = f" {results['note']}" if results.get("note") else ""
+    return (f"Measured {results['date']} at commit `{results['commit']}` on a machine of {m['cores']} cores "
+            f"({m['cpu']}{memory}; load average {loads[0]:.2f} before, {loads[1]:.2f} after): "
+            f"{s['threads']} threads, {iterations}, the defaults otherwise.{note}")
+
+
+def render_markdown(results: dict) -> str:
+    """The caption, the table and the floor lines of a results document, as Markdown."""
+    lines = [caption(results), "", "| " + " | ".join(HEADER) + " |", "|" + "---|" * len(HEADER)]
+    lines += ["| " + " | ".join(fmt(r)) + " |" for r in results["rows"]]
+    lines += [""] + [f"- {line}" for line in floor_lines(results["rows"])]
+    return "\n".join(lines) + "\n"
+
+
+MARK_BEGIN = ("<!-- status table: generated by `python bench/quality.py --from-json bench/results/quality.json "
+              "--markdown`; do not edit by hand -->")
+MARK_END = "<!-- end of the generated status table -->"
+
+
+def generated_block(text: str) -> str | None:
+    """What lies between the two markers of a document (None without both)."""
+    begin, end = text.find(MARK_BEGIN), text.find(MARK_END)
+    if begin < 0 or end < begin:
+        return None
+    return text[begin + len(MARK_BEGIN) + 1:end]
+
+
+def write_readme(path: Path, results: dict) -> None:
+    """Replace the text between the markers of ``path`` with the rendering of ``results``."""
+    text = path.read_text()
+    old = generated_block(text)
+    if old is None:
+        raise SystemExit(f"{path}: no status-table markers ({MARK_BEGIN} ... {MARK_END})")
+    begin = text.index(MARK_BEGIN) + len(MARK_BEGIN) + 1
+    path.write_text(text[:begin] + render_markdown(results) + text[begin + len(old):])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("testcases", nargs="*", default=DEFAULT)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--iterations", type=int, default=None)
+    ap.add_argument("--policy", action="append",
+                    help="net-order policy of a row (repeatable; default heuristic); rows other than the heuristic's "
+                         "are named 'xroute --policy P'")
+    ap.add_argument("--markdown", action="store_true")
+    ap.add_argument("--json-out", type=Path, help="also write the results and how they were measured to this file")
+    ap.add_argument("--note", default="", help="a sentence on the conditions, kept in --json-out's file")
+    ap.add_argument("--from-json", type=Path, help="render this results file instead of routing")
+    ap.add_argument("--readme", type=Path, help="write the rendering between this file's status-table markers")
+    args = ap.parse_args()
+    if args.from_json:
+        results = json.loads(args.from_json.read_text())
     else:
-        print(json.dumps(rows, indent=2))
-        for line in floor_lines(rows):
+        policies = args.policy or ["heuristic"]
+        start_load = os.getloadavg()[0]
+        rows = measure(args.testcases, policies, args.threads, args.iterations)
+        results = {"date": time.strftime("%Y-%m-%d", time.gmtime()), "machine": machine(), "commit": commit(),
+                   "load_average": [round(start_load, 2), round(os.getloadavg()[0], 2)],
+                   "settings": {"threads": args.threads, "iterations": args.iterations, "policies": policies},
+                   "note": args.note, "rows": rows}
+        if args.json_out:
+            args.json_out.parent.mkdir(parents=True, exist_ok=True)
+            tmp = args.json_out.with_name(args.json_out.name + ".tmp")
+            tmp.write_text(json.dumps(results, indent=1, ensure_ascii=False) + "\n")
+            tmp.replace(args.json_out)
+    if args.readme:
+        write_readme(args.readme, results)
+    if args.markdown:
+        print(render_markdown(results), end="")
+    else:
+        print(json.dumps(results["rows"], indent=2))
+        for line in floor_lines(results["rows"]):
             print(line, file=sys.stderr)
 
 

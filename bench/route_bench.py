@@ -11,7 +11,7 @@ opens and violations found on the written DEF. Routing is deterministic, so the 
 figures are printed once; the times of every run are listed, then min and median.
 
 Default: ispd18_test1 with the router's region size (0: 10 GCells there), up to 10 iterations, 1 thread.
-Issue 3's reference on this machine: TritonRoute 25 s wall with 2 threads, 600 MB, 86,456 um,
+The reference route on the 2-core development machine: TritonRoute 25 s wall with 2 threads, 600 MB, 86,456 um,
 35,443 vias, 0 violations. `--policy examples/python_heuristic_policy.py` routes with the built-in
 heuristic written in Python (same order, one Python call per region): the cost of the seam.
 """

@@ -1,4 +1,4 @@
-"""The settings menu of issue 33 beside a learned schedule, one design at a time, in one run.
+"""The menu of hand-written settings beside a learned schedule, one design at a time, in one run.
 
     python bench/schedule_menu.py [DESIGN ...] [--learned MODEL.json ...] [--only NAME,...] [--skip NAME,...]
                                   [--threads 2] [--jsonl OUT] [--cutoff S] [--table-from JSONL]
@@ -14,7 +14,7 @@ default's run always happens first).
 Printed per design: each setting's final violations, wirelength and vias (and their change from the
 default's), wall and CPU seconds (and wall / default wall), peak RSS, whether it lies in the 1% band
 (wirelength and vias within 1% of the default's), the violations per iteration; then, for each learned
-setting, issue 33's verdict, by wall time and by CPU time: the in-band menu settings that dominate it
+setting, its verdict against the menu, by wall time and by CPU time: the in-band menu settings that dominate it
 (fewer-or-equal violations and less-or-equal time), and whether it reaches (a) 30% fewer violations
 than the default at <= 1.2x its time or (b) the default's violations or fewer at <= 0.75x. The machine's load average is
 printed before and after each run: on a shared machine wall times grow with it, CPU times less.
@@ -78,7 +78,7 @@ def in_band(row: dict, ref: dict) -> bool:
 
 
 def verdict(learned: dict, rows: list[dict], ref: dict) -> list[str]:
-    """Issue 33's floors for one learned setting against the menu's rows of the same design, by wall
+    """The floors of one learned setting against the menu's rows of the same design, by wall
     time and, since a shared machine's load moves wall times, by CPU time too."""
     menu = [r for r in rows if r["setting"] in dict(MENU) and "error" not in r and in_band(r, ref)]
     lines = [f"  {learned['setting']}: in the 1% band: {'yes' if in_band(learned, ref) else 'NO'}"]

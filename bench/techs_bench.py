@@ -1,4 +1,4 @@
-"""Generate and route one design per real technology: the floors of issue 31 on every LEF we have.
+"""Generate and route one design per real technology: the floors on every LEF we have.
 
     python bench/techs_bench.py [NAME ...] [--cells 5000] [--threads 2] [--seed 1] [--utilization U]
                                 [--techs DIR] [--testcases DIR] [--timeout S] [--keep DIR]
@@ -14,7 +14,7 @@ metrics JSON and DRC report (nets with violations: the distinct regular nets its
 
 Printed per technology: cells, nets, violations by type, violations, nets with violations, opens,
 wirelength (um), vias, the router's own route time, the child's wall and CPU time, peak RSS,
-generation time, and whether the issue's floors hold (0 opens, violations on at most 0.5 % of the
+generation time, and whether the floors hold (0 opens, violations on at most 0.5 % of the
 nets, route time under 120 s). The machine's load average is printed before and after: on a shared
 machine the wall times grow with it, the CPU times less so.
 """

@@ -14,11 +14,11 @@ The other routers run when they are installed:
   output and threads lines);
 - Dr. CU: `ispd19dr` or `ispd18dr` on PATH or $XROUTE_DRCU
   (`-lef L -def D -guide G -output O -threads T`).
-A router that is not installed gets a row of the figures recorded for it in issue 29 (measured
+A router that is not installed gets a row of the figures recorded for it (measured
 side by side on the same kind of 2-core machine, 2 threads, 2026-11; marked "recorded") instead,
 and the ratio is taken against those.
 
-Then the speed floors of issue 29, each on a route with 0 violations and 0 opens: xroute's wall on
+Then the speed floors, each on a route with 0 violations and 0 opens: xroute's wall on
 ispd19_test1 at most 0.5x TritonRoute's, and on ispd18_test1 at most Dr. CU's. Prints a table
 (markdown with --markdown) and one line per floor; exit status 0 whether or not a floor holds.
 """
@@ -37,7 +37,7 @@ from quality import HEADER, check, fmt, row, run_with_rss
 
 DEFAULT = ["ispd18_test1", "ispd19_test1"]
 
-# Issue 29's side-by-side table (2 threads on the 2-core machine, each routed DEF judged by
+# The recorded side-by-side table (2 threads on the 2-core machine, each routed DEF judged by
 # `xroute check`): wall s, peak RSS MB, WL um, vias, violations, contest score.
 RECORDED = {
     ("ispd18_test1", "TritonRoute"): (52.5, 599, 86_456, 35_455, 0, 304_962),
@@ -152,7 +152,7 @@ def main() -> None:
         cells = shown(r)
         print(("| " + " | ".join(cells) + " |") if args.markdown else "  ".join(cells))
     if any(r["router"].endswith("(recorded)") for r in rows.values()):
-        print("(recorded: issue 29's figures; opens and off-track vias were not recorded)")
+        print("(recorded: figures measured side by side in 2026-11; opens and off-track vias were not recorded)")
     for name, router, most in FLOORS:
         ours = rows.get((name, "xroute"))
         theirs = rows.get((name, router))

@@ -120,7 +120,7 @@ took=$(awk '/^Done [0-9]+ runs in/ {print $5}' "$log")
 printf '%-6s %10s %8s %7s %8s  %s\n' yaml "${execs:-?}" "${rate:-?}" \
   "$(find "$build/corpus/yaml" -type f | wc -l)" "${took:-?}" "$result"
 if [ $rc -ne 0 ]; then grep -E 'Error|CRASH|Traceback|Test unit written' "$log" | head -5 | sed 's/^/       /'; fi
-# The hostile-use harness (issue 32): special files, odd policies, numbers, deep JSON, kills.
+# The hostile-use harness: special files, odd policies, numbers, deep JSON, kills.
 log=$build/hostile_cli.log
 set +e
 PYTHONPATH=$root "$py" "$root/fuzz/hostile_cli.py" --cases "${HOSTILE_CASES:-100}" --seed "${HOSTILE_SEED:-$RANDOM}" \

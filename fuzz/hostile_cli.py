@@ -1,4 +1,4 @@
-"""Hostile-use harness of issue 32: special files, odd policies, numbers, deep JSON, names, kills.
+"""Hostile-use harness: special files, odd policies, numbers, deep JSON, names, kills.
 
     python fuzz/hostile_cli.py [--cases N] [--seed S] [--timeout 60] [--keep DIR] [--json FILE]
 

@@ -1,4 +1,4 @@
-"""Two more CLI mutators (issue 32), judged as ``mutate_cli.py`` judges its cases.
+"""Two more CLI mutators (hostile use), judged as ``mutate_cli.py`` judges its cases.
 
     python fuzz/mutate_hostile.py check    [--cases N] [--seconds T] [--seed S] [--timeout 60] [--keep DIR]
     python fuzz/mutate_hostile.py extremes [--cases N] [--seed S] [--route-share 0.5] ...

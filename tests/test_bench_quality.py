@@ -1,4 +1,4 @@
-"""bench/quality.py's floor lines: issue 29's floors judged on its rows."""
+"""bench/quality.py's floor lines: the quality floors judged on its rows."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The house limits on size (STYLE.md habit 1), measured by bench/code_size.py: no C++ file over 600
+"""The house limits on size (CONTRIBUTING.md, Style), measured by bench/code_size.py: no C++ file over 600
 lines, no C++ or Python function over 120; and the measuring itself, on drawn code."""
 
 from __future__ import annotations

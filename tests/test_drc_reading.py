@@ -1,4 +1,4 @@
-"""How the checker reads MinArea and LEF58_CORNERSPACING (issue 12: the counts
+"""How the checker reads MinArea and LEF58_CORNERSPACING (the counts
 must be true). Each case is drawn; drc/README.md gives the reading and why.
 Technology and helpers: test_drc_rules.py (M1: AREA 0.05 = 50000 DBU^2;
 M5: CORNERSPACING CONVEXCORNER EXCEPTEOL 0.15, width >= 0: 150,

@@ -230,7 +230,7 @@ def test_random_rects_match_a_brute_force_pair_check(db):
 
 # ------------------------------------------- overlapping shifted copies --
 # Thousands of copies of one wire, each shifted by 1 DBU, overlap into a band
-# (issue 32: `check` took 46 s on 50,000 of them). They are checked as the
+# (`check` once took 46 s on 50,000 of them). They are checked as the
 # rects they are (each copy its own width and run length), through the
 # crowded-layer index, the boundary sweep and the collinear joins; the
 # markers are those of the geometry, in any order.

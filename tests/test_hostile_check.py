@@ -1,4 +1,4 @@
-"""Issue 32: `check` on hostile routed DEFs, and coordinates at the ends of int32 in every reader.
+"""Hostile routed DEFs: `check` on them, and coordinates at the ends of int32 in every reader.
 
 The routed DEFs are the demo routed once per session, then changed by :func:`add_routing`: extra
 routing statements appended to one net (repeated segments, shifted overlapping copies, shapes at
@@ -101,7 +101,7 @@ def test_a_disjoint_copy_is_still_a_floating_piece(routed_demo: Path, tmp_path: 
 
 def test_a_band_of_shifted_copies_is_checked_in_time(routed_demo: Path, tmp_path: Path) -> None:
     """50,000 copies of a 25,000 DBU wire, each 1 DBU above the last, overlap into a band across
-    the design (issue 32: the DRC scanned the band once per copy, 84 s; now about 1 s). The
+    the design (the DRC once scanned the band once per copy, 84 s; now about 1 s). The
     subprocess timeout is the failure detector; the markers are the drawn tests' business."""
     import subprocess
     import sys
@@ -119,8 +119,8 @@ def test_a_band_of_shifted_copies_is_checked_in_time(routed_demo: Path, tmp_path
 @pytest.mark.parametrize(
     "line",
     [
-        "NEW Metal3 ( 43890 -2147483000 ) ( 43890 2147483000 )",  # issue 32: a segmentation fault
-        "NEW Metal2 ( -2147483648 660 ) RECT ( 0 0 140 360 )",  # issue 32: a segmentation fault
+        "NEW Metal3 ( 43890 -2147483000 ) ( 43890 2147483000 )",  # an earlier hostile run found a segmentation fault
+        "NEW Metal2 ( -2147483648 660 ) RECT ( 0 0 140 360 )",  # an earlier hostile run found a segmentation fault
         f"NEW Metal2 ( -{LIMIT} 660 ) RECT ( -1000 0 0 360 )",  # the placed patch is beyond
         f"NEW Metal2 ( {LIMIT} {LIMIT} ) VIA23",  # the via's shapes stick out
     ],
@@ -159,7 +159,7 @@ def inputs(tmp_path: Path, kind: str, old: str, new: str) -> dict[str, Path]:
 IO_PIN = "+ LAYER Metal4 ( -70 0 ) ( 70 360 ) + PLACED ( 43890 0 ) N"
 EXTREMES = [
     ("def", IO_PIN, "+ LAYER Metal4 ( -2147483648 0 ) ( 2147483647 360 ) + PLACED ( 43890 0 ) N", "-2147483648",
-     "coordinate '-2147483648' is beyond"),  # issue 32: segfaults and a vector max_size() traceback in route
+     "coordinate '-2147483648' is beyond"),  # once segfaults and a vector max_size() traceback in route
     ("def", IO_PIN, f"+ LAYER Metal4 ( -70 0 ) ( 70 360 ) + PLACED ( {LIMIT} 0 ) N", "- io0", "pin shape ("),
     ("def", "- u13 XOR2_X1 + PLACED ( 42180 0 ) N", f"- u13 XOR2_X1 + PLACED ( {LIMIT - 100} 0 ) N", "- u13",
      "placed component ("),

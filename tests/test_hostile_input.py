@@ -1,6 +1,6 @@
-"""Issue 11: bad input, hostile input and interruptions - never a crash, never a write outside --out.
+"""Bad input, hostile input and interruptions - never a crash, never a write outside --out.
 
-Each row of the issue's table is a test here, on the shipped demo design (mutated copies in a
+Each case of hostile input is a test here, on the shipped demo design (mutated copies in a
 temporary folder) or tiny YAML / policy files: the expected exit status and the one error line
 (``error: <file>:<line>: <message>``), no traceback, no output file when the input is bad, no file
 outside the output folder.

@@ -1,4 +1,4 @@
-"""Issue 32: numbers that are not numbers, and JSON files nested or typed to break the reader.
+"""Hostile settings: numbers that are not numbers, and JSON files nested or typed to break the reader.
 
 Every numeric setting is finite and in range (NaN passes every bound check, so it is refused on
 its own), a YAML 1.1 base-60 number such as ``1:30`` is not silently read as 90, and a metrics or

@@ -1,4 +1,4 @@
-"""Issue 32: ``route``, ``check`` and ``batch`` (its jobs and its summary) killed (SIGKILL) just
+"""Kill safety: ``route``, ``check`` and ``batch`` (its jobs and its summary) killed (SIGKILL) just
 before each rename that publishes their outputs leave, after the next run's clean-up, a
 consistent set (its files' SHA-256 agree with its manifest) or the previous one; ``report`` warns about a mixed set meanwhile; the
 next run removes every leftover, whatever the process id in its name.

@@ -1,4 +1,4 @@
-"""Valid LEF/DEF constructs from real files (issue 31, item 1), each drawn small: the figure read
+"""Valid LEF/DEF constructs from real files, each drawn small: the figure read
 (a rescaled coordinate, a layer offset, a warning's text), not only "no error". The corpus triage
 that found them: OpenROAD's and KLayout's test data, the Si2 5.8 examples, asap7, gf180, ihp."""
 

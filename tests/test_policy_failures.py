@@ -1,4 +1,4 @@
-"""Issue 32: whatever a user's policy file does, the run ends with one line or its outputs.
+"""Hostile policies: whatever a user's policy file does, the run ends with one line or its outputs.
 
 Any ``BaseException`` that is not ``KeyboardInterrupt`` (``GeneratorExit``, a user's subclass,
 ``SystemExit``), raised when the file is loaded or inside ``order()`` / ``plan()``, is one line

@@ -1,4 +1,4 @@
-"""``xroute batch --backend ray --ray-address`` on a real two-node Ray cluster (issue 30).
+"""``xroute batch --backend ray --ray-address`` on a real two-node Ray cluster.
 
 The test starts a head node and a worker node on this machine (``ray.cluster_utils.Cluster``:
 separate GCS and raylet processes, as ``ray start --head`` and ``ray start --address`` make) and

@@ -79,7 +79,7 @@ def test_imitation_beats_a_random_order_on_held_out_regions(imitation_sample: st
     got = score_orders(fp, held, fns, design.dbu_per_micron)
     learned = sum(got["model"])
     randoms = [sum(got[f"random{s}"]) for s in range(6)]
-    # Measured after issue 12's router changes: 5,287 against 5,783 / 5,295 / 5,787 / 4,291 / 5,786 /
+    # Measured after the contest-quality router changes: 5,287 against 5,783 / 5,295 / 5,787 / 4,291 / 5,786 /
     # 5,787 (mean 5,455; before them the learned order was more than 10% below the mean). Markers
     # dominate these costs, and the router now leaves few: below the mean and most of the seeds.
     assert learned < float(np.mean(randoms)), (learned, randoms)

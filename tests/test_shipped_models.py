@@ -40,7 +40,7 @@ def test_shipped_model_has_the_contract_signature_and_orders_a_sample_region(alg
 
 
 def test_every_shipped_model_has_a_short_card_and_the_package_ships_no_log() -> None:
-    """One card per model (STYLE.md habit 13): <model>.card.md beside <model>.onnx (a net-order or
+    """One card per model (CONTRIBUTING.md): <model>.card.md beside <model>.onnx (a net-order or
     net-router network) or <model>.json (a schedule model), at most 100 lines, with its intended use,
     data, protocol and figures; nothing else in the folder but models and cards (research logs live
     in experiments/). Every schedule model loads as one."""

@@ -1,4 +1,4 @@
-"""Issue 32: special files as inputs and outputs, and file names that are not UTF-8.
+"""Special files as inputs and outputs, and file names that are not UTF-8.
 
 A FIFO, device or folder where a regular file is read is one error line (never a run blocked on
 the FIFO); one where a file would be written is refused and left as it was; a name holding bytes

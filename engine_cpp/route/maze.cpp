@@ -207,7 +207,7 @@ int64_t Search::viaNodeCost(int32_t v) const {
 // A lower bound on the cost from v to the nearest unreached terminal: the planar distance to its
 // nodes' box and a via for each layer between v and its nodes' layers (a wire step costs at least
 // its length, a via at least viaCost). It is consistent, so the search stays exact; the layer term
-// cuts the nodes expanded (2 threads, farm-bench pairs, median wall: ispd18_test1 0.89x of 17.1 s,
+// cuts the nodes expanded (2 threads, paired runs, median wall: ispd18_test1 0.89x of 17.1 s,
 // ispd19_test1 0.91x of 121.7 s).
 int64_t Search::heuristic(int32_t v) const {
   const Point p = g_.point(v);

@@ -3,7 +3,7 @@
     python -m experiments.net_order.ppo_in_context [--testcase ispd18_test1 --testcase ispd19_test1] [--steps 20000]
                                    [--seed 1] [--max-candidates 64] [--json out.json]
 
-The issue-13 route with its named pieces: the net-ordering env in context (the router's first pass,
+The planned route to a learned order, with its pieces: the net-ordering env in context (the router's first pass,
 regions of its size, ``--hold-out-every`` regions never drawn), the compact observation
 (``observation="compact"``), sb3-contrib's MaskablePPO with :class:`~xroute.policies.rl.sb3.SetOrderExtractor`
 (a critic that sees every net) and rewards per violation (:class:`~xroute.policies.rl.sb3.PerViolation`).

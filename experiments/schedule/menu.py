@@ -1,4 +1,4 @@
-"""Run the settings menu of issue 33 on the contest designs in parallel, one JSON line per job.
+"""Run the menu of hand-written settings on the contest designs in parallel, one JSON line per job.
 
     python -m experiments.schedule.menu --out OUT [--cores N] [--cutoff S] [--only NAME]
                                         [--src CHECKOUT] [--data TESTCASES]
