@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "flow/region_impl.hpp"
-#include "io/engine_errors.hpp"
+#include "errors/engine_errors.hpp"
 
 namespace xroute {
 

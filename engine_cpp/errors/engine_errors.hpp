@@ -1,5 +1,6 @@
-// Typed errors the bindings translate to Python exceptions of xroute.errors (besides
-// InputError, io/input_error.hpp): the Python side never has to recognise an error by its text.
+// The engine's typed errors that are not about input files (bad input is InputError,
+// io/input_error.hpp). The bindings translate them to Python exceptions of xroute.errors
+// (bindings/module.cpp): the Python side never has to recognise an error by its text.
 #pragma once
 
 #include <stdexcept>
