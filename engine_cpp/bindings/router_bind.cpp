@@ -24,6 +24,7 @@
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/search_policy.hpp"
+#include "grid/gcell_grid.hpp"
 #include "pa/pin_access.hpp"
 
 namespace nb = nanobind;

@@ -1,26 +1,14 @@
-// The GCell grid and its partition into routing regions of C x C GCells.
+// The GCell grid's partition into routing regions of C x C GCells.
 #pragma once
 
 #include <vector>
 
 #include "db/design.hpp"
+#include "grid/gcell_grid.hpp"
 #include "grid/tracks.hpp"
 #include "pa/pin_access.hpp"
 
 namespace xroute {
-
-// GCell boundaries along x and y (DBU, sorted, first = die low edge, last =
-// die high edge): from DEF GCELLGRID, else a regular grid at the guides' most
-// common size, else every 15 pitches of the lowest layer with tracks in that
-// direction.
-struct GCellGrid {
-  std::vector<Dbu> xs;
-  std::vector<Dbu> ys;
-  int nx() const { return static_cast<int>(xs.size()) - 1; }
-  int ny() const { return static_cast<int>(ys.size()) - 1; }
-};
-
-GCellGrid makeGCellGrid(const Design& design, const TrackSet& tracks);
 
 // The default region (RouterSettings::regionSize 0): kRegionGCells GCells a side, or more while the
 // grids of most regions stay within kRegionGridNodes nodes a layer. A region's grid has a line at

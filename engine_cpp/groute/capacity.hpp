@@ -10,7 +10,7 @@
 
 #include "db/design.hpp"
 #include "db/tech.hpp"
-#include "flow/regions.hpp"
+#include "grid/gcell_grid.hpp"
 #include "grid/tracks.hpp"
 
 namespace xroute {
