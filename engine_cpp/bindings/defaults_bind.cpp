@@ -4,7 +4,7 @@
 
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 #include "grid/region_grid.hpp"
 #include "groute/global_router.hpp"
 #include "pa/pin_access.hpp"

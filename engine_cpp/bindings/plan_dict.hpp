@@ -8,7 +8,7 @@
 #include <string>
 
 #include "flow/router.hpp"
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 
 namespace xroute {
 

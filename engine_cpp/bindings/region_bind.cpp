@@ -16,7 +16,7 @@
 #include "bindings/arrays.hpp"
 #include "bindings/marker_list.hpp"
 #include "bindings/region_handle.hpp"
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 #include "db/database.hpp"
 #include "flow/region_router.hpp"
 #include "flow/regions.hpp"

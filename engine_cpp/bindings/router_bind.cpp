@@ -20,10 +20,10 @@
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
 #include "db/database.hpp"
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 #include "grid/gcell_grid.hpp"
 #include "pa/pin_access.hpp"
 

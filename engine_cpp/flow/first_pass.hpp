@@ -12,7 +12,7 @@
 
 #include "db/design.hpp"
 #include "flow/crossings.hpp"
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 #include "flow/region_router.hpp"
 #include "flow/router.hpp"
 

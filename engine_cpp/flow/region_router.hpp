@@ -11,7 +11,7 @@
 #include "drc/drc.hpp"
 #include "flow/clip.hpp"
 #include "flow/crossings.hpp"
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 #include "flow/region_marks.hpp"
 #include "flow/regions.hpp"
 #include "flow/route_context.hpp"

@@ -16,7 +16,7 @@
 #include "flow/dangling.hpp"
 #include "flow/region_router.hpp"
 #include "flow/regions.hpp"
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 #include "flow/route_context.hpp"
 
 namespace xroute {

@@ -13,7 +13,7 @@
 
 #include "db/design.hpp"
 #include "drc/drc.hpp"
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 #include "flow/route_context.hpp"
 #include "route/maze.hpp"
 
@@ -81,7 +81,7 @@ struct IterationPlan {
   int64_t historyPenalty = 1000;   // what each marker this iteration leaves adds near it from then on
   bool stop = false;               // end the run instead of running this iteration
   // 0: the run's net-order policy orders each region's nets; 1..kMaxSearchBudget: the victims search
-  // (flow/search_policy.hpp) with this many trial routings per region does, in this iteration only.
+  // (order/search_policy.hpp) with this many trial routings per region does, in this iteration only.
   int searchBudget = 0;
 };
 

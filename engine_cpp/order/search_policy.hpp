@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "drc/drc.hpp"
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 
 namespace xroute {
 

@@ -1,4 +1,4 @@
-#include "flow/policy.hpp"
+#include "order/policy.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -1,4 +1,4 @@
-#include "flow/search_policy.hpp"
+#include "order/search_policy.hpp"
 
 #include <algorithm>
 #include <climits>
