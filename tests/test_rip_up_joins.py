@@ -1,4 +1,4 @@
-"""What a rip-up must join again, and what routing joins nothing (engine_cpp/flow/clip.cpp
+"""What a rip-up must join again, and what routing joins nothing (engine_cpp/region/clip.cpp
 ``keptConductors``, flow/dangling.cpp), on tiny drawn designs with the exact routing expected (DBU).
 
 Technology: the drawn stack of ``lef_text.stack`` (M1 and M3 horizontal, M2 vertical; tracks every

@@ -18,7 +18,7 @@
 #include "bindings/region_handle.hpp"
 #include "order/search_policy.hpp"
 #include "db/database.hpp"
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 #include "flow/regions.hpp"
 #include "flow/router.hpp"
 #include "flow/session.hpp"

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 #include "flow/session.hpp"
 
 namespace xroute {

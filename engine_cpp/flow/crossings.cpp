@@ -1,4 +1,4 @@
-#include "flow/crossings.hpp"
+#include "region/crossing_plan.hpp"
 
 #include "geom/union_find.hpp"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "flow/centre_lines.hpp"
+#include "region/centre_lines.hpp"
 
 namespace xroute {
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "db/design.hpp"
-#include "flow/crossings.hpp"
+#include "region/crossing_plan.hpp"
 #include "order/policy.hpp"
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 #include "flow/router.hpp"
 
 namespace xroute {

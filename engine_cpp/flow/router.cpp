@@ -12,12 +12,12 @@
 #include <thread>
 #include <unordered_map>
 
-#include "flow/crossings.hpp"
+#include "region/crossing_plan.hpp"
 #include "flow/dangling.hpp"
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 #include "flow/regions.hpp"
 #include "order/search_policy.hpp"
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 
 namespace xroute {
 

@@ -14,7 +14,7 @@
 #include "db/design.hpp"
 #include "drc/drc.hpp"
 #include "order/policy.hpp"
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 #include "route/maze.hpp"
 
 namespace xroute {

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "flow/regions.hpp"
-#include "flow/standalone.hpp"
+#include "region/standalone.hpp"
 
 namespace xroute {
 

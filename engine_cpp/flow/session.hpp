@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "db/database.hpp"
-#include "flow/crossings.hpp"
+#include "region/crossing_plan.hpp"
 #include "flow/first_pass.hpp"
-#include "flow/region_router.hpp"
-#include "flow/route_context.hpp"
+#include "region/region_router.hpp"
+#include "region/route_context.hpp"
 
 namespace xroute {
 
@@ -38,7 +38,7 @@ class RoutingSession {
   const GCellGrid& gcells() const { return ctx_->gcells; }
   // The router's partition into regions of size x size GCells.
   std::vector<Region> regions(int size, int offset) const;
-  // Opens `box` on its own (flow/standalone.hpp), prepared for routing.
+  // Opens `box` on its own (region/standalone.hpp), prepared for routing.
   std::unique_ptr<SessionRegion> openRegion(const Rect& box, int iteration);
   // Routes iteration 0 of the design as the flow does, keeping what reopens its regions.
   std::unique_ptr<FirstPass> routeFirstPass(const RouterSettings& settings, NetOrderPolicy& policy);

@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 

@@ -1,7 +1,7 @@
 // RegionRouter::prepare: each candidate's terminals, the region's grid, the
 // marks on it (fixed shapes, routing near the box, markers, access points),
 // and the candidates' features.
-#include "flow/region_impl.hpp"
+#include "region/region_impl.hpp"
 
 #include <algorithm>
 

@@ -4,8 +4,8 @@
 
 #include <cstdint>
 
-#include "flow/region_marks.hpp"
-#include "flow/route_context.hpp"
+#include "region/region_marks.hpp"
+#include "region/route_context.hpp"
 #include "grid/region_grid.hpp"
 
 namespace xroute {

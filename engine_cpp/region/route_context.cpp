@@ -1,4 +1,4 @@
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 
 #include <algorithm>
 

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "flow/region_marks.hpp"
-#include "flow/region_router.hpp"
+#include "region/region_marks.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 

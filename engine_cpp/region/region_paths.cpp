@@ -1,13 +1,13 @@
 // Routing one candidate of a region: by the maze, or along a caller's node
 // paths; either way applyPaths turns the paths into wires and vias, records
 // the free crossings reached, repairs minimum area and marks the new metal.
-#include "flow/region_impl.hpp"
+#include "region/region_impl.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "flow/patch_score.hpp"
+#include "region/patch_score.hpp"
 #include "route/min_area_fix.hpp"
 
 namespace xroute {

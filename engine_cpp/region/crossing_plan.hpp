@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "flow/regions.hpp"
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 
 namespace xroute {
 

@@ -1,4 +1,4 @@
-#include "flow/region_marks.hpp"
+#include "region/region_marks.hpp"
 
 #include <algorithm>
 #include <limits>

@@ -5,9 +5,9 @@
 // unrouted nets get a free crossing on each box edge their guides cross.
 #pragma once
 
-#include "flow/crossings.hpp"
-#include "flow/region_router.hpp"
-#include "flow/route_context.hpp"
+#include "region/crossing_plan.hpp"
+#include "region/region_router.hpp"
+#include "region/route_context.hpp"
 
 namespace xroute {
 

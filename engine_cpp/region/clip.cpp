@@ -1,8 +1,8 @@
-#include "flow/clip.hpp"
+#include "region/clip.hpp"
 
 #include <algorithm>
 
-#include "flow/centre_lines.hpp"
+#include "region/centre_lines.hpp"
 #include "geom/union_find.hpp"
 
 namespace xroute {

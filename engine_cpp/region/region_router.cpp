@@ -1,6 +1,6 @@
 // RegionRouter's public steps over its Impl (region_impl.hpp), the
 // region's design-rule check, commit, and routeRegion with its repair rounds.
-#include "flow/region_router.hpp"
+#include "region/region_router.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "flow/region_impl.hpp"
+#include "region/region_impl.hpp"
 #include "errors/engine_errors.hpp"
 
 namespace xroute {

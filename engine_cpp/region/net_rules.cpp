@@ -1,4 +1,4 @@
-#include "flow/net_rules.hpp"
+#include "region/net_rules.hpp"
 
 #include <algorithm>
 

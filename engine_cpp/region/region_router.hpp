@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "drc/drc.hpp"
-#include "flow/clip.hpp"
-#include "flow/crossings.hpp"
+#include "region/clip.hpp"
+#include "region/crossing_plan.hpp"
 #include "order/policy.hpp"
-#include "flow/region_marks.hpp"
+#include "region/region_marks.hpp"
 #include "flow/regions.hpp"
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 #include "grid/region_grid.hpp"
 #include "route/maze.hpp"
 

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "flow/region_impl.hpp"
+#include "region/region_impl.hpp"
 
 namespace xroute {
 

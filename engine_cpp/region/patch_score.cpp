@@ -1,4 +1,4 @@
-#include "flow/patch_score.hpp"
+#include "region/patch_score.hpp"
 
 #include <algorithm>
 #include <limits>

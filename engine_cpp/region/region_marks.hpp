@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "flow/route_context.hpp"
+#include "region/route_context.hpp"
 #include "grid/region_grid.hpp"
 
 namespace xroute {

@@ -1,9 +1,9 @@
-#include "flow/standalone.hpp"
+#include "region/standalone.hpp"
 
 #include <algorithm>
 #include <map>
 
-#include "flow/clip.hpp"
+#include "region/clip.hpp"
 
 namespace xroute {
 

@@ -10,7 +10,7 @@
 #include "db/design.hpp"
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
-#include "flow/net_rules.hpp"
+#include "region/net_rules.hpp"
 #include "flow/regions.hpp"
 #include "geom/box_index.hpp"
 #include "grid/footprint.hpp"
