@@ -16,7 +16,7 @@
 #include "bindings/database_parts.hpp"
 #include "db/compare.hpp"
 #include "db/database.hpp"
-#include "flow/dangling.hpp"
+#include "loop/dangling.hpp"
 #include "io/readers.hpp"
 
 namespace nb = nanobind;

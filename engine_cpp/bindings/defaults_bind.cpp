@@ -2,8 +2,8 @@
 // settings structs themselves, so that Python states none of them a second time.
 #include <nanobind/nanobind.h>
 
-#include "flow/regions.hpp"
-#include "flow/router.hpp"
+#include "loop/regions.hpp"
+#include "loop/router.hpp"
 #include "order/search_policy.hpp"
 #include "grid/region_grid.hpp"
 #include "groute/global_router.hpp"

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "flow/router.hpp"
+#include "loop/router.hpp"
 #include "order/search_policy.hpp"
 
 namespace xroute {

@@ -1,5 +1,5 @@
 // Python view of one routing region, steppable net by net: what a learning
-// environment drives. A RoutingSession (flow/session.hpp) holds what every
+// environment drives. A RoutingSession (loop/session.hpp) holds what every
 // region of a design shares (tracks, pin access, fixed shapes); a Region
 // routes the nets of one box in the order the caller chooses and can be
 // committed to the design.
@@ -19,9 +19,9 @@
 #include "order/search_policy.hpp"
 #include "db/database.hpp"
 #include "region/region_router.hpp"
-#include "flow/regions.hpp"
-#include "flow/router.hpp"
-#include "flow/session.hpp"
+#include "loop/regions.hpp"
+#include "loop/router.hpp"
+#include "loop/session.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;

@@ -1,5 +1,5 @@
 // The GCell grid: the global routing cells' boundaries, shared by the global router (groute/) and
-// the detailed router's regions (flow/regions.hpp).
+// the detailed router's regions (loop/regions.hpp).
 #pragma once
 
 #include <vector>

@@ -1,16 +1,12 @@
-// Initial routing (iteration 0) plan: for every net, the regions it must
-// pass and the region edges it crosses. The net's guides, clipped to each
-// region, fall into connected pieces; guides running across a region edge
-// link pieces of neighbouring regions. Pins join the piece of their best
-// access point. A Steiner tree over the pieces (the nearest pin piece joins
-// by its cheapest path; steps the guides do not make cost more) gives the
-// crossings and, per region, the net's parts.
+// The crossings of iteration 0's plan (loop/crossings.hpp makes it): where each net passes from
+// one region to its neighbour, and per region the parts of each net that route there. A region's
+// router reads the crossings that touch it and reports the point it chose on each.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
-#include "flow/regions.hpp"
-#include "region/route_context.hpp"
+#include "geom/geom.hpp"
 
 namespace xroute {
 
@@ -45,7 +41,5 @@ struct CrossingPlan {
   std::vector<Crossing> crossings;
   std::vector<std::vector<NetPart>> regionParts;  // region -> parts, by net (ascending)
 };
-
-CrossingPlan planCrossings(const RouteContext& ctx, const std::vector<Region>& regions, int size, int offset);
 
 }  // namespace xroute

@@ -13,7 +13,7 @@
 #include "region/crossing_plan.hpp"
 #include "order/policy.hpp"
 #include "region/region_marks.hpp"
-#include "flow/regions.hpp"
+#include "region/region.hpp"
 #include "region/route_context.hpp"
 #include "grid/region_grid.hpp"
 #include "route/maze.hpp"

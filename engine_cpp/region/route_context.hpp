@@ -11,7 +11,7 @@
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
 #include "region/net_rules.hpp"
-#include "flow/regions.hpp"
+#include "grid/gcell_grid.hpp"
 #include "geom/box_index.hpp"
 #include "grid/footprint.hpp"
 #include "grid/tracks.hpp"

@@ -14,7 +14,7 @@
 #include "region/crossing_plan.hpp"
 #include "order/policy.hpp"
 #include "region/region_router.hpp"
-#include "flow/router.hpp"
+#include "loop/router.hpp"
 
 namespace xroute {
 

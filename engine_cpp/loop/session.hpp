@@ -10,7 +10,7 @@
 
 #include "db/database.hpp"
 #include "region/crossing_plan.hpp"
-#include "flow/first_pass.hpp"
+#include "loop/first_pass.hpp"
 #include "region/region_router.hpp"
 #include "region/route_context.hpp"
 

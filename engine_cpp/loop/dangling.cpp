@@ -1,4 +1,4 @@
-#include "flow/dangling.hpp"
+#include "loop/dangling.hpp"
 
 #include <algorithm>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "flow/regions.hpp"
+#include "loop/regions.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,5 @@
-// The GCell grid's partition into routing regions of C x C GCells.
+// The GCell grid's partition into routing regions of C x C GCells, coloured so that regions of one
+// colour never touch, and the default region size.
 #pragma once
 
 #include <vector>
@@ -7,6 +8,7 @@
 #include "grid/gcell_grid.hpp"
 #include "grid/tracks.hpp"
 #include "pa/pin_access.hpp"
+#include "region/region.hpp"
 
 namespace xroute {
 
@@ -29,14 +31,6 @@ double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std:
 // 1..maxSize.
 int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
                    int maxSize);
-
-struct Region {
-  int32_t id = 0;
-  int gx0 = 0, gy0 = 0, gx1 = 0, gy1 = 0;  // GCell index range [gx0, gx1) x [gy0, gy1)
-  int rx = 0, ry = 0;                      // region column and row
-  Rect box;                                // DBU, closed
-  int color = 0;                           // 0..3: regions of one colour never touch
-};
 
 // Regions of `size` GCells, the first column/row shortened by `offset`
 // (0 <= offset < size) so that the boundaries shift between iterations.

@@ -1,4 +1,4 @@
-#include "flow/first_pass.hpp"
+#include "loop/first_pass.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -1,4 +1,4 @@
-#include "region/crossing_plan.hpp"
+#include "loop/crossings.hpp"
 
 #include "geom/union_find.hpp"
 

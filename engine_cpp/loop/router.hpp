@@ -33,7 +33,7 @@ inline constexpr int kMaxRepairRounds = 64;   // repair rounds per region at mos
 
 struct RouterSettings {
   // GCells per region side (C); 0 = 10, or more while most regions' grids stay within a node budget
-  // (autoRegionSize, flow/regions.hpp): 15 on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3.
+  // (autoRegionSize, loop/regions.hpp): 15 on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3.
   int regionSize = 0;
   // Iterations 0..iterations-1 at most (1..kMaxIterations); the flow stops at zero markers. 16 leaves room:
   // ispd19_test1 reaches zero in its iteration 8, ispd19_test3 in its iteration 7 (2026-11-27, 2 threads).
@@ -65,7 +65,7 @@ struct RouterSettings {
   int lateSearchMarkers = 50;
   int lateSearchBudget = 4;
   // After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins
-  // (flow/dangling.hpp): a rip-up whose terminals were joined beyond the box leaves ends that join
+  // (loop/dangling.hpp): a rip-up whose terminals were joined beyond the box leaves ends that join
   // nothing.
   bool trimDangling = true;
 };
@@ -117,7 +117,7 @@ struct CrossingPlan;
 struct RegionTask;
 // Called in iteration 0 before each colour's regions are routed: (colour, the crossing plan with the
 // choices of the colours before, that colour's region tasks); the design holds the routing of the
-// colours before. What a replay of the first pass keeps (flow/first_pass.hpp).
+// colours before. What a replay of the first pass keeps (loop/first_pass.hpp).
 using ColourHook = std::function<void(int, const CrossingPlan&, const std::vector<RegionTask>&)>;
 
 // Routes every net of `design` (its Net::routing is replaced). With a planner, each iteration runs

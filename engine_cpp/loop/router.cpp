@@ -1,4 +1,4 @@
-#include "flow/router.hpp"
+#include "loop/router.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,10 +12,10 @@
 #include <thread>
 #include <unordered_map>
 
-#include "region/crossing_plan.hpp"
-#include "flow/dangling.hpp"
+#include "loop/crossings.hpp"
+#include "loop/dangling.hpp"
 #include "region/region_router.hpp"
-#include "flow/regions.hpp"
+#include "loop/regions.hpp"
 #include "order/search_policy.hpp"
 #include "region/route_context.hpp"
 
@@ -283,7 +283,7 @@ class Flow {
     }
   }
 
-  // Routing that joins nothing (flow/dangling.hpp) goes before the check. Only the nets this
+  // Routing that joins nothing (loop/dangling.hpp) goes before the check. Only the nets this
   // iteration rerouted can have any: the others were cut back when they were last rerouted.
   void trimRerouted() {
     bool any = false;

@@ -1,8 +1,8 @@
-#include "flow/session.hpp"
+#include "loop/session.hpp"
 
 #include <algorithm>
 
-#include "flow/regions.hpp"
+#include "loop/regions.hpp"
 #include "region/standalone.hpp"
 
 namespace xroute {
