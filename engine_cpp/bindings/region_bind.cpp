@@ -236,7 +236,7 @@ void bindRegionRouting(RegionClass& cls) {
               throw nb::value_error(e.what());
             }
             nb::gil_scoped_release release;
-            h.get().routeAll(*p, h.region->ws);
+            routeInOrder(h.get(), *p, h.region->ws);
           },
           "policy"_a = "heuristic", "seed"_a = 1, "search_budget"_a = SearchSettings{}.budget,
           "search_width"_a = SearchSettings{}.width,

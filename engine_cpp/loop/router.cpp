@@ -60,6 +60,15 @@ IterationPlan clampedPlan(IterationPlan p) {
   return p;
 }
 
+// Runs a whole region: prepare, route in the policy's order, the task's repair rounds, finish.
+RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
+                         NetOrderPolicy& policy, MazeWorkspace& ws) {
+  RegionRouter rr(ctx, task, plan);
+  rr.prepare();
+  routeInOrder(rr, policy, ws);
+  return rr.finishWithRepairs(ws);
+}
+
 // The widest neighbourhood (in pitches of the marker's layer) a persistent marker rips up.
 constexpr int kMaxReachPitches = 8;
 

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <string>
+
+#include "errors/engine_errors.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 
@@ -55,18 +59,6 @@ bool heuristicBefore(const NetCandidate& a, const NetCandidate& b) {
 std::unique_ptr<NetOrderPolicy> makeHeuristicPolicy() { return std::make_unique<HeuristicPolicy>(); }
 std::unique_ptr<NetOrderPolicy> makeRandomPolicy(uint64_t seed) { return std::make_unique<RandomPolicy>(seed); }
 
-std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates) {
-  std::vector<int32_t> flat;
-  flat.reserve(candidates.size() * kFeatureCount);
-  for (const NetCandidate& k : candidates) {
-    const int32_t row[kFeatureCount] = {k.net,         k.pins,        k.terminals,   k.accessPoints, k.bbox.xlo,
-                                        k.bbox.ylo,    k.bbox.xhi,    k.bbox.yhi,    k.netPins,      k.crossings,
-                                        k.guide.xlo,   k.guide.ylo,   k.guide.xhi,   k.guide.yhi,    k.routedNearby};
-    flat.insert(flat.end(), row, row + kFeatureCount);
-  }
-  return flat;
-}
-
 bool isPermutation(const std::vector<int32_t>& order, size_t n) {
   if (order.size() != n) return false;
   std::vector<uint8_t> seen(n, 0);
@@ -75,6 +67,44 @@ bool isPermutation(const std::vector<int32_t>& order, size_t n) {
     seen[i] = 1;
   }
   return true;
+}
+
+namespace {
+
+// A sequential policy: one net at a time, the candidates' features refreshed after each.
+void routeSequential(RegionRouter& router, NetOrderPolicy& policy, MazeWorkspace& ws) {
+  const RegionInfo region = router.info();
+  std::vector<int32_t> pending;
+  for (std::vector<NetCandidate> cands = router.unrouted(pending); !pending.empty();
+       cands = router.unrouted(pending)) {
+    const int32_t k = policy.next(router, region, cands);
+    if (k < 0 || static_cast<size_t>(k) >= cands.size()) {
+      throw PolicyOrderError("net-order policy '" + policy.name() + "' chose candidate " + std::to_string(k) +
+                             ", outside 0.." + std::to_string(cands.size() - 1));
+    }
+    if (!router.isRouted(pending[k])) router.routeNet(pending[k], ws);  // the policy may have routed it itself
+  }
+}
+
+}  // namespace
+
+void routeInOrder(RegionRouter& router, NetOrderPolicy& policy, MazeWorkspace& ws) {
+  if (policy.sequential()) {
+    routeSequential(router, policy, ws);
+    return;
+  }
+  std::vector<int32_t> pending;
+  const std::vector<NetCandidate> cands = router.unrouted(pending);
+  if (pending.empty()) return;
+  const RegionInfo info = router.info();
+  const std::vector<int32_t> order = policy.orderRegion(router, info, cands);
+  if (!isPermutation(order, cands.size())) {
+    throw PolicyOrderError("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
+                           std::to_string(cands.size()) + " candidates");
+  }
+  for (int32_t k : order) {
+    if (!router.isRouted(pending[k])) router.routeNet(pending[k], ws);  // the policy may have routed some itself
+  }
 }
 
 }  // namespace xroute

@@ -10,40 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "geom/geom.hpp"
+#include "region/candidate.hpp"
 
 namespace xroute {
 
 class RegionRouter;
-
-struct RegionInfo {
-  int32_t iteration = 0;
-  int32_t regionId = 0;
-  Rect box;  // DBU
-};
-
-// What a policy knows about one candidate net of a region.
-struct NetCandidate {
-  int32_t net = -1;          // net id
-  int32_t pins = 0;          // pins of the net inside the region
-  int32_t terminals = 0;     // all terminals (pins + boundary crossings)
-  int32_t accessPoints = 0;  // terminal nodes in the grid
-  Rect bbox;                 // DBU, bounding box of the terminal nodes
-  int32_t netPins = 0;       // pins of the whole net
-  int32_t crossings = 0;     // terminals on the region edge (boundary cuts and planned crossings)
-  Rect guide;                // DBU, bounding box of the net's guides clipped to the region (the box: no guide there)
-  int32_t routedNearby = 0;  // updated state: grid nodes (all layers) in `bbox` that routing of this region
-                             // already uses (other nets' new routing); 0 until nets are routed
-};
-
-// The candidates as a flat row-major table, one row of kFeatureCount int32
-// per candidate, columns named by kFeatureColumns (what Python policies see).
-// New columns go at the end: Python policies read them by name, old ones keep their place.
-inline constexpr const char* kFeatureColumns[] = {
-    "net",       "pins",      "terminals", "access_points", "bbox_xlo",  "bbox_ylo",     "bbox_xhi", "bbox_yhi",
-    "net_pins",  "crossings", "guide_xlo", "guide_ylo",     "guide_xhi", "guide_yhi", "routed_nearby"};
-inline constexpr size_t kFeatureCount = sizeof(kFeatureColumns) / sizeof(kFeatureColumns[0]);
-std::vector<int32_t> featureRows(const std::vector<NetCandidate>& candidates);
+struct MazeWorkspace;
 
 class NetOrderPolicy {
  public:
@@ -85,5 +57,10 @@ bool heuristicBefore(const NetCandidate& a, const NetCandidate& b);
 
 // Checks that `order` is a permutation of 0..n-1.
 bool isPermutation(const std::vector<int32_t>& order, size_t n);
+
+// Routes every candidate of `router` (prepared) not yet routed in the policy's order (a sequential
+// policy: one net at a time, asked again after each with the unrouted candidates' updated
+// features). Throws PolicyOrderError (errors/engine_errors.hpp) for an answer that is no order.
+void routeInOrder(RegionRouter& router, NetOrderPolicy& policy, MazeWorkspace& ws);
 
 }  // namespace xroute

@@ -1,5 +1,5 @@
 // RegionRouter's public steps over its Impl (region_impl.hpp), the
-// region's design-rule check, commit, and routeRegion with its repair rounds.
+// region's design-rule check, commit, and its repair rounds.
 #include "region/region_router.hpp"
 
 #include <algorithm>
@@ -9,7 +9,6 @@
 #include <unordered_map>
 
 #include "region/region_impl.hpp"
-#include "errors/engine_errors.hpp"
 
 namespace xroute {
 
@@ -91,39 +90,6 @@ RegionInfo RegionRouter::info() const {
   return RegionInfo{impl_->task.iteration, impl_->task.region.id, impl_->task.region.box};
 }
 
-// A sequential policy: one net at a time, the candidates' features refreshed after each.
-void RegionRouter::routeSequential(NetOrderPolicy& policy, MazeWorkspace& ws) {
-  const RegionInfo region = info();
-  std::vector<int32_t> pending;
-  for (std::vector<NetCandidate> cands = unrouted(pending); !pending.empty(); cands = unrouted(pending)) {
-    const int32_t k = policy.next(*this, region, cands);
-    if (k < 0 || static_cast<size_t>(k) >= cands.size()) {
-      throw PolicyOrderError("net-order policy '" + policy.name() + "' chose candidate " + std::to_string(k) +
-                             ", outside 0.." + std::to_string(cands.size() - 1));
-    }
-    if (!isRouted(pending[k])) routeNet(pending[k], ws);  // the policy may have routed it itself
-  }
-}
-
-void RegionRouter::routeAll(NetOrderPolicy& policy, MazeWorkspace& ws) {
-  if (policy.sequential()) {
-    routeSequential(policy, ws);
-    return;
-  }
-  std::vector<int32_t> pending;
-  const std::vector<NetCandidate> cands = unrouted(pending);
-  if (pending.empty()) return;
-  const RegionInfo info = this->info();
-  const std::vector<int32_t> order = policy.orderRegion(*this, info, cands);
-  if (!isPermutation(order, cands.size())) {
-    throw PolicyOrderError("net-order policy '" + policy.name() + "' returned an order that is not a permutation of " +
-                                std::to_string(cands.size()) + " candidates");
-  }
-  for (int32_t k : order) {
-    if (!isRouted(pending[k])) routeNet(pending[k], ws);  // the policy may have routed some itself
-  }
-}
-
 const RegionNetResult& RegionRouter::result(int32_t candidate) const { return impl_->nets[candidate].result; }
 
 std::vector<Marker> RegionRouter::check() const {
@@ -184,14 +150,13 @@ RegionResult RegionRouter::finish() {
   return r;
 }
 
-RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
-                         NetOrderPolicy& policy, MazeWorkspace& ws) {
-  RegionRouter rr(ctx, task, plan);
-  rr.prepare();
-  rr.routeAll(policy, ws);
-  if (task.repairRounds <= 0) return rr.finish();
-  std::vector<Marker> markers = rr.check();
-  RegionResult best = rr.finish();
+RegionResult RegionRouter::finishWithRepairs(MazeWorkspace& ws) {
+  const RouteContext& ctx = impl_->ctx;
+  const RegionTask& task = impl_->task;
+  const CrossingPlan* plan = impl_->plan;
+  if (task.repairRounds <= 0) return finish();
+  std::vector<Marker> markers = check();
+  RegionResult best = finish();
   // Repair: rip up the region's nets named in its markers and reroute them
   // (in their first order) around everything else, with the markers found
   // so far as rising node costs; keep the round with the fewest markers.

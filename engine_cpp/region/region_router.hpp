@@ -1,7 +1,8 @@
 // Routing one region: build its grid, mark what is already there, gather
 // each candidate net's terminals, then route the nets one at a time in the
-// order a policy gives. Steppable (prepare / routeNet / finish) so that a
-// learning environment can choose every next net.
+// order its caller gives (a net-order policy: order/policy.hpp routeInOrder).
+// Steppable (prepare / routeNet / finish) so that a learning environment can
+// choose every next net.
 #pragma once
 
 #include <cstdint>
@@ -9,9 +10,9 @@
 #include <vector>
 
 #include "drc/drc.hpp"
+#include "region/candidate.hpp"
 #include "region/clip.hpp"
 #include "region/crossing_plan.hpp"
-#include "order/policy.hpp"
 #include "region/region_marks.hpp"
 #include "region/region.hpp"
 #include "region/route_context.hpp"
@@ -37,7 +38,7 @@ struct RegionTask {
   std::vector<RegionNetTask> nets;
   std::vector<MarkerCost> markers;
   MazeCosts costs;
-  int repairRounds = 0;         // routeRegion: check-and-reroute rounds inside the region before it is committed
+  int repairRounds = 0;         // finishWithRepairs: check-and-reroute rounds inside the region before it is committed
   int64_t repairPenalty = 0;    // cost units per node near a marker of a repair round, times the round number
 };
 
@@ -103,9 +104,6 @@ class RegionRouter {
   std::vector<bool> terminalJoined(int32_t candidate) const;
   // The six maze moves from `node` for the candidate's net (see mazeMoves).
   void moves(int32_t candidate, int32_t node, std::array<MazeMove, kMoveCount>& out) const;
-  // Routes every candidate not yet routed in the policy's order (a sequential policy: one
-  // net at a time, asked again after each with the unrouted candidates' updated features).
-  void routeAll(NetOrderPolicy& policy, MazeWorkspace& ws);
   // The candidates not routed yet (their features as they are now) and their indices in candidates().
   std::vector<NetCandidate> unrouted(std::vector<int32_t>& index) const;
   // All candidates with their features as they are now (candidates() has routedNearby = 0).
@@ -123,10 +121,13 @@ class RegionRouter {
   // ripped-up routing (fixed-only markers skipped).
   std::vector<Marker> check() const;
   RegionResult finish();
+  // finish() after the task's repair rounds (RegionTask::repairRounds): each round rips up the
+  // region's nets named in the markers of the round before and reroutes them (in their first
+  // order) around everything else, with the markers found so far as rising node costs; the round
+  // with the fewest markers is kept. Call once every candidate is routed.
+  RegionResult finishWithRepairs(MazeWorkspace& ws);
 
  private:
-  void routeSequential(NetOrderPolicy& policy, MazeWorkspace& ws);
-
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
@@ -134,9 +135,5 @@ class RegionRouter {
 // Applies a region's result to the design: ripped-up nets lose their routing
 // inside the box, every routed net gains its new routing.
 void commitRegion(const Tech& tech, Design& design, const Rect& box, const RegionResult& result);
-
-// Runs a whole region: prepare, order by the policy, route, finish.
-RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
-                         NetOrderPolicy& policy, MazeWorkspace& ws);
 
 }  // namespace xroute
