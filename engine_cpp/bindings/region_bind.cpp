@@ -16,12 +16,12 @@
 #include "bindings/arrays.hpp"
 #include "bindings/marker_list.hpp"
 #include "bindings/region_handle.hpp"
-#include "order/search_policy.hpp"
 #include "db/database.hpp"
-#include "region/region_router.hpp"
 #include "loop/regions.hpp"
 #include "loop/router.hpp"
 #include "loop/session.hpp"
+#include "order/search_policy.hpp"
+#include "region/region_router.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;

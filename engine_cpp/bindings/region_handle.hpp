@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "region/region_router.hpp"
 #include "loop/session.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 

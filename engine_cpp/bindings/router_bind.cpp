@@ -20,11 +20,11 @@
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
 #include "db/database.hpp"
-#include "order/policy.hpp"
+#include "grid/gcell_grid.hpp"
 #include "loop/regions.hpp"
 #include "loop/router.hpp"
+#include "order/policy.hpp"
 #include "order/search_policy.hpp"
-#include "grid/gcell_grid.hpp"
 #include "pa/pin_access.hpp"
 
 namespace nb = nanobind;

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "db/design.hpp"
-#include "region/crossing_plan.hpp"
-#include "order/policy.hpp"
-#include "region/region_router.hpp"
 #include "loop/router.hpp"
+#include "order/policy.hpp"
+#include "region/crossing_plan.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 

@@ -14,9 +14,9 @@
 
 #include "loop/crossings.hpp"
 #include "loop/dangling.hpp"
-#include "region/region_router.hpp"
 #include "loop/regions.hpp"
 #include "order/search_policy.hpp"
+#include "region/region_router.hpp"
 #include "region/route_context.hpp"
 
 namespace xroute {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "db/database.hpp"
-#include "region/crossing_plan.hpp"
 #include "loop/first_pass.hpp"
+#include "region/crossing_plan.hpp"
 #include "region/region_router.hpp"
 #include "region/route_context.hpp"
 

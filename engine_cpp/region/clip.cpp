@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "region/centre_lines.hpp"
 #include "geom/union_find.hpp"
+#include "region/centre_lines.hpp"
 
 namespace xroute {
 

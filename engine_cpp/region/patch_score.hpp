@@ -4,9 +4,9 @@
 
 #include <cstdint>
 
+#include "grid/region_grid.hpp"
 #include "region/region_marks.hpp"
 #include "region/route_context.hpp"
-#include "grid/region_grid.hpp"
 
 namespace xroute {
 

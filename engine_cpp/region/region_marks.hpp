@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "region/route_context.hpp"
 #include "grid/region_grid.hpp"
+#include "region/route_context.hpp"
 
 namespace xroute {
 

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "drc/drc.hpp"
+#include "grid/region_grid.hpp"
 #include "region/candidate.hpp"
 #include "region/clip.hpp"
 #include "region/crossing_plan.hpp"
-#include "region/region_marks.hpp"
 #include "region/region.hpp"
+#include "region/region_marks.hpp"
 #include "region/route_context.hpp"
-#include "grid/region_grid.hpp"
 #include "route/maze.hpp"
 
 namespace xroute {

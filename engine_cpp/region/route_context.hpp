@@ -10,13 +10,13 @@
 #include "db/design.hpp"
 #include "db/tech.hpp"
 #include "drc/drc.hpp"
-#include "region/net_rules.hpp"
-#include "grid/gcell_grid.hpp"
 #include "geom/box_index.hpp"
 #include "grid/footprint.hpp"
+#include "grid/gcell_grid.hpp"
 #include "grid/tracks.hpp"
-#include "pa/pin_access.hpp"
 #include "grid/via_set.hpp"
+#include "pa/pin_access.hpp"
+#include "region/net_rules.hpp"
 #include "route/maze.hpp"
 
 namespace xroute {
