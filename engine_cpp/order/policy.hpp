@@ -1,8 +1,9 @@
-// The net-order seam: in every region the router asks a policy in which
-// order to route the region's nets. A policy sees the region and one
-// feature row per candidate net, and returns a permutation (the fast path),
-// or, when sequential(), is asked for the next net after every routed net
-// with the candidates still unrouted and their updated features (the MDP).
+// The net-order seam: in every region the flow asks a policy in which order
+// to route the region's nets (routeInOrder, below). A policy sees the region
+// and one feature row per candidate net (region/candidate.hpp), and returns a
+// permutation (the fast path), or, when sequential(), is asked for the next
+// net after every routed net with the candidates still unrouted and their
+// updated features (the MDP).
 #pragma once
 
 #include <cstdint>
