@@ -3,7 +3,7 @@ markers, the GCell grid, one colour per layer. No matplotlib here.
 
 Coordinates are DEF database units (DBU). :func:`gcell_box` turns GCell indices into a box with the
 router's GCell grid: the DEF's GCELLGRID, else the most common guide extent (the global router's
-GCell pitch), as engine_cpp/flow/regions.cpp derives it.
+GCell pitch), as engine_cpp/grid/gcell_grid.cpp derives it.
 """
 
 from __future__ import annotations

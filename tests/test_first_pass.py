@@ -1,4 +1,4 @@
-"""The first pass kept for replay (``xroute.session.first_pass``, engine_cpp/flow/first_pass.*): regions
+"""The first pass kept for replay (``xroute.session.first_pass``, engine_cpp/loop/first_pass.*): regions
 opened in context are in the state the flow routed them in, on a generated design (no contest data)."""
 
 from __future__ import annotations

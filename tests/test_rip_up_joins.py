@@ -1,5 +1,5 @@
-"""What a rip-up must join again, and what routing joins nothing (engine_cpp/flow/clip.cpp
-``keptConductors``, flow/dangling.cpp), on tiny drawn designs with the exact routing expected (DBU).
+"""What a rip-up must join again, and what routing joins nothing (engine_cpp/region/clip.cpp
+``keptConductors``, loop/dangling.cpp), on tiny drawn designs with the exact routing expected (DBU).
 
 Technology: the drawn stack of ``lef_text.stack`` (M1 and M3 horizontal, M2 vertical; tracks every
 200 from 100, wires 60 wide, default vias V12 and V23). Two cells of one 60 x 60 M1 pin each.

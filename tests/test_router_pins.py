@@ -1,4 +1,4 @@
-"""How the router reaches pins drawn on several layers (engine_cpp/flow/region_prepare.cpp,
+"""How the router reaches pins drawn on several layers (engine_cpp/region/region_prepare.cpp,
 ``pinTouches``), on a tiny drawn design with the exact route expected (DBU).
 
 Technology: the drawn stack of ``lef_text.stack`` with four layers (M1 and M3 horizontal, M2 and

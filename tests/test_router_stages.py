@@ -8,7 +8,7 @@ pin on the track crossing (x + 100, y + 100). Die 4000 x 4000, GCells of 1000.
 
 Stages (engine_cpp): maze search (route/maze), the grid footprint of fixed shapes
 (grid/footprint), minimum-area repair (route/min_area_fix), clipping of a net's routing at a
-region's boundary (flow/clip) and the crossings that join regions (flow/crossings). Regions are
+region's boundary (region/clip) and the crossings that join regions (loop/crossings). Regions are
 opened and routed net by net through ``_engine.RoutingSession(db).open_region(box)``.
 """
 

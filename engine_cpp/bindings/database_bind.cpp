@@ -16,8 +16,8 @@
 #include "bindings/database_parts.hpp"
 #include "db/compare.hpp"
 #include "db/database.hpp"
-#include "flow/dangling.hpp"
 #include "io/readers.hpp"
+#include "loop/dangling.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;

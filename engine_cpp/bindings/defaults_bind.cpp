@@ -2,11 +2,11 @@
 // settings structs themselves, so that Python states none of them a second time.
 #include <nanobind/nanobind.h>
 
-#include "flow/regions.hpp"
-#include "flow/router.hpp"
-#include "flow/search_policy.hpp"
 #include "grid/region_grid.hpp"
 #include "groute/global_router.hpp"
+#include "loop/regions.hpp"
+#include "loop/router.hpp"
+#include "order/search_policy.hpp"
 #include "pa/pin_access.hpp"
 
 namespace nb = nanobind;

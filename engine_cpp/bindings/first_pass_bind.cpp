@@ -1,4 +1,4 @@
-// Python view of the flow's first pass kept for replay (flow/first_pass.hpp):
+// Python view of the flow's first pass kept for replay (loop/first_pass.hpp):
 // route iteration 0 once, then open any of its regions in context, i.e. in
 // the state the flow routed it in (the colours before it committed).
 #include <nanobind/nanobind.h>
@@ -10,8 +10,8 @@
 
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
-#include "flow/first_pass.hpp"
-#include "flow/router.hpp"
+#include "loop/first_pass.hpp"
+#include "loop/router.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -77,7 +77,7 @@ nb::tuple regionRow(const RegionTask& t) {
 void bindFirstPass(nb::module_& m) {
   nb::class_<FirstPassHandle>(m, "FirstPass",
                               "The flow's first pass (iteration 0) of a session's design, kept so that each of its "
-                              "regions can be opened again in context (flow/first_pass.hpp).")
+                              "regions can be opened again in context (loop/first_pass.hpp).")
       .def("__init__", &initFirstPass,
           "session"_a, "region_size"_a = RouterSettings{}.regionSize, "policy"_a = "heuristic", "seed"_a = 1,
           "threads"_a = 1, nb::keep_alive<1, 2>(),

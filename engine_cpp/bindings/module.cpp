@@ -3,7 +3,7 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/string.h>
 
-#include "io/engine_errors.hpp"
+#include "errors/engine_errors.hpp"
 #include "io/input_error.hpp"
 
 namespace nb = nanobind;

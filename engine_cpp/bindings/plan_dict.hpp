@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "flow/router.hpp"
-#include "flow/search_policy.hpp"
+#include "loop/router.hpp"
+#include "order/search_policy.hpp"
 
 namespace xroute {
 

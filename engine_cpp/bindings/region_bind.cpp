@@ -1,5 +1,5 @@
 // Python view of one routing region, steppable net by net: what a learning
-// environment drives. A RoutingSession (flow/session.hpp) holds what every
+// environment drives. A RoutingSession (loop/session.hpp) holds what every
 // region of a design shares (tracks, pin access, fixed shapes); a Region
 // routes the nets of one box in the order the caller chooses and can be
 // committed to the design.
@@ -16,12 +16,12 @@
 #include "bindings/arrays.hpp"
 #include "bindings/marker_list.hpp"
 #include "bindings/region_handle.hpp"
-#include "flow/search_policy.hpp"
 #include "db/database.hpp"
-#include "flow/region_router.hpp"
-#include "flow/regions.hpp"
-#include "flow/router.hpp"
-#include "flow/session.hpp"
+#include "loop/regions.hpp"
+#include "loop/router.hpp"
+#include "loop/session.hpp"
+#include "order/search_policy.hpp"
+#include "region/region_router.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -236,7 +236,7 @@ void bindRegionRouting(RegionClass& cls) {
               throw nb::value_error(e.what());
             }
             nb::gil_scoped_release release;
-            h.get().routeAll(*p, h.region->ws);
+            routeInOrder(h.get(), *p, h.region->ws);
           },
           "policy"_a = "heuristic", "seed"_a = 1, "search_budget"_a = SearchSettings{}.budget,
           "search_width"_a = SearchSettings{}.width,

@@ -9,12 +9,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "flow/region_router.hpp"
-#include "flow/session.hpp"
+#include "loop/session.hpp"
+#include "region/region_router.hpp"
 
 namespace xroute {
 
-// The engine's region (flow/session.hpp) and what Python may do with it.
+// The engine's region (loop/session.hpp) and what Python may do with it.
 struct RegionHandle {
   RoutingSession* session = nullptr;      // null for a lent region
   std::unique_ptr<SessionRegion> region;  // its router is null once a lent region is returned

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "bindings/plan_dict.hpp"
-#include "flow/router.hpp"
+#include "loop/router.hpp"
 
 namespace xroute {
 

@@ -20,10 +20,11 @@
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
 #include "db/database.hpp"
-#include "flow/policy.hpp"
-#include "flow/regions.hpp"
-#include "flow/router.hpp"
-#include "flow/search_policy.hpp"
+#include "grid/gcell_grid.hpp"
+#include "loop/regions.hpp"
+#include "loop/router.hpp"
+#include "order/policy.hpp"
+#include "order/search_policy.hpp"
 #include "pa/pin_access.hpp"
 
 namespace nb = nanobind;
@@ -202,7 +203,7 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
   return result;
 }
 
-// GCells per region side of a run whose region size is 0 (flow/regions.hpp autoRegionSize).
+// GCells per region side of a run whose region size is 0 (loop/regions.hpp autoRegionSize).
 int autoRegionSizeOf(const Database& db) {
   const TrackSet tracks = buildTracks(db.tech, db.design);
   const PinAccessTable access = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{});

@@ -1,8 +1,8 @@
 // The router's settings structs as Python classes: MazeCosts (route/maze.hpp)
-// and RouterSettings (flow/router.hpp), field by field, with the C++ defaults.
+// and RouterSettings (loop/router.hpp), field by field, with the C++ defaults.
 #include <nanobind/nanobind.h>
 
-#include "flow/router.hpp"
+#include "loop/router.hpp"
 #include "route/maze.hpp"
 
 namespace nb = nanobind;
@@ -67,7 +67,7 @@ void initRouterSettings(RouterSettings* self, int regionSize, int iterations, in
 void bindRouterSettings(nb::module_& m) {
   const RouterSettings d;
   nb::class_<RouterSettings>(m, "RouterSettings",
-                             "The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).")
+                             "The routing run's settings, as in loop/router.hpp (the schedule is route()'s argument).")
       .def("__init__", &initRouterSettings, "region_size"_a = d.regionSize, "iterations"_a = d.iterations,
            "threads"_a = d.threads, "costs"_a = d.costs, "use_penalty_step"_a = d.usePenaltyStep,
            "access_points_per_pin"_a = d.accessPointsPerPin, "marker_penalty"_a = d.markerPenalty,

@@ -1,6 +1,6 @@
 #include "grid/region_grid.hpp"
 
-#include "io/engine_errors.hpp"
+#include "errors/engine_errors.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -10,7 +10,7 @@
 
 #include "db/design.hpp"
 #include "db/tech.hpp"
-#include "flow/regions.hpp"
+#include "grid/gcell_grid.hpp"
 #include "grid/tracks.hpp"
 
 namespace xroute {
@@ -38,7 +38,7 @@ struct GrGrid {
   int gcellY(Dbu y) const;  // GCell row holding y (clamped)
 };
 
-// Builds the grid (DEF GCELLGRID, else the regular grid flow/regions.cpp
+// Builds the grid (DEF GCELLGRID, else the regular grid grid/gcell_grid.cpp
 // derives: guide pitch, else 15 pitches) and counts capacities: a track is
 // blocked for an edge when a pin, obstruction, layer blockage or special-net
 // shape, grown by half the wire width plus the layer's minimum spacing,

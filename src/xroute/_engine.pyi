@@ -373,7 +373,7 @@ class MazeCosts:
 
 class RouterSettings:
     """
-    The routing run's settings, as in flow/router.hpp (the schedule is route()'s argument).
+    The routing run's settings, as in loop/router.hpp (the schedule is route()'s argument).
     """
 
     def __init__(self, region_size: int = 0, iterations: int = 16, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
@@ -640,7 +640,7 @@ class Region:
 
 class FirstPass:
     """
-    The flow's first pass (iteration 0) of a session's design, kept so that each of its regions can be opened again in context (flow/first_pass.hpp).
+    The flow's first pass (iteration 0) of a session's design, kept so that each of its regions can be opened again in context (loop/first_pass.hpp).
     """
 
     def __init__(self, session: RoutingSession, region_size: int = 0, policy: str = 'heuristic', seed: int = 1, threads: int = 1) -> None:

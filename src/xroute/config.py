@@ -189,7 +189,7 @@ class CostSection:
     """The XRoute paper's cost: wirelength_weight * WL(µm) + via_weight * vias + drv_weight * DRVs.
 
     Commands, reports and the environments' rewards use it. The defaults are the engine's
-    (RegionCostWeights, engine_cpp/flow/search_policy.hpp); the rollout / victims / best-of-K searches score
+    (RegionCostWeights, engine_cpp/order/search_policy.hpp); the rollout / victims / best-of-K searches score
     trial routings with those defaults, not with values changed here."""
 
     wirelength_weight: float = setting(REGION_COST_WEIGHTS[0], min=0.0, unit="per µm")

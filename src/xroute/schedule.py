@@ -37,7 +37,7 @@ MAX_PENALTY = 10**12  # cost units: far above any weight that steers the maze (i
 
 @dataclass(frozen=True)
 class IterationPlan:
-    """What one iteration runs with (the engine's IterationPlan, flow/router.hpp)."""
+    """What one iteration runs with (the engine's IterationPlan, loop/router.hpp)."""
 
     region_size: int  # GCells per region side, 1..MAX_REGION_SIZE
     offset: int  # GCells, 0 <= offset < region_size

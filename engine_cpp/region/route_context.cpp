@@ -1,0 +1,125 @@
+#include "region/route_context.hpp"
+
+#include <algorithm>
+
+#include "verify/scoring.hpp"
+
+namespace xroute {
+
+void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out) {
+  for (const RouteWire& w : routing.wires) {
+    Rect r;
+    if (routeWireRect(tech, w, r)) out.push_back({w.layer, r});
+  }
+  for (const RouteVia& v : routing.vias) {
+    for (const ViaShape& s : design.via(tech, v.via).shapes) out.push_back({s.layer, s.rect.translated(v.at)});
+  }
+  for (const RoutePatch& p : routing.patches) out.push_back({p.layer, p.rect});
+}
+
+MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design) {
+  return pitchCosts(guideCosts(costs, design.guidesBuiltIn), scorerPitch(tech));
+}
+
+RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPointsPerPin) : tech(t), design(d) {
+  tracks = buildTracks(tech, design);
+  vias = chooseVias(tech, tracks);
+  rules = makeFootprintRules(tech, tracks, vias);
+  PinAccessSettings pas;
+  pas.threads = std::max(1, threads);
+  pas.maxPointsPerPin = std::max(1, accessPointsPerPin);
+  access = computePinAccess(tech, design, tracks, pas);
+  gcells = makeGCellGrid(design, tracks);
+
+  pinNet.assign(design.pinRefs.size(), -1);
+  for (size_t n = 0; n < design.nets.size(); ++n) {
+    for (int32_t r = design.netPinStart[n]; r < design.netPinStart[n + 1]; ++r) pinNet[r] = static_cast<int32_t>(n);
+  }
+
+  for (DrcShape& s : collectDesignShapes(tech, design)) {
+    if (isFixedOrigin(s.origin)) fixedShapes.push_back(s);
+  }
+  std::vector<Rect> rects;
+  rects.reserve(fixedShapes.size());
+  for (const DrcShape& s : fixedShapes) rects.push_back(s.rect);
+  fixedIndex = BoxIndex(std::move(rects));
+  fixedCrossEnds.assign(fixedShapes.size(), 0);
+  std::vector<Rect> others;
+  for (size_t i = 0; i < fixedShapes.size(); ++i) {
+    const DrcShape& s = fixedShapes[i];
+    const int z = tech.layer(s.layer).routingIndex;
+    if (z < 0 || z >= static_cast<int>(tracks.layers.size()) || !narrowAcross(rules, z, s.rect)) continue;
+    others.clear();
+    fixedIndex.query(s.rect, [&](int32_t j) {
+      const DrcShape& o = fixedShapes[j];
+      if (j != static_cast<int32_t>(i) && o.layer == s.layer && o.net == s.net && o.rect.overlaps(s.rect))
+        others.push_back(o.rect);
+    });
+    fixedCrossEnds[i] = openCrossEnds(s.rect, rules.horizontal[z] != 0, others);
+  }
+
+  netRules = NetRules(tech, design, tracks, vias);
+  Dbu maxPitch = 0;
+  for (const LayerTracks& lt : tracks.layers) maxPitch = std::max(maxPitch, lt.pitch);
+  halo = 2 * maxPitch;
+  halo = std::max(halo, netRules.reach());  // a rule's wide wire and spacing reach further
+  rebuildRoutedIndex();
+}
+
+DrcOptions RouteContext::drcOptions() const {
+  DrcOptions o;
+  o.skipFixedPairs = true;
+  o.ndrSpacing = netRules.drcSpacing();
+  return o;
+}
+
+int32_t RouteContext::gcellX(Dbu x) const {
+  const auto& xs = gcells.xs;
+  const int g = static_cast<int>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin()) - 1;
+  return std::clamp(g, 0, gcells.nx() - 1);
+}
+
+int32_t RouteContext::gcellY(Dbu y) const {
+  const auto& ys = gcells.ys;
+  const int g = static_cast<int>(std::upper_bound(ys.begin(), ys.end(), y) - ys.begin()) - 1;
+  return std::clamp(g, 0, gcells.ny() - 1);
+}
+
+void RouteContext::rebuildRoutedIndex() {
+  const int nx = gcells.nx(), ny = gcells.ny();
+  bucketNets.assign(static_cast<size_t>(nx) * ny, {});
+  std::vector<NetShape> shapes;
+  for (size_t n = 0; n < design.nets.size(); ++n) {
+    const NetRouting& routing = design.nets[n].routing;
+    if (routing.empty()) continue;
+    shapes.clear();
+    netRoutingShapes(tech, design, routing, shapes);
+    for (const NetShape& s : shapes) {
+      const int x0 = gcellX(s.rect.xlo), x1 = gcellX(s.rect.xhi);
+      const int y0 = gcellY(s.rect.ylo), y1 = gcellY(s.rect.yhi);
+      for (int y = y0; y <= y1; ++y) {
+        for (int x = x0; x <= x1; ++x) {
+          std::vector<int32_t>& b = bucketNets[static_cast<size_t>(y) * nx + x];
+          if (b.empty() || b.back() != static_cast<int32_t>(n)) b.push_back(static_cast<int32_t>(n));
+        }
+      }
+    }
+  }
+}
+
+std::vector<int32_t> RouteContext::netsNear(const Rect& w) const {
+  std::vector<int32_t> out;
+  const int nx = gcells.nx();
+  const int x0 = gcellX(w.xlo), x1 = gcellX(w.xhi), y0 = gcellY(w.ylo), y1 = gcellY(w.yhi);
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const auto& b = bucketNets[static_cast<size_t>(y) * nx + x];
+      out.insert(out.end(), b.begin(), b.end());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace xroute
