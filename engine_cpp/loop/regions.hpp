@@ -15,7 +15,7 @@ namespace xroute {
 // The default region (RouterSettings::regionSize 0): kRegionGCells GCells a side, or more while the
 // grids of most regions stay within kRegionGridNodes nodes a layer. A region's grid has a line at
 // every track of every layer and at every terminal in it, so its memory and the maze's work follow
-// its tracks and pins, not its GCells; larger regions cut fewer nets. flow/README.md has the
+// its tracks and pins, not its GCells; larger regions cut fewer nets. loop/README.md has the
 // measurement (15 GCells on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3).
 inline constexpr int kRegionGCells = 10;
 inline constexpr double kRegionGridNodes = 90000;

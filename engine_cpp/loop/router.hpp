@@ -61,7 +61,7 @@ struct RouterSettings {
   // Once a check leaves lateSearchMarkers markers or fewer (and some), the next iterations order
   // their regions' nets by the victims search with lateSearchBudget trial routings per region
   // (IterationPlan::searchBudget), when the run's policy is the heuristic; 0 = never. Those regions
-  // are few by then: on ispd19_test3 the search costs about 1 s an iteration (flow/README.md).
+  // are few by then: on ispd19_test3 the search costs about 1 s an iteration (loop/README.md).
   int lateSearchMarkers = 50;
   int lateSearchBudget = 4;
   // After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins

@@ -33,7 +33,7 @@ struct MazeCosts {
   int64_t outOfGuideFactor = 3;
   // outOfGuideFactor where the guides are the built-in global router's (Design::guidesBuiltIn, applied
   // by guideCosts): no scorer counts wire outside them, they only plan the congestion. 1 measured
-  // better than 2 on ispd19_test3, ispd18_test1 and ispd19_test1 with built-in guides (flow/README.md).
+  // better than 2 on ispd19_test3, ispd18_test1 and ispd19_test1 with built-in guides (loop/README.md).
   int64_t builtInGuideFactor = 1;
   int64_t fixedPenalty = 400000;   // entering a node a fixed shape of another net forbids
   int64_t usePenalty = 8000;       // per routed shape of another net a wire/via here would violate
@@ -46,7 +46,7 @@ struct MazeCosts {
   // Entering the landing right above another net's access point (its via's metal) while that net is
   // unrouted. 0 measured best on ispd18_test1 (contest score 293,217 -> 291,859, 34,794 -> 34,440 vias;
   // 2,000: 292,280; 6,000: 293,144; 20,000 before) and on ispd19_test1, a little worse on ispd19_test3
-  // (flow/README.md): the detours it forced on the nets routed first cost more than the markers it spared.
+  // (loop/README.md): the detours it forced on the nets routed first cost more than the markers it spared.
   int64_t landingPenalty = 0;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
 };

@@ -35,7 +35,7 @@ returns. A policy with ``next_net`` is used that way even if it also has ``order
 :class:`VictimsPolicy`, :class:`BestOfPolicy`) run in the engine: they route trial orders on
 copies of the region, score each by the region's cost (0.5 WL(um) + 4 vias + 500 markers inside
 the region) and keep the cheapest, the heuristic's order among the trials, so a region never
-ends costlier than the heuristic's routing. ``budget`` = trial routings per region (see engine_cpp/flow/README.md).
+ends costlier than the heuristic's routing. ``budget`` = trial routings per region (see engine_cpp/loop/README.md).
 
 A policy that sets ``needs_region = True`` (an ONNX model, a learning environment) also finds, in
 ``region["engine_region"]``, the engine's Region being routed, lent for that one call: its live

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
 RoutingSession = _engine.RoutingSession
 """A design's shared routing state (tracks, pin access, fixed shapes): ``open_region(box, iteration)``,
-``gcell_lines``; see ``engine_cpp/flow/README.md``."""
+``gcell_lines``; see ``engine_cpp/loop/README.md``."""
 
 Region = _engine.Region
 """One region being routed: ``candidates``, ``grid()``, ``route_net(i)``, ``unrouted()``, ``metrics()``, ``commit()``."""
@@ -25,7 +25,7 @@ Region = _engine.Region
 
 FirstPass = _engine.FirstPass
 """The flow's first pass of a session's design, kept for replay: ``regions``, ``open_region(i)`` (region i in
-context: the colours routed before it committed), ``restore(colour)``, ``report``; see ``engine_cpp/flow/README.md``."""
+context: the colours routed before it committed), ``restore(colour)``, ``report``; see ``engine_cpp/loop/README.md``."""
 
 
 def open_session(design: Design, threads: int = 1) -> RoutingSession:
