@@ -2,7 +2,8 @@
 
 The list is a JSON file named by ``$XROUTE_REPLAY_PLANS``: entry i changes iteration i's plan, the
 iterations after the list run the rule. An entry is a dict of IterationPlan fields, plus
-``"weights": F``, which multiplies the rule's marker, history and other-net weights by F.
+``"weights": F``, which multiplies the rule's marker, history and other-net weights by F. A region
+size without an offset takes the rule's offsets for that size (0, C/3, 2C/3 by iteration).
 """
 
 from __future__ import annotations
@@ -23,4 +24,6 @@ def plan(history: list[Any], rule: Any) -> dict[str, Any] | None:
     if factor is not None:
         for name in ("marker_penalty", "history_penalty", "use_penalty"):
             change[name] = int(round(getattr(rule, name) * float(factor)))
+    if "region_size" in change and "offset" not in change:
+        change["offset"] = (i % 3) * int(change["region_size"]) // 3
     return change
