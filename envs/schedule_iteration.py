@@ -166,14 +166,13 @@ class ScheduleIterationEnv(gym.Env):
         return {"action_mask": self._mask(), "iteration": len(self._history), "history": history,
                 "menu": [name for name, _ in self.menu], **extra}
 
-    def _plan(self, action: int) -> Any:
-        from dataclasses import replace
-
+    def _plan(self, action: int) -> dict[str, Any]:
+        """The menu entry's change to the rule's plan (xroute.schedule.plan_from makes it the plan)."""
         change = dict(self.menu[action][1])
         if "region_size" in change and "offset" not in change:
             size = int(change["region_size"])
             change["offset"] = ((len(self._history) % 3) * size) // 3
-        return replace(self._rule, **change)
+        return change
 
     # -- gymnasium API --------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):

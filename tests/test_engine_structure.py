@@ -38,6 +38,37 @@ def test_router_settings_reject_unknown_fields() -> None:
         _engine.RouterSettings(no_such_setting=1)  # type: ignore[call-arg]
 
 
+def test_settings_structs_are_bound_field_by_field() -> None:
+    """MazeCosts, RouterSettings and IterationPlan: keyword-only constructors over the bound fields,
+    changed copies, their fields as a dict, equality by value, copies and pickling."""
+    import copy
+    import pickle
+
+    plan = _engine.IterationPlan(region_size=4, use_penalty=9)
+    assert plan.to_dict() == {"region_size": 4, "offset": 0, "repair_rounds": 0,
+                              "marker_penalty": _engine.DEFAULTS["marker_penalty"],
+                              "history_penalty": _engine.DEFAULTS["history_penalty"], "use_penalty": 9,
+                              "stop": False, "search_budget": 0}
+    changed = plan.replace(stop=True)
+    assert changed.stop and not plan.stop and changed != plan and changed.replace(stop=False) == plan
+    s = _engine.RouterSettings(threads=3, costs=_engine.MazeCosts(via_cost=7))
+    for twin in (pickle.loads(pickle.dumps(s)), copy.deepcopy(s)):
+        assert twin == s and twin is not s
+    twin.costs.via_cost = 8
+    assert s.costs.via_cost == 7 and twin != s
+    with pytest.raises(TypeError, match="IterationPlan has no field 'colour'"):
+        plan.replace(colour=1)
+    with pytest.raises(TypeError):
+        _engine.MazeCosts(1200)  # keywords only
+
+
+def test_a_plan_out_of_the_engines_limits_is_refused_not_clamped() -> None:
+    """The engine's own check of a planner's plan (the library names the schedule policy before it)."""
+    db = load_design(DEMO).engine
+    with pytest.raises(ValueError, match=r"plan: offset must be in 0\.\.1, got 5"):
+        _engine.route(db, planner=lambda history, rule: rule.replace(region_size=2, offset=5))
+
+
 def test_route_checks_the_settings_fields() -> None:
     db = load_design(DEMO).engine
     with pytest.raises(ValueError, match=r"region_size must be in 0\.\.1000 \(0: auto\)"):

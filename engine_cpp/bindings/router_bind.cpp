@@ -16,9 +16,9 @@
 #include <type_traits>
 
 #include "bindings/arrays.hpp"
-#include "bindings/plan_dict.hpp"
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
+#include "bindings/settings_check.hpp"
 #include "db/database.hpp"
 #include "grid/gcell_grid.hpp"
 #include "loop/regions.hpp"
@@ -186,7 +186,12 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
       nb::gil_scoped_acquire gil;
       nb::list history;
       for (const IterationReport& r : done) history.append(reportDict(r, dbu));
-      return planFromDict(planner(history, planDict(rule)), rule);
+      IterationPlan p = nb::cast<IterationPlan>(planner(history, nb::cast(rule, nb::rv_policy::copy)));
+      checkPlan(p);
+      const int64_t usePenalty = p.costs.usePenalty;  // the one cost a plan sets; the others are the run's
+      p.costs = rule.costs;
+      p.costs.usePenalty = usePenalty;
+      return p;
     };
   }
   RouteOutcome out;
@@ -241,9 +246,9 @@ void bindRouter(nb::module_& m) {
       "threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. "
       "schedule: per-iteration "
       "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
-      "planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the "
-      "iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, "
-      "history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; "
-      "stop: end the run, from iteration 1 on). "
-      "Returns {'iterations': [report, ...]}.");
+      "planner(history: [report, ...], rule: IterationPlan) -> IterationPlan is asked before each iteration, with "
+      "the reports of the iterations done and the rule's plan; the iteration runs the plan it returns (stop: end "
+      "the run, from iteration 1 on; search_budget B >= 1: the victims search with that budget in this iteration; "
+      "a field out of the engine's limits is a RouteArgumentError). "
+      "Returns {'iterations': [report, ...]}; a report's plan is its IterationPlan's to_dict().");
 }
