@@ -66,9 +66,9 @@ class NetOrderingEvaluationEnv(RegionEnv):
         render_mode: str | None = None,
         observation: str = "grid",
     ) -> None:
-        from xroute.router import RouteSettings
+        from xroute.router import router_settings
 
-        RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
+        self._settings = router_settings(region_size=region_size, iterations=iteration_count, threads=1)  # checked
         self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.testcase_name = testcase_name
         self.region_size = region_size
@@ -87,8 +87,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
 
         self.design = prepare_design(self.testcase_name)
         design, policy = self.design, _LendingPolicy(self._bridge)
-        self._bridge.start(lambda: route_design(design, region_size=self.region_size,
-                                                iterations=self.iteration_count, threads=1, policy=policy))
+        self._bridge.start(lambda: route_design(design, settings=self._settings, policy=policy))
         self.regions_done = 0
 
     def _stop(self) -> None:

@@ -75,10 +75,10 @@ class ScheduleIterationEnv(gym.Env):
                  *, menu: Sequence[tuple[str, dict[str, Any]]] = DEFAULT_MENU, work_weight: float = 1.0,
                  threads: int = 1, render_mode: str | None = None) -> None:
         from xroute.config import CostSection
-        from xroute.router import DEFAULT_ITERATIONS, VIOLATION_TYPES, RouteSettings
+        from xroute.router import DEFAULT_ITERATIONS, VIOLATION_TYPES, router_settings
 
         iteration_count = DEFAULT_ITERATIONS if iteration_count is None else iteration_count
-        RouteSettings(region_size=region_size, iterations=iteration_count, threads=threads)  # validates them
+        self._settings = router_settings(region_size=region_size, iterations=iteration_count, threads=threads)
         if not menu or not all(isinstance(change, dict) for _, change in menu):
             raise ValueError("menu: a non-empty sequence of (name, plan change) pairs")
         self.testcase_name = testcase_name
@@ -104,8 +104,7 @@ class ScheduleIterationEnv(gym.Env):
 
         self.design = prepare_design(self.testcase_name)
         design, policy = self.design, _AgentSchedule(self._bridge)
-        self._bridge.start(lambda: route_design(design, region_size=self.region_size, iterations=self.iteration_count,
-                                                threads=self.threads, schedule_policy=policy))
+        self._bridge.start(lambda: route_design(design, settings=self._settings, schedule_policy=policy))
 
     def _stop(self) -> None:
         """Aborts an unfinished episode and waits for the routing thread to end."""

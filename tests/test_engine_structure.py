@@ -19,7 +19,7 @@ def test_marker_types_are_the_enum_in_order() -> None:
 
 
 def test_reports_count_every_marker_type() -> None:
-    out = _engine.route(load_design(DEMO).engine, iterations=1)
+    out = _engine.route(load_design(DEMO).engine, settings=_engine.RouterSettings(iterations=1))
     assert tuple(out["iterations"][0]["violations_by_type"]) == _engine.MARKER_TYPES
 
 
@@ -74,7 +74,7 @@ def test_route_checks_the_settings_fields() -> None:
     with pytest.raises(ValueError, match=r"region_size must be in 0\.\.1000 \(0: auto\)"):
         _engine.route(db, settings=_engine.RouterSettings(region_size=-1))
     with pytest.raises(ValueError, match="iterations must be in 1"):
-        _engine.route(db, iterations=0, settings=_engine.RouterSettings(iterations=3))
+        _engine.route(db, settings=_engine.RouterSettings(iterations=0))
 
 
 # A generated design that, at region size 2, ends its first two iterations with markers (15, 21); the
@@ -84,10 +84,10 @@ MARKED = "standin_marked"
 
 def _search_budgets(**settings: int) -> list[tuple[int, int]]:
     """(violations, the plan's search budget) per iteration of MARKED routed at region size 2 with these settings."""
-    s = _engine.RouterSettings(region_size=2)
+    s = _engine.RouterSettings(region_size=2, threads=2)
     for key, value in settings.items():
         setattr(s, key, value)
-    out = _engine.route(load_design(MARKED).engine, settings=s, threads=2)
+    out = _engine.route(load_design(MARKED).engine, settings=s)
     return [(r["violations"], r["plan"]["search_budget"]) for r in out["iterations"]]
 
 

@@ -1,7 +1,9 @@
-// What the engine needs of the plans a Python iteration planner returns (IterationPlan), so that no
-// value can make it crash or overflow. The friendly check, with the limits read from
-// _engine.DEFAULTS, is where a plan enters (xroute.schedule.plan_from, naming the schedule policy);
-// this one only refuses: SettingError -> xroute.errors.RouteArgumentError.
+// What the engine needs of the settings and plans Python hands it, so that no value can make it
+// crash or overflow: the one check of route() and FirstPass (RouterSettings) and of the plans an
+// iteration planner returns (IterationPlan). The friendly checks, with the limits read from
+// _engine.DEFAULTS, are where a value enters (the command line, the YAML schema, route_design's
+// keywords, a schedule policy's plan); this one only refuses: SettingError ->
+// xroute.errors.RouteArgumentError.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,19 @@ inline void requireIn(const char* what, int64_t value, int64_t lo, int64_t hi, c
   if (value < lo || value > hi) {
     throw SettingError(std::string(what) + " must be in " + std::to_string(lo) + ".." + std::to_string(hi) + note +
                        ", got " + std::to_string(value));
+  }
+}
+
+inline void checkSettings(const RouterSettings& s) {
+  requireIn("region_size", s.regionSize, 0, kMaxRegionSize, " (0: auto)");
+  requireIn("iterations", s.iterations, 1, kMaxIterations);
+  requireIn("threads", s.threads, 1, kMaxThreads);
+  requireIn("repair_rounds", s.repairRounds, 0, kMaxRepairRounds);
+  requireIn("first_repair_rounds", s.firstRepairRounds, 0, kMaxRepairRounds);
+  requireIn("late_search_budget", s.lateSearchBudget, 0, kMaxSearchBudget);
+  for (const ScheduleStep& step : s.schedule) {
+    requireIn("schedule: region size", step.regionSize, 1, kMaxRegionSize);
+    requireIn("schedule: offset", step.offset, 0, step.regionSize - 1);
   }
 }
 
