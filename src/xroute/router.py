@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from functools import partial
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
@@ -71,35 +72,23 @@ def _integer(name: str, value: Any) -> int:
     return value
 
 
-def _region_size(value: Any) -> int:
-    size = _integer("region_size", value)
-    if size < 0:
-        raise RouteArgumentError(f"region size must be at least 1 GCell (0: auto), got {size}")
-    if size > MAX_REGION_SIZE:
-        raise RouteArgumentError(f"region size must be at most {MAX_REGION_SIZE} GCells, got {size}")
-    return size
+# RouterSettings field -> (lowest, highest: the engine's limits; the error below, the error above).
+_RANGES: dict[str, tuple[int, int, str, str]] = {
+    "region_size": (0, MAX_REGION_SIZE, "region size must be at least 1 GCell (0: auto)",
+                    "region size must be at most {hi} GCells"),
+    "iterations": (1, MAX_ITERATIONS, "iterations must be between 1 and {hi}", "iterations must be between 1 and {hi}"),
+    "threads": (1, MAX_THREADS, "threads must be at least 1", "threads must be at most {hi}"),
+    "repair_rounds": (0, defaults.MAX_REPAIR_ROUNDS, "repair_rounds must be an integer in 0..{hi}",
+                      "repair_rounds must be an integer in 0..{hi}"),
+}
 
 
-def _iterations(value: Any) -> int:
-    n = _integer("iterations", value)
-    if not 1 <= n <= MAX_ITERATIONS:
-        raise RouteArgumentError(f"iterations must be between 1 and {MAX_ITERATIONS}, got {n}")
+def _in_range(name: str, value: Any) -> int:
+    lo, hi, below, above = _RANGES[name]
+    n = _integer(name, value)
+    if not lo <= n <= hi:
+        raise RouteArgumentError(f"{(below if n < lo else above).format(hi=hi)}, got {n}")
     return n
-
-
-def _threads(value: Any) -> int:
-    n = _integer("threads", value)
-    if n < 1:
-        raise RouteArgumentError(f"threads must be at least 1, got {n}")
-    if n > MAX_THREADS:
-        raise RouteArgumentError(f"threads must be at most {MAX_THREADS}, got {n}")
-    return n
-
-
-def _repair_rounds(value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= defaults.MAX_REPAIR_ROUNDS:
-        raise RouteArgumentError(f"repair_rounds must be an integer in 0..{defaults.MAX_REPAIR_ROUNDS}, got {value!r}")
-    return value
 
 
 def _schedule(value: Any) -> list[tuple[int, int]]:
@@ -121,8 +110,7 @@ def _schedule(value: Any) -> list[tuple[int, int]]:
 
 
 # The settings route_design and the commands take by name, each with its check (the engine's limits).
-_CHECKS: dict[str, Callable[[Any], Any]] = {"region_size": _region_size, "iterations": _iterations,
-                                             "threads": _threads, "repair_rounds": _repair_rounds,
+_CHECKS: dict[str, Callable[[Any], Any]] = {**{name: partial(_in_range, name) for name in _RANGES},
                                              "schedule": _schedule}
 
 
