@@ -21,7 +21,7 @@ def test_status_and_both_streams_come_back_whole() -> None:
     # More than a pipe holds on each stream: a runner reading one pipe after the other would wait forever.
     run = run_process(python("import sys; sys.stdout.write('o' * 200_000); sys.stderr.write('e' * 200_000 + "
                              "'\\nlast words\\n'); sys.exit(3)"))
-    assert run.returncode == 3 and not run.timed_out
+    assert run.returncode == 3 and not run.stopped
     assert run.stdout == "o" * 200_000 and run.stderr.startswith("e" * 200_000)
     assert run.last_line == "last words"
     assert run.metrics is None
@@ -36,7 +36,10 @@ def test_the_kernel_figures_are_the_childs() -> None:
 
 def test_a_child_past_its_time_limit_is_killed() -> None:
     run = run_process(python("import time; time.sleep(60)"), timeout=0.5)
-    assert run.timed_out and run.returncode == -9 and run.last_line == "timed out"
+    assert run.stopped and run.returncode == -9 and run.last_line == "stopped at its time limit"
+    busy = run_process(python("while True: pass"), cpu_limit=0.5)  # CPU seconds, not wall
+    assert busy.stopped and busy.returncode == -9 and busy.cpu_s >= 0.5
+    assert not run_process(python("pass"), cpu_limit=60).stopped
 
 
 def test_the_environment_is_added_to(tmp_path: Path) -> None:
