@@ -49,14 +49,11 @@ DEFAULT = ["demo", "ispd18_sample", "ispd18_sample2", "ispd18_sample3", "ispd19_
 
 
 def run_with_rss(cmd: list[str]) -> tuple[subprocess.CompletedProcess, float, float]:
-    start = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    out = proc.stdout.read() if proc.stdout else ""
-    err = proc.stderr.read() if proc.stderr else ""
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.perf_counter() - start
-    code = os.waitstatus_to_exitcode(status)
-    return subprocess.CompletedProcess(cmd, code, out, err), wall, usage.ru_maxrss / 1024
+    """(the finished process, wall seconds, peak RSS MB) of ``cmd`` (xroute.route_process)."""
+    from xroute.route_process import run_process
+
+    run = run_process(cmd)
+    return subprocess.CompletedProcess(cmd, run.returncode, run.stdout, run.stderr), run.wall_s, run.peak_rss_mb
 
 
 def check(xroute: str, testcase: str, def_path: Path, out: Path) -> dict:

@@ -22,10 +22,8 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -51,29 +49,19 @@ print(json.dumps({"import_s": t1 - t0, "load_s": t2 - t1, "route_s": r.seconds, 
 """
 
 
-def _child_env() -> dict[str, str]:
-    return os.environ.copy()
-
-
 def run_once(args: argparse.Namespace) -> dict:
+    from xroute.route_process import run_process
+
     with tempfile.TemporaryDirectory(prefix="route_bench_") as out:
         payload = json.dumps({"testcase": args.testcase, "region_size": args.region_size,
                               "iterations": args.iterations, "threads": args.threads, "policy": args.policy,
                               "seed": args.seed, "out": out})
-        start = time.perf_counter()
-        proc = subprocess.Popen([sys.executable, "-c", CHILD, payload], stdout=subprocess.PIPE, env=_child_env(),
-                                text=True)
-        stdout = proc.stdout.read() if proc.stdout else ""
-        _, status, usage = os.wait4(proc.pid, 0)
-        wall = time.perf_counter() - start
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        if proc.stdout:
-            proc.stdout.close()
-    if proc.returncode != 0:
-        sys.exit(f"route_bench: the child failed with status {proc.returncode}")
-    result = json.loads(stdout)
-    result["wall_s"] = wall
-    result["peak_rss_mb"] = usage.ru_maxrss / 1024  # KiB on Linux
+        run = run_process([sys.executable, "-c", CHILD, payload])
+    if run.returncode != 0:
+        sys.exit(f"route_bench: the child failed with status {run.returncode}: {run.last_line}")
+    result = json.loads(run.stdout)
+    result["wall_s"] = run.wall_s
+    result["peak_rss_mb"] = run.peak_rss_mb
     return result
 
 

@@ -25,12 +25,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import subprocess
 import sys
 import time
 from pathlib import Path
 
-XROUTE = (sys.executable, "-m", "xroute")
 TEN_THEN_FIVE = "10:0,5:1,5:3,5:0,5:1,5:3,5:0,5:1,5:3,5:0"
 MENU: list[tuple[str, list[str]]] = [
     ("default", []),
@@ -50,22 +48,18 @@ BAND = 0.01  # wirelength and vias within 1% of the default's
 
 def run(design: str, name: str, flags: list[str], threads: int, out_root: Path) -> dict:
     """One route in a fresh process: its figures, wall/CPU seconds and peak RSS."""
+    from xroute.route_process import run_process, xroute_command
+
     run_dir = out_root / f"{design}-{name}"
-    cmd = [*XROUTE, "route", design, "--quiet", "--threads", str(threads), "--out", str(run_dir), *flags]
-    start = time.monotonic()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env={**os.environ, "CI": "true"})
-    text = proc.stdout.read() if proc.stdout else ""
-    _, status, usage = os.wait4(proc.pid, 0)
-    row: dict = {"design": design, "setting": name, "flags": flags, "threads": threads,
-                 "rc": os.waitstatus_to_exitcode(status), "wall_s": round(time.monotonic() - start, 2),
-                 "cpu_s": round(usage.ru_utime + usage.ru_stime, 2), "peak_rss_mb": round(usage.ru_maxrss / 1024, 1),
-                 "load1": round(os.getloadavg()[0], 2)}
-    metrics = run_dir / f"{design}.metrics.json"
-    if row["rc"] != 0 or not metrics.exists():
-        row["error"] = text.strip().splitlines()[-1:] or [f"exit {row['rc']}"]
+    proc = run_process(xroute_command("route", design, "--quiet", "--threads", str(threads), "--out", str(run_dir),
+                                      *flags), env={"CI": "true"}, metrics_dir=run_dir)
+    row: dict = {"design": design, "setting": name, "flags": flags, "threads": threads, "rc": proc.returncode,
+                 "wall_s": round(proc.wall_s, 2), "cpu_s": round(proc.cpu_s, 2),
+                 "peak_rss_mb": round(proc.peak_rss_mb, 1), "load1": round(os.getloadavg()[0], 2)}
+    if proc.returncode != 0 or proc.metrics is None:
+        row["error"] = [proc.last_line]
         return row
-    m = json.loads(metrics.read_text())
+    m = proc.metrics
     f = m["final"]
     row.update(violations=f["violations"], violations_by_type=f["violations_by_type"], wirelength_um=f["wirelength_um"],
                vias=f["vias"], open_nets=f["open_nets"], per_iteration=[it["violations"] for it in m["iterations"]])

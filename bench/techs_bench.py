@@ -22,14 +22,14 @@ machine the wall times grow with it, the CPU times less so.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from xroute.route_process import run_process, xroute_command
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 SHARED = REPO_ROOT.parent / "shared"
@@ -37,7 +37,6 @@ FLOOR_NETS_SHARE = 0.005  # violations on at most this share of the nets
 FLOOR_ROUTE_S = 120.0  # route time under this
 SHORT = {"Short": "Sh", "MetalSpacing": "Sp", "EndOfLine": "EOL", "CutShort": "CSh", "CutSpacing": "CSp",
          "AdjacentCuts": "Adj", "MinArea": "MA", "CornerSpacing": "Cor"}
-XROUTE = (sys.executable, "-m", "xroute")  # the installed command, run by this Python
 NET_NAME = re.compile(r"n\d+")  # the generator's net names (special nets and '-' are not counted)
 
 
@@ -54,29 +53,6 @@ def technologies(techs: Path, testcases: Path, names: list[str]) -> list[tuple[s
     return [t for t in found if not names or any(n in t[0] for n in names)]
 
 
-def _run(cmd: list[str], timeout: float) -> tuple[int, str, float, float, float]:
-    """(exit status, stderr, wall s, CPU s, peak RSS MB) of a child process."""
-    start = time.perf_counter()
-    with tempfile.TemporaryFile("w+") as err:
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, text=True)
-        deadline = start + timeout
-        while True:
-            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
-            if pid:
-                break
-            if time.perf_counter() > deadline:
-                proc.kill()
-                _, status, usage = os.wait4(proc.pid, 0)
-                break
-            time.sleep(0.2)
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        wall = time.perf_counter() - start
-        err.seek(0)
-        text = err.read()
-    timed_out = wall > timeout
-    return (-9 if timed_out else proc.returncode, text, wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024)
-
-
 def _nets_with_violations(report: Path) -> int:
     nets: set[str] = set()
     for line in report.read_text().splitlines()[1:]:
@@ -87,26 +63,25 @@ def _nets_with_violations(report: Path) -> int:
 def bench_one(name: str, lef: Path, args: argparse.Namespace, work: Path) -> dict:
     row: dict = {"tech": name, "cells": args.cells}
     folder = work / f"{name}_gen{args.cells}_s{args.seed}"
-    gen = [*XROUTE, "make-testcase", "--lef", str(lef), "--cells", str(args.cells), "--seed", str(args.seed),
-           "--out", str(folder)]
+    gen = xroute_command("make-testcase", "--lef", str(lef), "--cells", str(args.cells), "--seed", str(args.seed),
+                         "--out", str(folder))
     if args.utilization is not None:
         gen += ["--utilization", str(args.utilization)]
-    status, err, wall, _, _ = _run(gen, args.timeout)
-    row["gen_s"] = wall
-    if status != 0:
-        row["note"] = "generation failed: " + (err.strip().splitlines() or [f"exit {status}"])[-1]
+    made = run_process(gen, timeout=args.timeout)
+    row["gen_s"] = made.wall_s
+    if made.returncode != 0:
+        row["note"] = "generation failed: " + made.last_line
         return row
     out = folder / "out"
     stem = folder / folder.name
-    route = [*XROUTE, "route", "--lef", str(lef), "--def", f"{stem}.def", "--guide", f"{stem}.guide",
-             "--threads", str(args.threads), "--seed", str(args.seed), "--quiet", "--out", str(out)]
-    status, err, wall, cpu, rss = _run(route, args.timeout)
-    row.update(route_wall_s=wall, route_cpu_s=cpu, rss_mb=rss)
-    metrics = out / f"{folder.name}.metrics.json"
-    if status not in (0, 1) or not metrics.is_file():
-        row["note"] = f"route failed (exit {status}): " + (err.strip().splitlines() or ["timed out"])[-1]
+    route = xroute_command("route", "--lef", str(lef), "--def", f"{stem}.def", "--guide", f"{stem}.guide",
+                           "--threads", str(args.threads), "--seed", str(args.seed), "--quiet", "--out", str(out))
+    routed = run_process(route, timeout=args.timeout, metrics_dir=out)
+    row.update(route_wall_s=routed.wall_s, route_cpu_s=routed.cpu_s, rss_mb=routed.peak_rss_mb)
+    if routed.returncode not in (0, 1) or routed.metrics is None:
+        row["note"] = f"route failed (exit {routed.returncode}): {routed.last_line}"
         return row
-    final = json.loads(metrics.read_text())["final"]
+    final = routed.metrics["final"]
     row.update(nets=final["nets"], violations=final["violations"], by_type=final["violations_by_type"],
                opens=final["open_nets"], wl_um=final["wirelength_um"], vias=final["vias"],
                route_s=final["route_seconds"], bad_nets=_nets_with_violations(out / f"{folder.name}.drc.rpt"))

@@ -72,6 +72,7 @@ def plan_jobs(cfg: BatchConfig) -> list[Job]:
         for policy in b.policies:
             label = policy_label(policy)
             for entry in entries or (None,):
+                steps = entry.iteration_schedule if entry else None  # None: the base config's; []: none
                 base = run_settings(
                     cfg.base,
                     region_size=entry.region_size if entry else None,
@@ -79,10 +80,8 @@ def plan_jobs(cfg: BatchConfig) -> list[Job]:
                     threads=entry.thread_count if entry else None,
                     policy=policy,
                     seed=entry.seed if entry else None,
+                    schedule=None if steps is None else tuple((e.region_size, e.offset) for e in steps),
                 )
-                if entry is not None and entry.iteration_schedule is not None:
-                    base = RunSettings(**{**base.__dict__,
-                                          "schedule": tuple((e.region_size, e.offset) for e in entry.iteration_schedule)})
                 name = entry.name if entry else "default"
                 jobs.append(Job(f"{testcase}__{label}__{name}", testcase, label, name, base, cfg.base.cost))
     ids = [j.id for j in jobs]

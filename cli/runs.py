@@ -20,10 +20,10 @@ def route_testcase(testcase: str, settings: RunSettings, out_dir: str | Path,
     from xroute import pipeline
     from xroute.policies import get_policy
 
-    route_settings = settings.route_settings()
     out_dir = Path(out_dir).absolute()  # before the policy's code runs (it may call os.chdir)
     policy = get_policy(settings.policy, settings.seed)
-    return pipeline.run(testcase, out_dir, route_settings, policy, progress)
+    return pipeline.run(testcase, out_dir, settings.router, policy, progress, seed=settings.seed,
+                        policy_timeout=settings.policy_timeout)
 
 
 def run_summary(outputs: RouteOutputs, cost: CostSection) -> dict[str, Any]:

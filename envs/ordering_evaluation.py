@@ -18,8 +18,6 @@ only seeds ``self.np_random`` (the env draws nothing from it).
 
 from __future__ import annotations
 
-import queue
-import threading
 from typing import Any
 
 import numpy as np
@@ -32,10 +30,7 @@ from xroute.envs.core import (
     RewardFn,
     empty_observation,
 )
-
-
-class _Aborted(Exception):
-    """Raised inside the router's policy call when the env drops an unfinished episode."""
+from xroute.envs.engine_bridge import EngineBridge
 
 
 class _LendingPolicy:
@@ -45,15 +40,12 @@ class _LendingPolicy:
     name = "rl-agent"
     needs_region = True
 
-    def __init__(self, events: queue.Queue, resume: queue.Queue) -> None:
-        self.events = events
-        self.resume = resume
+    def __init__(self, bridge: EngineBridge) -> None:
+        self.bridge = bridge
 
     def order(self, region: dict[str, Any], features: np.ndarray) -> list[int]:
         info = {k: v for k, v in region.items() if k != "engine_region"}
-        self.events.put(("region", region["engine_region"], info))
-        if self.resume.get() == "abort":
-            raise _Aborted()
+        self.bridge.ask((region["engine_region"], info))
         return list(range(len(features)))  # every net is routed already; nothing is left to order
 
 
@@ -74,21 +66,18 @@ class NetOrderingEvaluationEnv(RegionEnv):
         render_mode: str | None = None,
         observation: str = "grid",
     ) -> None:
-        from xroute.router import RouteSettings
+        from xroute.router import router_settings
 
-        RouteSettings(region_size=region_size, iterations=iteration_count)  # validates both
+        self._settings = router_settings(region_size=region_size, iterations=iteration_count, threads=1)  # checked
         self._init_spaces(max_candidates, observation, render_mode, weights, reward_fn)
         self.testcase_name = testcase_name
         self.region_size = region_size
         self.iteration_count = iteration_count
         self.out_dir = out_dir
         self.design: Any = None
-        self._thread: threading.Thread | None = None
-        self._events: queue.Queue = queue.Queue()
-        self._resume: queue.Queue = queue.Queue()
+        self._bridge = EngineBridge("xroute-eval-env")
         self._stepper: RegionStepper | None = None
         self._region_info: dict[str, Any] = {}
-        self._finished = True
         self.regions_done = 0
 
     # -- the routing thread -------------------------------------------------
@@ -97,53 +86,24 @@ class NetOrderingEvaluationEnv(RegionEnv):
         from xroute.router import route_design
 
         self.design = prepare_design(self.testcase_name)
-        self._events, self._resume = queue.Queue(), queue.Queue()
-        policy = _LendingPolicy(self._events, self._resume)
-        design, events = self.design, self._events
-
-        def run() -> None:
-            try:
-                result = route_design(design, region_size=self.region_size, iterations=self.iteration_count,
-                                      threads=1, policy=policy)
-                events.put(("done", result, None))
-            except BaseException as exc:  # noqa: BLE001 - handed to the env's thread
-                events.put(("error", exc, None))
-
-        self._thread = threading.Thread(target=run, name="xroute-eval-env", daemon=True)
-        self._thread.start()
-        self._finished = False
+        design, policy = self.design, _LendingPolicy(self._bridge)
+        self._bridge.start(lambda: route_design(design, settings=self._settings, policy=policy))
         self.regions_done = 0
 
     def _stop(self) -> None:
         """Aborts an unfinished episode and waits for the routing thread to end."""
-        if self._thread is None:
-            return
-        if not self._finished:
-            self._resume.put("abort")
-            while True:
-                kind, _, _ = self._events.get()
-                if kind in ("done", "error"):
-                    break
-                self._resume.put("abort")
-        self._thread.join()
-        self._thread = None
+        self._bridge.stop()
         self._stepper = None
-        self._finished = True
 
     def _next_event(self) -> dict[str, Any]:
         """Waits for the router's next region (returns {}) or its end (returns the final info)."""
-        kind, payload, info = self._events.get()
-        if kind == "region":
-            self._stepper = RegionStepper(payload, self.design.dbu_per_micron, self.max_candidates, self.weights,
+        asked, payload = self._bridge.next_event()
+        if asked:
+            region, self._region_info = payload
+            self._stepper = RegionStepper(region, self.design.dbu_per_micron, self.max_candidates, self.weights,
                                           self.reward_fn, self.observation)
-            self._region_info = info
             return {}
-        self._finished = True
-        self._thread.join()
-        self._thread = None
         self._stepper = None
-        if kind == "error":
-            raise payload
         out: dict[str, Any] = {"result": payload}
         if self.out_dir is not None:
             from xroute.outputs import write_route_outputs
@@ -174,7 +134,7 @@ class NetOrderingEvaluationEnv(RegionEnv):
             return observation, reward, False, False, info
         self.regions_done += 1
         info["regions_done"] = self.regions_done
-        self._resume.put("continue")
+        self._bridge.answer(None)
         final = self._next_event()
         if self._stepper is None:
             info.update(final)

@@ -31,12 +31,12 @@ seeds ``self.np_random`` (the env draws nothing from it).
 from __future__ import annotations
 
 import math
-import queue
-import threading
 from typing import Any, Sequence
 
 import gymnasium as gym
 import numpy as np
+
+from xroute.envs.engine_bridge import EngineBridge
 
 # Each entry: (name, change to the rule's plan). A size without an offset takes the rule's offsets for
 # that size (0, C/3, 2C/3 by iteration), as --region-size does.
@@ -54,25 +54,16 @@ DEFAULT_MENU: tuple[tuple[str, dict[str, Any]], ...] = (
 OBS_HIGH = 1e9  # no observation entry comes near it (log counts, ratios, shares)
 
 
-class _Aborted(Exception):
-    """Raised inside the router's plan call when the env drops an unfinished episode."""
-
-
 class _AgentSchedule:
     """The router's schedule policy during an episode: asks the env for each iteration's plan."""
 
     name = "rl-agent"
 
-    def __init__(self, events: queue.Queue, resume: queue.Queue) -> None:
-        self.events = events
-        self.resume = resume
+    def __init__(self, bridge: EngineBridge) -> None:
+        self.bridge = bridge
 
     def plan(self, history: Sequence[Any], rule: Any) -> Any:
-        self.events.put(("ask", list(history), rule))
-        answer = self.resume.get()
-        if answer is None:
-            raise _Aborted()
-        return answer
+        return self.bridge.ask((list(history), rule))
 
 
 class ScheduleIterationEnv(gym.Env):
@@ -84,10 +75,10 @@ class ScheduleIterationEnv(gym.Env):
                  *, menu: Sequence[tuple[str, dict[str, Any]]] = DEFAULT_MENU, work_weight: float = 1.0,
                  threads: int = 1, render_mode: str | None = None) -> None:
         from xroute.config import CostSection
-        from xroute.router import DEFAULT_ITERATIONS, VIOLATION_TYPES, RouteSettings
+        from xroute.router import DEFAULT_ITERATIONS, VIOLATION_TYPES, router_settings
 
         iteration_count = DEFAULT_ITERATIONS if iteration_count is None else iteration_count
-        RouteSettings(region_size=region_size, iterations=iteration_count, threads=threads)  # validates them
+        self._settings = router_settings(region_size=region_size, iterations=iteration_count, threads=threads)
         if not menu or not all(isinstance(change, dict) for _, change in menu):
             raise ValueError("menu: a non-empty sequence of (name, plan change) pairs")
         self.testcase_name = testcase_name
@@ -102,12 +93,9 @@ class ScheduleIterationEnv(gym.Env):
         self.action_space = gym.spaces.Discrete(len(self.menu))
         self.observation_space = gym.spaces.Box(0.0, OBS_HIGH, shape=(8 + len(self.types),), dtype=np.float32)
         self.design: Any = None
-        self._thread: threading.Thread | None = None
-        self._events: queue.Queue = queue.Queue()
-        self._resume: queue.Queue = queue.Queue()
+        self._bridge = EngineBridge("xroute-schedule-env")
         self._history: list[Any] = []
         self._rule: Any = None
-        self._finished = True
 
     # -- the routing thread -------------------------------------------------
     def _start(self) -> None:
@@ -115,45 +103,19 @@ class ScheduleIterationEnv(gym.Env):
         from xroute.router import route_design
 
         self.design = prepare_design(self.testcase_name)
-        self._events, self._resume = queue.Queue(), queue.Queue()
-        policy = _AgentSchedule(self._events, self._resume)
-        design, events = self.design, self._events
-
-        def run() -> None:
-            try:
-                result = route_design(design, region_size=self.region_size, iterations=self.iteration_count,
-                                      threads=self.threads, schedule_policy=policy)
-                events.put(("done", result, None))
-            except BaseException as exc:  # noqa: BLE001 - handed to the env's thread
-                events.put(("error", exc, None))
-
-        self._thread = threading.Thread(target=run, name="xroute-schedule-env", daemon=True)
-        self._thread.start()
-        self._finished = False
+        design, policy = self.design, _AgentSchedule(self._bridge)
+        self._bridge.start(lambda: route_design(design, settings=self._settings, schedule_policy=policy))
 
     def _stop(self) -> None:
         """Aborts an unfinished episode and waits for the routing thread to end."""
-        if self._thread is None:
-            return
-        if not self._finished:
-            self._resume.put(None)
-            while self._events.get()[0] not in ("done", "error"):
-                self._resume.put(None)
-        self._thread.join()
-        self._thread = None
-        self._finished = True
+        self._bridge.stop()
 
     def _next_event(self) -> Any:
         """Waits for the router's next question (returns None) or its end (returns the RouteResult)."""
-        kind, payload, rule = self._events.get()
-        if kind == "ask":
-            self._history, self._rule = payload, rule
+        asked, payload = self._bridge.next_event()
+        if asked:
+            self._history, self._rule = payload
             return None
-        self._finished = True
-        self._thread.join()
-        self._thread = None
-        if kind == "error":
-            raise payload
         self._history = list(payload.iterations)
         return payload
 
@@ -203,14 +165,13 @@ class ScheduleIterationEnv(gym.Env):
         return {"action_mask": self._mask(), "iteration": len(self._history), "history": history,
                 "menu": [name for name, _ in self.menu], **extra}
 
-    def _plan(self, action: int) -> Any:
-        from dataclasses import replace
-
+    def _plan(self, action: int) -> dict[str, Any]:
+        """The menu entry's change to the rule's plan (xroute.schedule.plan_from makes it the plan)."""
         change = dict(self.menu[action][1])
         if "region_size" in change and "offset" not in change:
             size = int(change["region_size"])
             change["offset"] = ((len(self._history) % 3) * size) // 3
-        return replace(self._rule, **change)
+        return change
 
     # -- gymnasium API --------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
@@ -222,7 +183,7 @@ class ScheduleIterationEnv(gym.Env):
         return self._observation(), self._info(**({"result": final} if final is not None else {}))
 
     def step(self, action: int):
-        if self._finished:
+        if not self._bridge.running:
             raise RuntimeError("step() after the episode ended: call reset()")
         action = int(action)
         if not 0 <= action < len(self.menu):
@@ -232,7 +193,7 @@ class ScheduleIterationEnv(gym.Env):
             action = 0
         done_before = len(self._history)
         before = self._cost(self._history[-1]) if self._history else 0.0
-        self._resume.put(self._plan(action))
+        self._bridge.answer(self._plan(action))
         final = self._next_event()
         reward = 0.0
         if len(self._history) > done_before:  # the iteration ran (a stop ends the run without it)

@@ -19,10 +19,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import subprocess
-import sys
-import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -30,7 +26,7 @@ from typing import Callable, Sequence
 
 from xroute.atomic_files import atomic_write_text
 from xroute.errors import XrouteError
-from xroute.json_files import read_json
+from xroute.route_process import run_process, xroute_command
 from xroute.schedule_model import SwitchSchedule, model_document
 
 LATE_SIZES = (5, 10)  # 10: the rule's own size (its offsets too)
@@ -89,29 +85,23 @@ def generate_cases(lefs: Sequence[Path], cells: int, seeds: Sequence[int], utili
 
 
 def _route(case: TrainCase, model: Path | None, threads: int, out: Path, route_args: Sequence[str]) -> RunFigures:
-    cmd = [sys.executable, "-m", "xroute", "route", "--def", case.def_file, "--threads", str(threads), "--quiet",
-           "--out", str(out), *route_args]
+    cmd = xroute_command("route", "--def", case.def_file, "--threads", str(threads), "--quiet", "--out", str(out),
+                         *route_args)
     for lef in case.lef:
         cmd += ["--lef", lef]
     if case.guide:
         cmd += ["--guide", case.guide]
     if model is not None:
         cmd += ["--schedule-policy", str(model)]
-    with tempfile.TemporaryFile("w+") as err:
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err, env={**os.environ, "CI": "true"})
-        _, status, usage = os.wait4(proc.pid, 0)
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        err.seek(0)
-        message = err.read().strip().splitlines()
-    if proc.returncode != 0:
-        raise XrouteError(f"training run on {case.name} failed: {message[-1] if message else proc.returncode}")
-    metrics_files = list(out.glob("*.metrics.json"))
-    if len(metrics_files) != 1:
+    run = run_process(cmd, env={"CI": "true"}, metrics_dir=out)
+    if run.returncode != 0:
+        raise XrouteError(f"training run on {case.name} failed: {run.last_line}")
+    if run.metrics is None:
         raise XrouteError(f"training run on {case.name} wrote no metrics JSON in {out}")
-    m = read_json(metrics_files[0], what="metrics JSON")
+    m = run.metrics
     f = m["final"]
     return RunFigures(int(f["violations"]), int(f["open_nets"]), float(f["wirelength_um"]), int(f["vias"]),
-                      round(usage.ru_utime + usage.ru_stime, 2), len(m["iterations"]))
+                      round(run.cpu_s, 2), len(m["iterations"]))
 
 
 def same_routing(run: RunFigures, ref: RunFigures) -> bool:

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from xroute.atomic_files import atomic_copy, atomic_write_text
 from xroute.errors import XrouteError
 
 REGION_YAML = "region.yaml"
@@ -304,9 +305,9 @@ def _write_atomically(out_dir: Path, files: dict[str, str], lef: Path) -> None:
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
     try:
-        shutil.copyfile(lef, tmp / "region.lef")
+        atomic_copy(lef, tmp / "region.lef")
         for name, text in files.items():
-            (tmp / name).write_text(text)
+            atomic_write_text(tmp / name, text)
         if out_dir.exists():
             old = out_dir.with_name(f".{out_dir.name}.old")
             shutil.rmtree(old, ignore_errors=True)

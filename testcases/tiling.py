@@ -24,7 +24,6 @@ left) is moved by (j * dx, i * dy) and everything it owns is renamed with the su
 from __future__ import annotations
 
 import math
-import shutil
 from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
@@ -39,6 +38,7 @@ from xroute.testcases.def_text import (
     write_def_text,
     write_guides,
 )
+from xroute.atomic_files import atomic_copy, atomic_write_text
 from xroute.testcases.registry import find_testcase
 from xroute.errors import InputError, XrouteError
 
@@ -270,11 +270,11 @@ def tile_testcase(name: str, rows: int, cols: int, out_dir: str | Path) -> Path:
     guides = read_guides(found.guide) if found.guide else []
     out_def, out_guides = tile_def(d, guides, rows, cols, tiled)
     folder.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(found.lef, folder / f"{tiled}.input.lef")
-    (folder / f"{tiled}.input.def").write_text(write_def_text(out_def))
+    atomic_copy(found.lef, folder / f"{tiled}.input.lef")
+    atomic_write_text(folder / f"{tiled}.input.def", write_def_text(out_def))
     guide_path = folder / f"{tiled}.input.guide"
     if found.guide:
-        guide_path.write_text(write_guides(out_guides))
+        atomic_write_text(guide_path, write_guides(out_guides))
     elif guide_path.exists():
         guide_path.unlink()
     return folder

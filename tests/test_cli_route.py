@@ -159,7 +159,7 @@ def test_route_exit_1_when_the_written_def_has_opens(runner: CliRunner, testcase
         fake = router.IterationReport(iteration=0, region_size=5, offset=0, regions=0, net_routes=0, unreached=0,
                                       wirelength_dbu=0, wirelength_um=0.0, vias=0,
                                       violations_by_type={t: 0 for t in router.VIOLATION_TYPES})
-        return router.RouteResult(iterations=(fake,), policy="none", settings=router.RouteSettings(), seconds=0.0,
+        return router.RouteResult(iterations=(fake,), policy="none", settings=router.RouterSettings(), seconds=0.0,
                                   violations_by_type=dict(fake.violations_by_type))
 
     monkeypatch.setattr(router, "route_design", no_routing)

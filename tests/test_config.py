@@ -97,7 +97,7 @@ def test_schedule_entries_checked_one_by_one(tmp_path: Path) -> None:
     )
     ok = load_config(write(tmp_path, "router:\n  iteration_schedule: [{region_size: 5, offset: 2}, {region_size: 3}]\n",
                            "ok.yaml"))
-    assert run_settings(ok).schedule == ((5, 2), (3, 0))
+    assert run_settings(ok).router.schedule == [(5, 2), (3, 0)]
 
 
 def test_default_yaml_is_the_defaults_and_documents_every_key() -> None:

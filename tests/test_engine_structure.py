@@ -19,7 +19,7 @@ def test_marker_types_are_the_enum_in_order() -> None:
 
 
 def test_reports_count_every_marker_type() -> None:
-    out = _engine.route(load_design(DEMO).engine, iterations=1)
+    out = _engine.route(load_design(DEMO).engine, settings=_engine.RouterSettings(iterations=1))
     assert tuple(out["iterations"][0]["violations_by_type"]) == _engine.MARKER_TYPES
 
 
@@ -38,12 +38,43 @@ def test_router_settings_reject_unknown_fields() -> None:
         _engine.RouterSettings(no_such_setting=1)  # type: ignore[call-arg]
 
 
+def test_settings_structs_are_bound_field_by_field() -> None:
+    """MazeCosts, RouterSettings and IterationPlan: keyword-only constructors over the bound fields,
+    changed copies, their fields as a dict, equality by value, copies and pickling."""
+    import copy
+    import pickle
+
+    plan = _engine.IterationPlan(region_size=4, use_penalty=9)
+    assert plan.to_dict() == {"region_size": 4, "offset": 0, "repair_rounds": 0,
+                              "marker_penalty": _engine.DEFAULTS["marker_penalty"],
+                              "history_penalty": _engine.DEFAULTS["history_penalty"], "use_penalty": 9,
+                              "stop": False, "search_budget": 0}
+    changed = plan.replace(stop=True)
+    assert changed.stop and not plan.stop and changed != plan and changed.replace(stop=False) == plan
+    s = _engine.RouterSettings(threads=3, costs=_engine.MazeCosts(via_cost=7))
+    for twin in (pickle.loads(pickle.dumps(s)), copy.deepcopy(s)):
+        assert twin == s and twin is not s
+    twin.costs.via_cost = 8
+    assert s.costs.via_cost == 7 and twin != s
+    with pytest.raises(TypeError, match="IterationPlan has no field 'colour'"):
+        plan.replace(colour=1)
+    with pytest.raises(TypeError):
+        _engine.MazeCosts(1200)  # keywords only
+
+
+def test_a_plan_out_of_the_engines_limits_is_refused_not_clamped() -> None:
+    """The engine's own check of a planner's plan (the library names the schedule policy before it)."""
+    db = load_design(DEMO).engine
+    with pytest.raises(ValueError, match=r"plan: offset must be in 0\.\.1, got 5"):
+        _engine.route(db, planner=lambda history, rule: rule.replace(region_size=2, offset=5))
+
+
 def test_route_checks_the_settings_fields() -> None:
     db = load_design(DEMO).engine
     with pytest.raises(ValueError, match=r"region_size must be in 0\.\.1000 \(0: auto\)"):
         _engine.route(db, settings=_engine.RouterSettings(region_size=-1))
     with pytest.raises(ValueError, match="iterations must be in 1"):
-        _engine.route(db, iterations=0, settings=_engine.RouterSettings(iterations=3))
+        _engine.route(db, settings=_engine.RouterSettings(iterations=0))
 
 
 # A generated design that, at region size 2, ends its first two iterations with markers (15, 21); the
@@ -53,10 +84,10 @@ MARKED = "standin_marked"
 
 def _search_budgets(**settings: int) -> list[tuple[int, int]]:
     """(violations, the plan's search budget) per iteration of MARKED routed at region size 2 with these settings."""
-    s = _engine.RouterSettings(region_size=2)
+    s = _engine.RouterSettings(region_size=2, threads=2)
     for key, value in settings.items():
         setattr(s, key, value)
-    out = _engine.route(load_design(MARKED).engine, settings=s, threads=2)
+    out = _engine.route(load_design(MARKED).engine, settings=s)
     return [(r["violations"], r["plan"]["search_budget"]) for r in out["iterations"]]
 
 

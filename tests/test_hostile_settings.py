@@ -18,7 +18,7 @@ from xroute.cli.app import app
 from xroute.config import load_config
 from xroute.config_schema import ConfigError
 from xroute.errors import InputError, RouteArgumentError, safe_text
-from xroute.router import RouteSettings
+from xroute.router import check_policy_timeout
 from conftest import one_error
 
 DEEP = "[" * 200_000 + "]" * 200_000
@@ -66,10 +66,14 @@ def test_the_route_command_names_the_line(runner: CliRunner, tmp_path: Path) -> 
 
 
 def test_library_settings_refuse_nan_time_limits() -> None:
+    from xroute import load_design, route_design
+
+    design = load_design("demo")
     for bad in (math.nan, math.inf, -1.0, True):
         with pytest.raises(RouteArgumentError, match="policy_timeout"):
-            RouteSettings(policy_timeout=bad)
-    assert RouteSettings(policy_timeout=0).policy_timeout == 0
+            route_design(design, policy_timeout=bad)
+    assert design.engine.metrics()["nets_routed"] == 0  # refused before routing
+    assert check_policy_timeout(0) == 0
 
 
 def test_training_config_refuses_nan(tmp_path: Path) -> None:

@@ -142,10 +142,10 @@ def test_drc_report_write_failure_leaves_nothing(tmp_path):
 
 def test_route_outputs_figures_are_typed(tmp_path) -> None:
     """RouteOutputs.figures: the metrics JSON's final figures as a typed record."""
-    from xroute import RouteSettings, prepare_design, route_to_outputs
+    from xroute import RouterSettings, prepare_design, route_to_outputs
     from xroute.outputs import FinalFigures
 
-    outputs = route_to_outputs(prepare_design("demo"), tmp_path, RouteSettings(iterations=1))
+    outputs = route_to_outputs(prepare_design("demo"), tmp_path, RouterSettings(iterations=1))
     figures = outputs.figures
     assert isinstance(figures, FinalFigures)
     assert (figures.wirelength_um, figures.vias, figures.violations, figures.open_nets) == (

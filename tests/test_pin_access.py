@@ -183,7 +183,7 @@ def test_drawn_route_uses_on_track_access_vias(tmp_path: Path) -> None:
     # and the maze may take either.
     lef, def_ = write_design(tmp_path, TINY_LEF, ROUTE_DEF)
     db = load_design(lef=lef, def_=def_).engine
-    _engine.route(db, threads=1)
+    _engine.route(db)
     c = db.check_routing()
     assert (c["opens"], c["markers"], c["vias"]) == (0, [], 2)
     assert c["off_track_vias"] == 0

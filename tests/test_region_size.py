@@ -12,7 +12,7 @@ from conftest import contest_found
 from xroute.config import load_config
 from xroute.design import load_design
 from xroute.errors import XrouteError
-from xroute.router import RouteArgumentError, RouteSettings, region_size_for, route_design
+from xroute.router import RouteArgumentError, region_size_for, route_design, router_settings
 
 
 def generated(tmp_path: Path, split: int, cells: int = 120) -> Path:
@@ -66,7 +66,7 @@ def test_a_run_at_the_default_routes_with_the_resolved_region(tmp_path: Path) ->
 
 def test_a_negative_region_size_is_refused(tmp_path: Path) -> None:
     with pytest.raises(RouteArgumentError, match="at least 1 GCell"):
-        RouteSettings(region_size=-1)
+        router_settings(region_size=-1)
     config = tmp_path / "c.yaml"
     config.write_text("region:\n  region_size: 0\n")
     assert load_config(config).region.region_size == 0

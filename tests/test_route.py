@@ -388,13 +388,14 @@ def test_repair_rounds_setting_reaches_the_engine(tmp_path, testcase) -> None:
     its second iteration with fewer markers when it repairs inside its regions, and both runs end
     with 0 opens and 0 violations; the demo routes clean in its first pass, so its repair never
     runs)."""
-    from xroute import RouteSettings, prepare_design, route_to_outputs
+    from xroute import RouterSettings, prepare_design, route_to_outputs
+    from xroute.router import router_settings
 
     with pytest.raises(RouteArgumentError, match="repair_rounds must be an integer in 0..64"):
-        RouteSettings(repair_rounds=65)
+        router_settings(repair_rounds=65)
     testcase("standin_marked")
     runs = {n: route_to_outputs(prepare_design("standin_marked"), tmp_path / str(n),
-                                RouteSettings(repair_rounds=n, region_size=2)) for n in (0, 3)}
+                                RouterSettings(repair_rounds=n, region_size=2)) for n in (0, 3)}
     assert runs[3].metrics["settings"]["repair_rounds"] == 3
     # iteration 1 repairs inside its regions and ends with fewer markers (17 against 21)
     checks = {n: [it["violations"] for it in o.metrics["iterations"]] for n, o in runs.items()}
@@ -402,14 +403,19 @@ def test_repair_rounds_setting_reaches_the_engine(tmp_path, testcase) -> None:
     assert all((o.figures.open_nets, o.figures.violations) == (0, 0) for o in runs.values())
 
 
-def test_route_settings_fields_are_route_design_keywords() -> None:
-    """The pipeline passes RouteSettings.keywords() to route_design: the two must not drift apart."""
+def test_route_design_setting_keywords_are_router_settings_fields() -> None:
+    """route_design's setting keywords fill the engine's RouterSettings (router_settings): each is one of
+    its fields, and every one of them is checked where it enters."""
     import inspect
 
-    from xroute.router import RouteSettings
+    from xroute.router import RouterSettings, router_settings
 
-    keywords = set(inspect.signature(route_design).parameters) - {"design", "policy", "progress", "schedule_policy"}
-    assert keywords == set(RouteSettings().keywords())
+    own = {"design", "settings", "policy", "seed", "progress", "policy_timeout", "schedule_policy"}
+    keywords = set(inspect.signature(route_design).parameters) - own
+    assert keywords and keywords <= set(RouterSettings().to_dict())
+    for name in keywords:
+        with pytest.raises(RouteArgumentError, match=name.replace("_", ".")):
+            router_settings(**{name: -1 if name != "schedule" else [(-1, 0)]})
 
 
 def test_every_builtin_policy_class_runs_in_the_engine() -> None:

@@ -464,7 +464,7 @@ def test_a_guide_touching_a_region_edge_from_one_side_links_nothing(tmp_path: Pa
     # both sides of the edge, so the net follows the guide: 0 out-of-guide wire.
     guide = "n1\n(\n0 0 2000 1000 M1\n1000 0 2000 3000 M2\n0 2000 2000 3000 M1\n)\n"
     d = drawn(tmp_path, {"a": (400, 400), "b": (400, 2400)}, {"n1": ["a", "b"]}, guide=guide)
-    _engine.route(d.engine, region_size=1, threads=1)
+    _engine.route(d.engine, settings=_engine.RouterSettings(region_size=1))
     r = check_design(d)
     assert (r.opens, r.violations) == (0, 0)
     assert r.out_of_guide_wirelength_um == 0
@@ -485,7 +485,7 @@ def test_a_net_whose_guide_passes_a_region_twice_has_two_parts_there(tmp_path: P
     first = _engine.FirstPass(_engine.RoutingSession(d.engine), 3, "heuristic")
     at_origin = [i for i, row in enumerate(first.regions) if row[0] == (0, 0)]
     assert first.open_region(at_origin[0]).candidates[:, 0].tolist() == [0, 0]  # n1 twice
-    _engine.route(d.engine, region_size=3, threads=1)
+    _engine.route(d.engine, settings=_engine.RouterSettings(region_size=3))
     r = check_design(d)
     assert (r.opens, r.violations) == (0, 0)
     assert r.out_of_guide_wirelength_um == 0

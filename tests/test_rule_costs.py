@@ -76,7 +76,7 @@ def test_wire_ending_below_a_wide_obstruction_needs_only_the_short_run_spacing(t
 def _route(name: str, threads: int = 1, **settings: int) -> tuple[Any, dict[str, Any]]:
     require_testcase(name)
     d = load_design(name)
-    out = _engine.route(d.engine, threads=threads, settings=_engine.RouterSettings(**settings))
+    out = _engine.route(d.engine, settings=_engine.RouterSettings(threads=threads, **settings))
     return d, out
 
 
@@ -98,8 +98,8 @@ def test_repair_inside_the_region_lowers_the_first_iterations_markers() -> None:
     counts = []
     for rounds in (0, 3):
         d = load_design("ispd19_sample4")
-        settings = _engine.RouterSettings(first_repair_rounds=rounds, region_size=3)
-        one = _engine.route(d.engine, iterations=1, settings=settings)
+        settings = _engine.RouterSettings(first_repair_rounds=rounds, region_size=3, iterations=1)
+        one = _engine.route(d.engine, settings=settings)
         counts.append(one["iterations"][0]["violations"])
     assert counts[1] < counts[0]
 
@@ -110,8 +110,8 @@ def test_repair_rounds_do_not_depend_on_the_thread_count(tmp_path: Path, name: s
     for threads in (1, 2):
         require_testcase(name)
         d = load_design(name)
-        settings = _engine.RouterSettings(first_repair_rounds=2, repair_rounds=2)
-        _engine.route(d.engine, threads=threads, iterations=3, settings=settings)
+        settings = _engine.RouterSettings(first_repair_rounds=2, repair_rounds=2, threads=threads, iterations=3)
+        _engine.route(d.engine, settings=settings)
         path = tmp_path / f"{name}.{threads}.def"
         d.engine.write_def(str(path))
         defs.append(path.read_bytes())

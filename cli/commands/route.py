@@ -168,8 +168,7 @@ def route(
     steps = parse_schedule(schedule) if schedule is not None else None
     rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
                       repair_rounds=repair_rounds, search_budget=search_budget,
-                      schedule=steps, schedule_policy=schedule_policy)
-    settings = rs.route_settings()  # fail before loading
+                      schedule=steps, schedule_policy=schedule_policy)  # checked: fails before loading
     pol = get_policy(rs.policy, rs.seed, rs.search_budget)
     planner = get_schedule_policy(rs.schedule_policy)
     console = stdout_console()
@@ -189,13 +188,13 @@ def route(
     if mode == "lines":
         # The size a run resolves for 0 comes with each iteration's line: resolving it here would
         # compute the design's pin access twice (4.0 s on ispd19_test3, 2026-11-27).
-        size = rs.region_size or "auto"
+        size = rs.router.region_size or "auto"
         typer.echo(f"routing {design.name}: {design.counts()['nets']} nets, region size {size}, "
-                   f"up to {rs.iterations} iterations, {rs.threads} thread(s), policy {pol.name}")
-    with ProgressDisplay(console, mode, rs.iterations) as display:
+                   f"up to {rs.router.iterations} iterations, {rs.router.threads} thread(s), policy {pol.name}")
+    with ProgressDisplay(console, mode, rs.router.iterations) as display:
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
-        outputs = pipeline.route_to_outputs(design, write_dir, settings, pol, progress=display, started=started,
-                                            schedule_policy=planner)
+        outputs = pipeline.route_to_outputs(design, write_dir, rs.router, pol, progress=display, started=started,
+                                            schedule_policy=planner, seed=rs.seed, policy_timeout=rs.policy_timeout)
 
     if net_router is not None and mode in ("rich", "lines"):
         st = pol.stats

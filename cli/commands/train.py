@@ -26,6 +26,7 @@ from typing import Annotated, Any
 import typer
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
+from xroute.atomic_files import atomic_write_text
 from xroute.cli.console import print_json, stdout_console
 from xroute.errors import XrouteError
 from xroute.policies.rl.device import DEVICES
@@ -271,7 +272,7 @@ def _imitate(testcase: str, steps: int, out: Path | None, seed: int, region_size
     save_checkpoint(model, out_dir / "set-final.pt", {"imitation": cfg.__dict__, "log": log})
     onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_steps": str(steps),
                                                           "xroute_teacher_regions": str(len(regions))})
-    (out_dir / "log.json").write_text(json.dumps(log, indent=1))
+    atomic_write_text(out_dir / "log.json", json.dumps(log, indent=1))
     summary = {"algorithm": "imitate", "testcases": names, "teacher_regions": len(regions),
                "teacher_seconds": round(teacher_seconds, 2), "steps": steps,
                "seconds": round(time.perf_counter() - t0, 2), "checkpoint": str(out_dir / "set-final.pt"),
@@ -322,7 +323,7 @@ def _finetune(testcase: str, iterations: int, out: Path | None, seed: int, regio
     out_dir.mkdir(parents=True, exist_ok=True)  # after training: a run that fails leaves no folder
     save_checkpoint(model, out_dir / "set-final.pt", {"finetune": asdict(cfg), "log": log})
     onnx_path = export_onnx(model, out_dir / "set.onnx", {"xroute_finetune_iterations": str(iterations)})
-    (out_dir / "log.json").write_text(json.dumps(log, indent=1))
+    atomic_write_text(out_dir / "log.json", json.dumps(log, indent=1))
     best = min(log, key=lambda row: row["val_cost"]) if log else None
     summary = {"algorithm": "finetune", "testcases": names, "iterations": iterations,
                "seconds": round(time.perf_counter() - t0, 2), "checkpoint": str(out_dir / "set-final.pt"),

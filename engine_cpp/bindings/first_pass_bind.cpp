@@ -10,6 +10,7 @@
 
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
+#include "bindings/settings_check.hpp"
 #include "loop/first_pass.hpp"
 #include "loop/router.hpp"
 
@@ -32,19 +33,14 @@ struct FirstPassHandle {
 
 void initFirstPass(FirstPassHandle* self, RoutingSession& s, int regionSize, const std::string& policy,
                    uint64_t seed, int threads) {
-  if (regionSize < 0 || regionSize > kMaxRegionSize) {
-    throw nb::value_error(("region_size must be in 0.." + std::to_string(kMaxRegionSize) + " (0: auto)").c_str());
-  }
-  if (threads < 1 || threads > kMaxThreads) {
-    throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
-  }
+  RouterSettings settings;
+  settings.regionSize = regionSize;
+  settings.threads = threads;
+  checkSettings(settings);
   std::unique_ptr<NetOrderPolicy> p;
   if (policy == "heuristic") p = makeHeuristicPolicy();
   else if (policy == "random") p = makeRandomPolicy(seed);
   else throw nb::value_error(("unknown policy '" + policy + "' (heuristic, random)").c_str());
-  RouterSettings settings;
-  settings.regionSize = regionSize;
-  settings.threads = threads;
   std::unique_ptr<FirstPass> pass;
   {
     nb::gil_scoped_release release;

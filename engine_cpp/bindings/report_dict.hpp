@@ -5,7 +5,6 @@
 
 #include <string>
 
-#include "bindings/plan_dict.hpp"
 #include "loop/router.hpp"
 
 namespace xroute {
@@ -29,7 +28,7 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   d["violations"] = r.markers;
   d["seconds"] = r.seconds;
   d["done"] = r.done;
-  if (r.done) d["plan"] = planDict(r.plan);  // the plan the iteration ran
+  if (r.done) d["plan"] = nanobind::cast(r.plan).attr("to_dict")();  // the plan the iteration ran (IterationPlan's fields)
   return d;
 }
 

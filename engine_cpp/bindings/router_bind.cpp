@@ -4,8 +4,6 @@
 // (once per region batch).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
-#include <nanobind/stl/optional.h>
-#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -16,9 +14,9 @@
 #include <type_traits>
 
 #include "bindings/arrays.hpp"
-#include "bindings/plan_dict.hpp"
 #include "bindings/region_handle.hpp"
 #include "bindings/report_dict.hpp"
+#include "bindings/settings_check.hpp"
 #include "db/database.hpp"
 #include "grid/gcell_grid.hpp"
 #include "loop/regions.hpp"
@@ -113,25 +111,6 @@ class PythonPolicy final : public NetOrderPolicy {
   std::mutex mutex_;
 };
 
-// The run's settings: `base` (or the defaults) with the keywords given, checked.
-RouterSettings runSettings(const RouterSettings* base, std::optional<int> regionSize, std::optional<int> iterations,
-                           std::optional<int> threads) {
-  RouterSettings s = base ? *base : RouterSettings{};
-  if (regionSize) s.regionSize = *regionSize;
-  if (iterations) s.iterations = *iterations;
-  if (threads) s.threads = *threads;
-  if (s.regionSize < 0 || s.regionSize > kMaxRegionSize) {
-    throw nb::value_error(("region_size must be in 0.." + std::to_string(kMaxRegionSize) + " (0: auto)").c_str());
-  }
-  if (s.iterations < 1 || s.iterations > kMaxIterations) {
-    throw nb::value_error(("iterations must be in 1.." + std::to_string(kMaxIterations)).c_str());
-  }
-  if (s.threads < 1 || s.threads > kMaxThreads) {
-    throw nb::value_error(("threads must be in 1.." + std::to_string(kMaxThreads)).c_str());
-  }
-  return s;
-}
-
 // A Python policy when policy_fn or policy_next is given, else the built-in named `policy`.
 std::unique_ptr<NetOrderPolicy> routePolicy(const std::string& policy, uint64_t seed, nb::object policyFn,
                                             bool needsRegion, nb::object policyNext, int searchBudget,
@@ -150,27 +129,13 @@ std::unique_ptr<NetOrderPolicy> routePolicy(const std::string& policy, uint64_t 
   }
 }
 
-// The schedule's steps checked into `s`; the repair rounds clamped to 0..kMaxRepairRounds.
-void finishSettings(RouterSettings& s, const std::optional<std::vector<std::pair<int, int>>>& schedule) {
-  if (schedule) {
-    for (const auto& [size, offset] : *schedule) {
-      if (size < 1) throw nb::value_error("schedule: region size must be >= 1");
-      if (offset < 0 || offset >= size) throw nb::value_error("schedule: offset must be in 0..region_size-1");
-      s.schedule.push_back(ScheduleStep{size, offset});
-    }
-  }
-  s.repairRounds = std::clamp(s.repairRounds, 0, kMaxRepairRounds);
-  s.firstRepairRounds = std::clamp(s.firstRepairRounds, 0, kMaxRepairRounds);
-}
-
-nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> iterations, std::optional<int> threads,
-               const std::string& policy, uint64_t seed, nb::object policyFn, bool needsRegion, nb::object progress,
-               const RouterSettings* settings, const std::optional<std::vector<std::pair<int, int>>>& schedule,
-               int searchBudget, int searchWidth, nb::object policyNext, nb::object planner) {
-  RouterSettings s = runSettings(settings, regionSize, iterations, threads);
+nb::dict route(Database& db, const RouterSettings* settings, const std::string& policy, uint64_t seed,
+               nb::object policyFn, bool needsRegion, nb::object progress, int searchBudget, int searchWidth,
+               nb::object policyNext, nb::object planner) {
+  RouterSettings s = settings ? *settings : RouterSettings{};
+  checkSettings(s);
   std::unique_ptr<NetOrderPolicy> p =
       routePolicy(policy, seed, policyFn, needsRegion, policyNext, searchBudget, searchWidth);
-  finishSettings(s, schedule);
   s.searchSeed = seed;
   const int dbu = db.design.dbuPerMicron;
   RouteProgress cb;
@@ -186,7 +151,12 @@ nb::dict route(Database& db, std::optional<int> regionSize, std::optional<int> i
       nb::gil_scoped_acquire gil;
       nb::list history;
       for (const IterationReport& r : done) history.append(reportDict(r, dbu));
-      return planFromDict(planner(history, planDict(rule)), rule);
+      IterationPlan p = nb::cast<IterationPlan>(planner(history, nb::cast(rule, nb::rv_policy::copy)));
+      checkPlan(p);
+      const int64_t usePenalty = p.costs.usePenalty;  // the one cost a plan sets; the others are the run's
+      p.costs = rule.costs;
+      p.costs.usePenalty = usePenalty;
+      return p;
     };
   }
   RouteOutcome out;
@@ -222,9 +192,8 @@ void bindRouter(nb::module_& m) {
   for (const char* c : kFeatureColumns) columns.append(c);
   m.attr("POLICY_FEATURES") = nb::tuple(columns);
   m.def(
-      "route", &route, "db"_a, "region_size"_a = nb::none(), "iterations"_a = nb::none(), "threads"_a = nb::none(),
-      "policy"_a = "heuristic", "seed"_a = 1, "policy_fn"_a = nb::none(), "policy_needs_region"_a = false,
-      "progress"_a = nb::none(), "settings"_a = nb::none(), "schedule"_a = nb::none(),
+      "route", &route, "db"_a, "settings"_a = nb::none(), "policy"_a = "heuristic", "seed"_a = 1,
+      "policy_fn"_a = nb::none(), "policy_needs_region"_a = false, "progress"_a = nb::none(),
       "search_budget"_a = SearchSettings{}.budget, "search_width"_a = SearchSettings{}.width,
       "policy_next"_a = nb::none(), "planner"_a = nb::none(),
       "Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' "
@@ -236,14 +205,12 @@ void bindRouter(nb::module_& m) {
       "candidates' rows as they are then. With "
       "policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may "
       "route nets with it; the order applies to the rest). progress(report, "
-      "regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, "
-      "penalties, repair rounds; None: the defaults); region_size (0: auto_region_size(db)), iterations and "
-      "threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. "
-      "schedule: per-iteration "
-      "(region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). "
-      "planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the "
-      "iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, "
-      "history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; "
-      "stop: end the run, from iteration 1 on). "
-      "Returns {'iterations': [report, ...]}.");
+      "regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (region "
+      "size, iterations, threads, schedule, costs, penalties, repair rounds; None: the defaults); a field out of "
+      "the engine's limits is a RouteArgumentError. "
+      "planner(history: [report, ...], rule: IterationPlan) -> IterationPlan is asked before each iteration, with "
+      "the reports of the iterations done and the rule's plan; the iteration runs the plan it returns (stop: end "
+      "the run, from iteration 1 on; search_budget B >= 1: the victims search with that budget in this iteration; "
+      "a field out of the engine's limits is a RouteArgumentError). "
+      "Returns {'iterations': [report, ...]}; a report's plan is its IterationPlan's to_dict().");
 }

@@ -47,19 +47,6 @@ ScheduleStep stepFor(const RouterSettings& s, int iteration) {
   return ScheduleStep{c, ((iteration % 3) * c) / 3};
 }
 
-// A plan within the engine's limits: region size 1..kMaxRegionSize, offset in 0..size-1, repair
-// rounds 0..kMaxRepairRounds, penalties >= 0.
-IterationPlan clampedPlan(IterationPlan p) {
-  p.regionSize = std::clamp(p.regionSize, 1, kMaxRegionSize);
-  p.offset = ((p.offset % p.regionSize) + p.regionSize) % p.regionSize;
-  p.repairRounds = std::clamp(p.repairRounds, 0, kMaxRepairRounds);
-  p.markerPenalty = std::max<int64_t>(0, p.markerPenalty);
-  p.historyPenalty = std::max<int64_t>(0, p.historyPenalty);
-  p.costs.usePenalty = std::max<int64_t>(0, p.costs.usePenalty);
-  p.searchBudget = std::clamp(p.searchBudget, 0, kMaxSearchBudget);
-  return p;
-}
-
 // Runs a whole region: prepare, route in the policy's order, the task's repair rounds, finish.
 RegionResult routeRegion(const RouteContext& ctx, const RegionTask& task, const CrossingPlan* plan,
                          NetOrderPolicy& policy, MazeWorkspace& ws) {
@@ -90,7 +77,7 @@ class Flow {
     for (int it = 0; it < iterations; ++it) {
       IterationPlan rule = rulePlan(s_, it);
       if (lateSearch(it)) rule.searchBudget = std::clamp(s_.lateSearchBudget, 1, kMaxSearchBudget);
-      plan_ = planner_ ? clampedPlan(planner_(out.iterations, rule)) : rule;
+      plan_ = planner_ ? planner_(out.iterations, rule) : rule;  // the planner checks its plans
       if (plan_.stop && it > 0) break;  // iteration 0 always runs: it routes every net
       search_.reset();
       if (plan_.searchBudget > 0) {

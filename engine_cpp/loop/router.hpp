@@ -102,7 +102,8 @@ struct IterationReport {
 };
 
 // Asked before each iteration with the reports of the iterations done (oldest first) and the rule's
-// plan for the next one; returns the plan to run. Empty: the rule's plan.
+// plan for the next one; returns the plan to run, within the limits above (the bindings check the
+// plans of a Python planner: bindings/settings_check.hpp). Empty: the rule's plan.
 using IterationPlanner = std::function<IterationPlan(const std::vector<IterationReport>&, const IterationPlan&)>;
 
 struct RouteOutcome {
@@ -121,7 +122,7 @@ struct RegionTask;
 using ColourHook = std::function<void(int, const CrossingPlan&, const std::vector<RegionTask>&)>;
 
 // Routes every net of `design` (its Net::routing is replaced). With a planner, each iteration runs
-// the plan it returns (checked and clamped to the limits above) instead of the rule's.
+// the plan it returns instead of the rule's.
 RouteOutcome routeDesign(const Tech& tech, Design& design, const RouterSettings& settings, NetOrderPolicy& policy,
                          const RouteProgress& progress = {}, const ColourHook& beforeColour = {},
                          const IterationPlanner& planner = {});

@@ -29,10 +29,8 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -69,41 +67,20 @@ ACTIONS: dict[str, dict[str, Any]] = {
 BAND = 0.003  # contest score within 0.3% of the default's
 
 
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU seconds of a running process, all its threads (/proc)."""
-    try:
-        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    except OSError:
-        return 0.0
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
 def run(design: str, flags: list[str], threads: int, out: Path, env: dict[str, str],
         timeout: float | None = None) -> dict[str, Any]:
-    """One route in a fresh process, then its check; the figures as a dict."""
-    cmd = [*XROUTE, "route", design, "--quiet", "--threads", str(threads), "--out", str(out), *flags]
-    start = time.monotonic()
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
-                            start_new_session=True)
-    stopped = False
-    while True:
-        pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
-        if pid:
-            break
-        if timeout is not None and not stopped and cpu_seconds(proc.pid) > timeout:
-            os.killpg(proc.pid, signal.SIGKILL)
-            stopped = True
-        time.sleep(0.2)
-    wall = time.monotonic() - start
-    text = proc.stdout.read() if proc.stdout else ""
-    row: dict[str, Any] = {"wall_s": round(wall, 2), "cpu_s": round(usage.ru_utime + usage.ru_stime, 2),
-                           "rss_mb": round(usage.ru_maxrss / 1024), "rc": os.waitstatus_to_exitcode(status),
-                           "stopped": stopped}
-    metrics = out / f"{design}.metrics.json"
-    if stopped or not metrics.exists():
-        row["error"] = "stopped at the cutoff" if stopped else text[-1000:]
+    """One route in a fresh process (stopped past ``timeout`` CPU seconds), then its check; the figures as a dict."""
+    from xroute.route_process import run_process
+
+    proc = run_process([*XROUTE, "route", design, "--quiet", "--threads", str(threads), "--out", str(out), *flags],
+                       env=env, cpu_limit=timeout, metrics_dir=out)
+    stopped = proc.stopped
+    row: dict[str, Any] = {"wall_s": round(proc.wall_s, 2), "cpu_s": round(proc.cpu_s, 2),
+                           "rss_mb": round(proc.peak_rss_mb), "rc": proc.returncode, "stopped": stopped}
+    if stopped or proc.metrics is None:
+        row["error"] = "stopped at the cutoff" if stopped else (proc.stdout + proc.stderr)[-1000:]
         return row
-    data = json.loads(metrics.read_text())
+    data = proc.metrics
     final = data["final"]
     row.update(violations=final["violations"], wirelength_um=final["wirelength_um"], vias=final["vias"],
                route_s=round(final["route_seconds"], 2),

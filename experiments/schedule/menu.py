@@ -19,10 +19,15 @@ import argparse
 import importlib.util
 import json
 import os
-import subprocess
 import sys
 import time
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from xroute.route_process import ProcessRun
+
 
 def _bench_menu() -> list[tuple[str, list[str]]]:
     """The menu of bench/schedule_menu.py (one list of settings for both runners)."""
@@ -62,14 +67,13 @@ def jobs(only: str | None) -> list[dict]:
     return sorted(out, key=lambda j: (j["extra"], -j["cost"]))
 
 
-def summary(job: dict, run_dir: Path, wall: float, cpu: float, rc: int, err: str) -> dict:
+def summary(job: dict, run: ProcessRun) -> dict:
     row = {k: job[k] for k in ("design", "setting", "flags", "threads")}
-    row.update(rc=rc, wall_s=round(wall, 2), cpu_s=round(cpu, 2))
-    metrics = run_dir / f"{job['design']}.metrics.json"
-    if rc != 0 or not metrics.exists():
-        row["error"] = err[-2000:]
+    row.update(rc=run.returncode, wall_s=round(run.wall_s, 2), cpu_s=round(run.cpu_s, 2))
+    if run.returncode != 0 or run.metrics is None:
+        row["error"] = (run.stdout + run.stderr)[-2000:]
         return row
-    data = json.loads(metrics.read_text())
+    data = run.metrics
     final = data["final"]
     row.update({k: final.get(k) for k in (
         "violations", "violations_by_type", "wirelength_um", "vias", "opens", "open_nets",
@@ -78,6 +82,16 @@ def summary(job: dict, run_dir: Path, wall: float, cpu: float, rc: int, err: str
         "iteration", "region_size", "offset", "regions", "violations", "violations_by_type",
         "wirelength_um", "vias", "seconds")} for it in data["iterations"]]
     return row
+
+
+def run_job(job: dict, env: dict[str, str]) -> dict:
+    """One job in a child process (xroute.route_process), summarised."""
+    from xroute.route_process import run_process, xroute_command
+
+    run_dir = Path("/tmp/menu_runs") / f"{job['design']}-{job['setting']}"
+    cmd = xroute_command("route", job["design"], "--quiet", "--threads", str(job["threads"]), "--out", str(run_dir),
+                         *job["flags"])
+    return summary(job, run_process(cmd, env=env, metrics_dir=run_dir))
 
 
 def main() -> int:
@@ -91,51 +105,41 @@ def main() -> int:
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    env = {**os.environ, "CI": "true", "PYTHONUNBUFFERED": "1"}
-    if args.src:
+    env = {"CI": "true", "PYTHONUNBUFFERED": "1"}
+    if args.src:  # the children's package, and the runner's (xroute.route_process) in this process
         env["PYTHONPATH"] = str(Path(args.src) / "src")
+        sys.path.insert(0, env["PYTHONPATH"])
     if args.data:
         env["XROUTE_TESTCASES"] = args.data
     pending = jobs(args.only)
     for job in pending:  # a job never asks for more threads than there are cores
         job["threads"] = min(job["threads"], args.cores)
-    running: dict[int, tuple[dict, subprocess.Popen, float, Path]] = {}
     free = args.cores
     start = time.monotonic()
     log = (out / "menu.jsonl").open("a")
-    while pending or running:
-        launched = True
-        while launched and pending and time.monotonic() - start < args.cutoff:
-            launched = False
+    # One thread per running job, each waiting for its own child: jobs start while free cores allow.
+    with ThreadPoolExecutor(max_workers=args.cores) as pool:
+        running: dict[Future, dict] = {}
+        while pending or running:
             for job in list(pending):
-                if job["threads"] <= free:
-                    run_dir = Path("/tmp/menu_runs") / f"{job['design']}-{job['setting']}"
-                    cmd = [sys.executable, "-m", "xroute", "route", job["design"], "--quiet",
-                           "--threads", str(job["threads"]), "--out", str(run_dir), *job["flags"]]
-                    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE,
-                                            stderr=subprocess.STDOUT, text=True)
-                    running[proc.pid] = (job, proc, time.monotonic(), run_dir)
+                if job["threads"] <= free and time.monotonic() - start < args.cutoff:
+                    running[pool.submit(run_job, job, env)] = job
                     free -= job["threads"]
                     pending.remove(job)
-                    launched = True
                     print(f"[{time.monotonic() - start:6.1f}s] start {job['design']} {job['setting']}"
                           f" threads={job['threads']}", flush=True)
-                    break
-        if not running:
-            break
-        pid, status, usage = os.wait4(-1, 0)
-        if pid not in running:
-            continue
-        job, proc, t0, run_dir = running.pop(pid)
-        free += job["threads"]
-        text = proc.stdout.read() if proc.stdout else ""
-        rc = os.waitstatus_to_exitcode(status)
-        row = summary(job, run_dir, time.monotonic() - t0, usage.ru_utime + usage.ru_stime, rc, text)
-        log.write(json.dumps(row) + "\n")
-        log.flush()
-        print(f"[{time.monotonic() - start:6.1f}s] done {job['design']} {job['setting']}: rc={rc} "
-              f"viol={row.get('violations')} wl={row.get('wirelength_um')} vias={row.get('vias')} "
-              f"wall={row['wall_s']} cpu={row['cpu_s']}", flush=True)
+            if not running:
+                break
+            done, _ = wait(running, return_when=FIRST_COMPLETED)
+            for future in done:
+                job = running.pop(future)
+                free += job["threads"]
+                row = future.result()
+                log.write(json.dumps(row) + "\n")
+                log.flush()
+                print(f"[{time.monotonic() - start:6.1f}s] done {job['design']} {job['setting']}: rc={row['rc']} "
+                      f"viol={row.get('violations')} wl={row.get('wirelength_um')} vias={row.get('vias')} "
+                      f"wall={row['wall_s']} cpu={row['cpu_s']}", flush=True)
     skipped = [f"{j['design']}:{j['setting']}" for j in pending]
     print("not started (cutoff):", ", ".join(skipped) or "none", flush=True)
     return 0

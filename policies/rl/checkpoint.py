@@ -16,14 +16,13 @@ file that is missing, not a torch file or not an xroute checkpoint.
 
 from __future__ import annotations
 
-import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import torch
 
-from xroute.atomic_files import atomic_write_bytes
+from xroute.atomic_files import atomic_write_from
 from xroute.policies.rl.models import NetOrderModel
 from xroute.errors import XrouteError
 
@@ -64,9 +63,7 @@ def save_checkpoint(path: str | Path, ckpt: Checkpoint) -> Path:
         "steps": int(ckpt.steps),
         "state_dict": {k: v.detach().cpu() for k, v in m.state_dict().items()},
     }
-    buf = io.BytesIO()
-    torch.save(data, buf)
-    atomic_write_bytes(p, buf.getvalue())
+    atomic_write_from(p, lambda f: torch.save(data, f))
     return p
 
 

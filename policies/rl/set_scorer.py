@@ -19,6 +19,7 @@ from pathlib import Path
 import torch
 from torch import nn
 
+from xroute.atomic_files import atomic_write_bytes, atomic_write_from
 from xroute.policies.rl.set_features import SET_FEATURES
 
 RANK_COLUMN = SET_FEATURES.index("heuristic_rank")
@@ -90,8 +91,10 @@ class _OnnxWrapper(nn.Module):
 
 
 def save_checkpoint(model: SetScorer, path: str | Path, extra: dict | None = None) -> None:
-    torch.save({"kind": "set", "config": model.config, "state": model.state_dict(),
-                "set_features": list(SET_FEATURES), **(extra or {})}, path)
+    """Writes ``model`` (and ``extra``) to ``path`` atomically."""
+    state = {"kind": "set", "config": model.config, "state": model.state_dict(), "set_features": list(SET_FEATURES),
+             **(extra or {})}
+    atomic_write_from(path, lambda f: torch.save(state, f))
 
 
 def load_checkpoint(path: str | Path) -> SetScorer:
@@ -132,5 +135,5 @@ def export_onnx(model: SetScorer, path: str | Path, metadata: dict[str, str] | N
     for key, value in meta.items():
         entry = proto.metadata_props.add()
         entry.key, entry.value = key, str(value)
-    onnx.save(proto, str(path))
+    atomic_write_bytes(path, proto.SerializeToString())
     return path

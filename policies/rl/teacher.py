@@ -22,6 +22,7 @@ from typing import Any, Iterator
 
 import numpy as np
 
+from xroute.atomic_files import atomic_write_from
 from xroute.config import CostSection
 from xroute.net_order import heuristic_order
 from xroute.policies.rl.region_filter import held_out
@@ -165,16 +166,16 @@ def collect(testcases: list[str], *, workers: int = 2, backend: str = "local", r
 
 
 def save(regions: list[TeacherRegion], path: str | Path) -> None:
-    """Writes the regions to one .npz (features and orders concatenated, offsets kept)."""
+    """Writes the regions to one .npz (features and orders concatenated, offsets kept), atomically."""
     sizes = np.array([len(r.features) for r in regions], dtype=np.int64)
     ptr = np.concatenate([[0], np.cumsum(sizes)])
-    np.savez_compressed(
-        path,
+    atomic_write_from(path, lambda f: np.savez_compressed(
+        f,
         features=np.concatenate([r.features for r in regions]) if regions else np.zeros((0, len(SET_FEATURES))),
         orders=np.concatenate([r.orders.reshape(-1) for r in regions]) if regions else np.zeros(0, np.int32),
         costs=np.stack([r.costs for r in regions]) if regions else np.zeros((0, 1)),
         ptr=ptr, testcases=np.array([r.testcase for r in regions]), indices=np.array([r.index for r in regions]),
-        feature_names=np.array(SET_FEATURES))
+        feature_names=np.array(SET_FEATURES)))
 
 
 def load(path: str | Path) -> list[TeacherRegion]:

@@ -6,7 +6,8 @@ into ``out_dir``:
 * ``metrics.jsonl``: one JSON object per episode: ``episode`` (1-based), ``steps`` (nets routed),
   ``total_steps``, ``reward`` (sum of the env's rewards, unscaled), ``cost`` (the region's cost
   at the end: 0.5 WL(um) + 4 vias + 500 DRVs), ``wirelength_dbu``, ``vias``, ``drvs``,
-  ``seconds`` (wall time of the episode, updates included) and the last losses;
+  ``seconds`` (wall time of the episode, updates included) and the last losses; the file is whole at
+  every moment (:class:`xroute.atomic_files.AtomicLog`: rewritten at most once a second, and at the end);
 * ``<algorithm>-epNNNNN.pt`` every ``checkpoint_every`` episodes and ``<algorithm>-final.pt``
   at the end (see :mod:`xroute.policies.rl.checkpoint`).
 
@@ -25,6 +26,7 @@ from typing import Any, Callable
 
 import torch
 
+from xroute.atomic_files import AtomicLog
 from xroute.policies.rl.batch import compact
 from xroute.policies.rl.checkpoint import Checkpoint, save_checkpoint
 from xroute.policies.rl.device import pick_device
@@ -92,7 +94,7 @@ def train(
         save_checkpoint(path, Checkpoint(algorithm, names, trainer.model, config_dict(cfg), episode, total_steps))
         trainer.model.eval()
 
-    with open(log_path, "w") as log:
+    with AtomicLog(log_path) as log:  # whole at every moment, at most a second behind
         for episode in range(1, episodes + 1):
             t0 = time.perf_counter()
             obs, info = env.reset(seed=seed) if episode == 1 else env.reset()
@@ -110,8 +112,7 @@ def train(
             total_steps += steps
             row = {"episode": episode, "steps": steps, "total_steps": total_steps, "reward": reward_sum,
                    **_episode_metrics(info), "seconds": round(time.perf_counter() - t0, 4), **trainer.last_losses}
-            log.write(json.dumps(row) + "\n")
-            log.flush()
+            log.write_line(json.dumps(row))
             result.episodes.append(row)
             if on_episode is not None:
                 on_episode(row)

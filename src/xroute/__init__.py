@@ -42,6 +42,7 @@ _LAZY = {
     "prepare_design": "xroute.pipeline",
     "route_to_outputs": "xroute.pipeline",
     "RouteResult": "xroute.router",
+    "RouterSettings": "xroute.router",
     "RouteSettings": "xroute.router",
     "route_design": "xroute.router",
 }
@@ -60,6 +61,7 @@ __all__ = [
     "RouteArgumentError",
     "RouteResult",
     "RouteSettings",
+    "RouterSettings",
     "SettingsError",
     "TestcaseNotFound",
     "XrouteError",

@@ -278,8 +278,8 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 class MazeCosts:
     """The maze's costs (cost units: DBU of wire), as in route/maze.hpp."""
 
-    def __init__(self, via_cost: int = 1200, via_pitches: int = 4, wrong_way_factor: int = 4, out_of_guide_factor: int = 3, built_in_guide_factor: int = 1, fixed_penalty: int = 400000, use_penalty: int = 8000, marker_unit: int = 1, bottom_layer_factor: int = 1, reserve_penalty: int = 20000, landing_penalty: int = 0, crossing_pull: int = 2) -> None:
-        """The costs; each defaults to the engine's."""
+    def __init__(self, *, via_cost: int = 1200, via_pitches: int = 4, wrong_way_factor: int = 4, out_of_guide_factor: int = 3, built_in_guide_factor: int = 1, fixed_penalty: int = 400000, use_penalty: int = 8000, marker_unit: int = 1, bottom_layer_factor: int = 1, reserve_penalty: int = 20000, landing_penalty: int = 0, crossing_pull: int = 2) -> None:
+        """Each field by its keyword; a field left out has the engine's default."""
 
     @property
     def via_cost(self) -> int:
@@ -371,13 +371,37 @@ class MazeCosts:
     @crossing_pull.setter
     def crossing_pull(self, arg: int, /) -> None: ...
 
-class RouterSettings:
-    """
-    The routing run's settings, as in loop/router.hpp (the schedule is route()'s argument).
-    """
+    def replace(self, *, via_cost: int = ..., via_pitches: int = ..., wrong_way_factor: int = ..., out_of_guide_factor: int = ..., built_in_guide_factor: int = ..., fixed_penalty: int = ..., use_penalty: int = ..., marker_unit: int = ..., bottom_layer_factor: int = ..., reserve_penalty: int = ..., landing_penalty: int = ..., crossing_pull: int = ...) -> MazeCosts:
+        """A copy with the fields given by keyword changed."""
 
-    def __init__(self, region_size: int = 0, iterations: int = 16, threads: int = 1, costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000) -> None:
-        """The settings; each defaults to the engine's."""
+    def to_dict(self) -> dict:
+        """The fields by name, in the engine's order."""
+
+    def __eq__(self, other: object | None) -> object:
+        """Equal when every field is."""
+
+    def __repr__(self) -> str:
+        """The fields by name."""
+
+    def __copy__(self) -> MazeCosts:
+        """A copy."""
+
+    def __deepcopy__(self, memo: object) -> MazeCosts:
+        """A copy."""
+
+    def __getstate__(self) -> dict:
+        """The fields (pickling)."""
+
+    def __setstate__(self, state: dict) -> None:
+        """The fields (pickling)."""
+
+    __hash__: None = None
+
+class RouterSettings:
+    """The routing run's settings, as in loop/router.hpp."""
+
+    def __init__(self, *, region_size: int = 0, iterations: int = 16, threads: int = 1, schedule: list[tuple[int, int]] = [], costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000, rip_neighbours_of_persistent: bool = True, late_search_markers: int = 50, late_search_budget: int = 4, trim_dangling: bool = True) -> None:
+        """Each field by its keyword; a field left out has the engine's default."""
 
     @property
     def region_size(self) -> int:
@@ -399,6 +423,15 @@ class RouterSettings:
 
     @threads.setter
     def threads(self, arg: int, /) -> None: ...
+
+    @property
+    def schedule(self) -> list[tuple[int, int]]:
+        """
+        Per-iteration (region size, offset) in GCells, cycled over the iterations; empty: region_size with offsets 0, C/3, 2C/3.
+        """
+
+    @schedule.setter
+    def schedule(self, arg: Sequence[tuple[int, int]], /) -> None: ...
 
     @property
     def costs(self) -> MazeCosts:
@@ -445,7 +478,7 @@ class RouterSettings:
     @property
     def repair_rounds(self) -> int:
         """
-        Check-and-reroute rounds inside each region in iterations after the first (route() clamps to 0..max_repair_rounds).
+        Check-and-reroute rounds inside each region in iterations after the first (0..max_repair_rounds).
         """
 
     @repair_rounds.setter
@@ -453,7 +486,7 @@ class RouterSettings:
 
     @property
     def first_repair_rounds(self) -> int:
-        """The same in iteration 0 (clamped likewise)."""
+        """The same in iteration 0."""
 
     @first_repair_rounds.setter
     def first_repair_rounds(self, arg: int, /) -> None: ...
@@ -501,6 +534,126 @@ class RouterSettings:
     @trim_dangling.setter
     def trim_dangling(self, arg: bool, /) -> None: ...
 
+    def replace(self, *, region_size: int = ..., iterations: int = ..., threads: int = ..., schedule: list[tuple[int, int]] = ..., costs: MazeCosts = ..., use_penalty_step: int = ..., access_points_per_pin: int = ..., marker_penalty: int = ..., history_penalty: int = ..., stop_at_zero: bool = ..., repair_rounds: int = ..., first_repair_rounds: int = ..., repair_penalty: int = ..., rip_neighbours_of_persistent: bool = ..., late_search_markers: int = ..., late_search_budget: int = ..., trim_dangling: bool = ...) -> RouterSettings:
+        """A copy with the fields given by keyword changed."""
+
+    def to_dict(self) -> dict:
+        """The fields by name, in the engine's order."""
+
+    def __eq__(self, other: object | None) -> object:
+        """Equal when every field is."""
+
+    def __repr__(self) -> str:
+        """The fields by name."""
+
+    def __copy__(self) -> RouterSettings:
+        """A copy."""
+
+    def __deepcopy__(self, memo: object) -> RouterSettings:
+        """A copy."""
+
+    def __getstate__(self) -> dict:
+        """The fields (pickling)."""
+
+    def __setstate__(self, state: dict) -> None:
+        """The fields (pickling)."""
+
+    __hash__: None = None
+
+class IterationPlan:
+    """
+    What one iteration runs with, as in loop/router.hpp: the rule's plan, or a schedule policy's. The maze's costs other than use_penalty are the run's.
+    """
+
+    def __init__(self, *, region_size: int = 10, offset: int = 0, repair_rounds: int = 0, marker_penalty: int = 3000, history_penalty: int = 1000, use_penalty: int = 8000, stop: bool = False, search_budget: int = 0) -> None:
+        """Each field by its keyword; a field left out has the engine's default."""
+
+    @property
+    def region_size(self) -> int:
+        """GCells per region side (1..max_region_size)."""
+
+    @region_size.setter
+    def region_size(self, arg: int, /) -> None: ...
+
+    @property
+    def offset(self) -> int:
+        """GCells, 0 <= offset < region_size."""
+
+    @offset.setter
+    def offset(self, arg: int, /) -> None: ...
+
+    @property
+    def repair_rounds(self) -> int:
+        """Check-and-reroute rounds inside each region (0..max_repair_rounds)."""
+
+    @repair_rounds.setter
+    def repair_rounds(self, arg: int, /) -> None: ...
+
+    @property
+    def marker_penalty(self) -> int:
+        """Cost units per node near a marker of the last iteration."""
+
+    @marker_penalty.setter
+    def marker_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def history_penalty(self) -> int:
+        """What each marker this iteration leaves adds near it from then on."""
+
+    @history_penalty.setter
+    def history_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def use_penalty(self) -> int:
+        """
+        Cost units per shape of another net that a step would violate (the maze's costs.use_penalty).
+        """
+
+    @use_penalty.setter
+    def use_penalty(self, arg: int, /) -> None: ...
+
+    @property
+    def stop(self) -> bool:
+        """End the run instead of running this iteration (not the first)."""
+
+    @stop.setter
+    def stop(self, arg: bool, /) -> None: ...
+
+    @property
+    def search_budget(self) -> int:
+        """
+        0: the run's net-order policy orders each region's nets; B >= 1: the victims search with B trial routings per region, in this iteration only.
+        """
+
+    @search_budget.setter
+    def search_budget(self, arg: int, /) -> None: ...
+
+    def replace(self, *, region_size: int = ..., offset: int = ..., repair_rounds: int = ..., marker_penalty: int = ..., history_penalty: int = ..., use_penalty: int = ..., stop: bool = ..., search_budget: int = ...) -> IterationPlan:
+        """A copy with the fields given by keyword changed."""
+
+    def to_dict(self) -> dict:
+        """The fields by name, in the engine's order."""
+
+    def __eq__(self, other: object | None) -> object:
+        """Equal when every field is."""
+
+    def __repr__(self) -> str:
+        """The fields by name."""
+
+    def __copy__(self) -> IterationPlan:
+        """A copy."""
+
+    def __deepcopy__(self, memo: object) -> IterationPlan:
+        """A copy."""
+
+    def __getstate__(self) -> dict:
+        """The fields (pickling)."""
+
+    def __setstate__(self, state: dict) -> None:
+        """The fields (pickling)."""
+
+    __hash__: None = None
+
 def auto_region_size(db: Database) -> int:
     """
     GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in four regions' grids (lines at every track and access point in the region) stay within DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die. Computes the design's pin access (the default access points per pin, as a run does).
@@ -508,9 +661,9 @@ def auto_region_size(db: Database) -> int:
 
 POLICY_FEATURES: tuple = ...
 
-def route(db: Database, region_size: int | None = None, iterations: int | None = None, threads: int | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, settings: RouterSettings | None = None, schedule: Sequence[tuple[int, int]] | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None, planner: object | None = None) -> dict:
+def route(db: Database, settings: RouterSettings | None = None, policy: str = 'heuristic', seed: int = 1, policy_fn: object | None = None, policy_needs_region: bool = False, progress: object | None = None, search_budget: int = 4, search_width: int = 0, policy_next: object | None = None, planner: object | None = None) -> dict:
     """
-    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (costs, penalties, repair rounds; None: the defaults); region_size (0: auto_region_size(db)), iterations and threads, when given, replace its fields; repair rounds are clamped to 0..max_repair_rounds. schedule: per-iteration (region_size, offset) pairs in GCells, cycled over the iterations (None: region_size with offsets 0, C/3, 2C/3). planner(history: [report, ...], rule: plan) -> plan is asked before each iteration, with the reports of the iterations done and the rule's plan (dict: region_size, offset, repair_rounds, marker_penalty, history_penalty, use_penalty, stop, search_budget: 0 = the run's policy, else the victims search with that budget in this iteration); the iteration runs the plan it returns (keys left out: the rule's; stop: end the run, from iteration 1 on). Returns {'iterations': [report, ...]}.
+    Routes every net of the database in place (its routing is replaced). policy: 'heuristic', 'random' (seeded), 'rollout' (search_budget trial routings per region, search_width candidates per step, 0: all), 'victims' (at most search_budget trial routings per region: the victims of the markers so far first), 'bestof' (K = search_budget) or 'best-of-K' (K seeded orders, the heuristic's first); or policy_fn(region: dict, features: int32[n, len(POLICY_FEATURES)]) -> order; or, sequential, policy_next(region, features) -> index of the next net, called after every routed net with the unrouted candidates' rows as they are then. With policy_needs_region, region['engine_region'] is the Region being routed, lent for that call (the policy may route nets with it; the order applies to the rest). progress(report, regions_done, regions_total) is called after each batch of regions. settings: a RouterSettings (region size, iterations, threads, schedule, costs, penalties, repair rounds; None: the defaults); a field out of the engine's limits is a RouteArgumentError. planner(history: [report, ...], rule: IterationPlan) -> IterationPlan is asked before each iteration, with the reports of the iterations done and the rule's plan; the iteration runs the plan it returns (stop: end the run, from iteration 1 on; search_budget B >= 1: the victims search with that budget in this iteration; a field out of the engine's limits is a RouteArgumentError). Returns {'iterations': [report, ...]}; a report's plan is its IterationPlan's to_dict().
     """
 
 ACCESS_UP: int = 1

@@ -1,9 +1,13 @@
 """Files written whole or not at all, and how a later run tells a killed run's temporaries.
 
-Every file the package writes goes through :func:`atomic_write_bytes` (or
-:func:`atomic_write_text`): the data goes to a temporary file ``.NAME.PID.XXXXXXXX.tmp`` in the
-same folder, is flushed to disk, then renamed over ``NAME`` (:func:`replace`), so an interrupted
-run leaves the old file or the new one, never a part.
+Every file the package writes goes through :func:`atomic_write_bytes`: the data goes to a
+temporary file ``.NAME.PID.XXXXXXXX.tmp`` in the same folder, is flushed to disk, then renamed
+over ``NAME`` (:func:`replace`), so an interrupted run leaves the old file or the new one, never a
+part. The other writers feed it: :func:`atomic_write_text` (UTF-8 text), :func:`atomic_write_from`
+(whatever a serialiser such as ``torch.save`` or ``np.savez_compressed`` writes into a file
+object), :func:`atomic_copy` (a copy of another file) and :class:`AtomicLog` (a log of lines that
+grows while a run works, rewritten whole). The compiled engine's writers (DEF, DRC report, guide
+file: ``engine_cpp/io/atomic_file.cpp``) publish their files the same way.
 
 Whose temporary is it? The writer holds an exclusive ``flock`` on each temporary (file or staging
 folder, :func:`hold_lock`) for as long as it works on it; the kernel drops the lock when the
@@ -19,13 +23,14 @@ SIGKILL just before its N-th :func:`replace` (1-based): the kill tests stop a ru
 
 from __future__ import annotations
 
+import io
 import itertools
 import os
 import signal
 import time
 import uuid
 from pathlib import Path
-from typing import Iterator
+from typing import IO, Any, Callable, Iterator
 
 try:
     import fcntl
@@ -119,6 +124,59 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> None:
         except OSError:
             pass
         raise
+
+
+def atomic_write_from(path: str | os.PathLike[str], write: Callable[[IO[bytes]], Any]) -> None:
+    """Writes to ``path`` atomically what ``write(file)`` writes into a binary file object (e.g.
+    ``lambda f: torch.save(state, f)``): it is serialised in memory first, then published by
+    :func:`atomic_write_bytes`."""
+    buffer = io.BytesIO()
+    write(buffer)
+    atomic_write_bytes(path, buffer.getvalue())
+
+
+def atomic_copy(src: str | os.PathLike[str], dst: str | os.PathLike[str]) -> None:
+    """Copies the file ``src`` to ``dst`` atomically (:func:`atomic_write_bytes`)."""
+    atomic_write_bytes(dst, Path(src).read_bytes())
+
+
+class AtomicLog:
+    """A text file of lines that grows while a run works (a training run's ``metrics.jsonl``) and is
+    whole at every moment: each publication rewrites the whole file through :func:`atomic_write_text`.
+    It is published when opened (empty), after a line when ``interval`` seconds have passed since the
+    last publication, and on :meth:`close` (which a ``with`` block calls, also when it raises). So a
+    reader, or a run killed at any instant, finds every line of some moment whole, at most
+    ``interval`` seconds behind, and the rewriting costs one file a second however fast lines come."""
+
+    def __init__(self, path: str | os.PathLike[str], interval: float = 1.0) -> None:
+        self.path = Path(path)
+        self.interval = interval  # seconds between publications at most, while lines come
+        self._lines: list[str] = []
+        self._published = 0  # lines in the file
+        self._at = time.monotonic()
+        self.flush()
+
+    def write_line(self, line: str) -> None:
+        """Appends ``line`` (without its line break); published now or within ``interval`` seconds."""
+        self._lines.append(line + "\n")
+        if time.monotonic() - self._at >= self.interval:
+            self.flush()
+
+    def flush(self) -> None:
+        """Publishes every line written so far."""
+        atomic_write_text(self.path, "".join(self._lines))
+        self._published = len(self._lines)
+        self._at = time.monotonic()
+
+    def close(self) -> None:
+        if self._published != len(self._lines):
+            self.flush()
+
+    def __enter__(self) -> AtomicLog:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
 
 def pid_alive(pid: int) -> bool:

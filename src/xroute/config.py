@@ -31,9 +31,10 @@ from typing import Any, Literal
 
 from xroute.config_schema import ConfigError, Context, load_sections, setting
 from xroute.errors import XrouteError, did_you_mean
-from xroute.defaults import (MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REGION_COST_WEIGHTS, REPAIR_ROUNDS,
-                             SEARCH_BUDGET)
-from xroute.router import DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouteSettings
+from xroute.defaults import (MAX_REGION_SIZE, MAX_REPAIR_ROUNDS, MAX_SEARCH_BUDGET, MAX_THREADS, REGION_COST_WEIGHTS,
+                             REPAIR_ROUNDS, SEARCH_BUDGET)
+from xroute.router import (DEFAULT_ITERATIONS, DEFAULT_REGION_SIZE, MAX_ITERATIONS, RouterSettings, check_seed,
+                           router_settings)
 
 __all__ = [
     "CHECKS",
@@ -137,7 +138,7 @@ class TestcaseSection:
 class RegionSection:
     """How the design is cut into regions (XRoute: region_size, region_location, region_loop)."""
 
-    region_size: int = setting(DEFAULT_REGION_SIZE, min=0, max=1000, unit="GCells", help="0: auto")
+    region_size: int = setting(DEFAULT_REGION_SIZE, min=0, max=MAX_REGION_SIZE, unit="GCells", help="0: auto")
     region_location: tuple[int, int] | None = setting(None, items={"min": 0}, unit="GCell index (x, y)")
     region_loop: int = setting(1, min=1, help="episodes per region (training environments)")
 
@@ -150,7 +151,7 @@ class RegionSection:
 class ScheduleEntry:
     """One iteration of an iteration schedule: its region size and region offset."""
 
-    region_size: int = setting(min=1, max=1000, unit="GCells")
+    region_size: int = setting(min=1, max=MAX_REGION_SIZE, unit="GCells")
     offset: int = setting(0, min=0, unit="GCells")
 
     def __post_init__(self) -> None:
@@ -235,33 +236,23 @@ def load_config(path: str | os.PathLike[str] | None) -> XrouteConfig:
 # -- the settings of one routing run: config values, overridden by command-line flags -----------------
 @dataclass(frozen=True)
 class RunSettings:
-    """What one routing run uses (after the command-line flags override the config)."""
+    """What one routing run uses (after the command-line flags override the config): the engine's
+    settings struct and what only Python knows (none of these is a field of RouterSettings). Built by
+    :func:`run_settings`, which checks every value; ``router`` is not to be changed afterwards."""
 
-    region_size: int  # GCells
-    iterations: int
-    threads: int
-    policy: str  # a name or a policy file path
-    seed: int
-    schedule: tuple[tuple[int, int], ...] = ()  # (region_size, offset) per iteration, cycled; GCells
+    router: RouterSettings  # region size, iterations, threads, schedule, repair rounds (the engine's own struct)
+    policy: str = "heuristic"  # a name or a policy file path
+    seed: int = 1  # of the random policy and of the searches' random orders
     net_loop: int = 1
     policy_timeout: float | None = None  # seconds per policy call (None: the default)
-    repair_rounds: int = REPAIR_ROUNDS  # check-and-reroute rounds inside each region
     search_budget: int = SEARCH_BUDGET  # trial routings per region (rollout, victims; bestof's K)
     schedule_policy: str | None = None  # "rule", a schedule policy file, or None (the rule)
 
-    def route_settings(self) -> RouteSettings:
-        """The detailed router's settings (validated: RouteArgumentError when invalid)."""
-        if self.net_loop != 1:
-            raise XrouteError(f"net_loop {self.net_loop}: the full-design router orders each region's nets "
-                              "once per visit; net_loop > 1 applies to the training environments only")
-        return RouteSettings(region_size=self.region_size, iterations=self.iterations, threads=self.threads,
-                             seed=self.seed, schedule=self.schedule or None, policy_timeout=self.policy_timeout,
-                             repair_rounds=self.repair_rounds)
-
     def to_dict(self) -> dict[str, Any]:
-        return {"region_size": self.region_size, "iterations": self.iterations, "threads": self.threads,
-                "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in self.schedule],
-                "net_loop": self.net_loop, "repair_rounds": self.repair_rounds, "search_budget": self.search_budget,
+        r = self.router
+        return {"region_size": r.region_size, "iterations": r.iterations, "threads": r.threads,
+                "policy": self.policy, "seed": self.seed, "schedule": [list(s) for s in r.schedule],
+                "net_loop": self.net_loop, "repair_rounds": r.repair_rounds, "search_budget": self.search_budget,
                 "schedule_policy": self.schedule_policy}
 
 
@@ -270,20 +261,27 @@ def run_settings(cfg: XrouteConfig, *, region_size: int | None = None, iteration
                  schedule: tuple[tuple[int, int], ...] | None = None,
                  repair_rounds: int | None = None, search_budget: int | None = None,
                  schedule_policy: str | None = None) -> RunSettings:
-    """The run's settings: each flag that was given (not None) overrides the config value."""
+    """The run's settings: each flag that was given (not None) overrides the config value. Every value is
+    checked here (the flags are not checked before): RouteArgumentError for a routing setting out of the
+    engine's limits (:func:`xroute.router.router_settings`), XrouteError for ``net_loop`` above 1."""
+    if cfg.router.net_loop != 1:
+        raise XrouteError(f"net_loop {cfg.router.net_loop}: the full-design router orders each region's nets "
+                          "once per visit; net_loop > 1 applies to the training environments only")
     if schedule is None:
         schedule = tuple((e.region_size, e.offset) for e in cfg.router.iteration_schedule)
-    return RunSettings(
+    router = router_settings(
         region_size=region_size if region_size is not None else cfg.region.region_size,
         iterations=iterations if iterations is not None else cfg.router.iteration_count,
         threads=threads if threads is not None else cfg.router.thread_count,
+        schedule=schedule or None,
+        repair_rounds=repair_rounds if repair_rounds is not None else cfg.router.repair_rounds,
+    )
+    return RunSettings(
+        router=router,
         policy=policy if policy is not None else cfg.policy.policy,
-        seed=seed if seed is not None else cfg.policy.seed,
-        schedule=tuple(schedule),
+        seed=check_seed(seed if seed is not None else cfg.policy.seed),
         net_loop=cfg.router.net_loop,
         policy_timeout=cfg.policy.call_timeout,
-        repair_rounds=repair_rounds if repair_rounds is not None else cfg.router.repair_rounds,
         search_budget=search_budget if search_budget is not None else cfg.policy.search_budget,
         schedule_policy=schedule_policy if schedule_policy is not None else cfg.router.schedule_policy,
     )
-

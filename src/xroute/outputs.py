@@ -173,7 +173,7 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
             "region_size": result.region_size,  # 0 (auto) resolved
             "iterations": result.settings.iterations,
             "threads": result.settings.threads,
-            "seed": result.settings.seed,
+            "seed": result.seed,
             "repair_rounds": result.settings.repair_rounds,
             "schedule": [list(step) for step in result.settings.schedule] if result.settings.schedule else None,
             "policy": result.policy,

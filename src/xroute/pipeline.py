@@ -19,7 +19,7 @@ from xroute.design import Design, load_design
 from xroute.groute import global_route
 from xroute.outputs import RouteOutputs, clean_stale_temporaries, write_route_outputs
 from xroute import router
-from xroute.router import RouteProgress, RouteResult, RouteSettings
+from xroute.router import RouteProgress, RouteResult, RouterSettings
 
 if TYPE_CHECKING:
     from xroute.net_order import NetOrderPolicy
@@ -46,26 +46,33 @@ def prepare_design(
 
 def route(
     design: Design,
-    settings: RouteSettings,
+    settings: RouterSettings,
     policy: str | NetOrderPolicy = "heuristic",
     progress: Callable[[RouteProgress], None] | None = None,
     schedule_policy: SchedulePolicy | None = None,
+    *,
+    seed: int = 1,
+    policy_timeout: float | None = None,
 ) -> RouteResult:
     """Detailed-routes a prepared design in place with ``settings``, ``policy`` (each region's net
-    order) and ``schedule_policy`` (each iteration's plan; None: the settings' rule)."""
+    order; ``seed`` and ``policy_timeout`` as :func:`xroute.router.route_design` takes them) and
+    ``schedule_policy`` (each iteration's plan; None: the settings' rule)."""
     # looked up on the module: tests may replace it
-    kwargs = {} if schedule_policy is None else {"schedule_policy": schedule_policy}
-    return router.route_design(design, policy=policy, progress=progress, **kwargs, **settings.keywords())
+    return router.route_design(design, settings=settings, policy=policy, progress=progress,
+                               schedule_policy=schedule_policy, seed=seed, policy_timeout=policy_timeout)
 
 
 def route_to_outputs(
     design: Design,
     out_dir: PathLike,
-    settings: RouteSettings,
+    settings: RouterSettings,
     policy: str | NetOrderPolicy = "heuristic",
     progress: Callable[[RouteProgress], None] | None = None,
     started: float | None = None,
     schedule_policy: SchedulePolicy | None = None,
+    *,
+    seed: int = 1,
+    policy_timeout: float | None = None,
 ) -> RouteOutputs:
     """Routes a prepared design and writes the routed DEF, metrics JSON and DRC report into
     ``out_dir`` (created if needed; leftovers of a killed run cleaned first), checked on the
@@ -78,18 +85,22 @@ def route_to_outputs(
     for path in output_paths(out, design.name):
         check_output(path)  # a folder, FIFO or device there: refused before routing
     clean_stale_temporaries(out)
-    result = route(design, settings, policy, progress, schedule_policy)
+    result = route(design, settings, policy, progress, schedule_policy, seed=seed, policy_timeout=policy_timeout)
     return write_route_outputs(design, result, out, started=started)
 
 
 def run(
     testcase: str,
     out_dir: PathLike,
-    settings: RouteSettings,
+    settings: RouterSettings,
     policy: str | NetOrderPolicy = "heuristic",
     progress: Callable[[RouteProgress], None] | None = None,
+    *,
+    seed: int = 1,
+    policy_timeout: float | None = None,
 ) -> RouteOutputs:
     """The whole pipeline for a testcase name: prepare, route, write and check."""
     started = time.perf_counter()
     design = prepare_design(testcase)
-    return route_to_outputs(design, out_dir, settings, policy, progress, started=started)
+    return route_to_outputs(design, out_dir, settings, policy, progress, started=started, seed=seed,
+                            policy_timeout=policy_timeout)

@@ -6,14 +6,22 @@ GCells, non-touching regions in parallel on ``threads`` threads); each later ite
 and reroutes the nets in design-rule markers, and the flow stops early when an iteration ends
 with no marker. The result is the same for any thread count, and for a given policy and seed.
 
+The run's settings are the engine's own struct, :class:`RouterSettings` (with its
+:class:`MazeCosts`), bound from C++ and re-exported here: route_design's setting keywords fill one
+through :func:`router_settings`, which checks each value against the engine's limits
+(:mod:`xroute.defaults`) where it enters; the policy, its seed and its time limit are
+route_design's own arguments.
+
 The library never prints; ``progress`` receives a :class:`RouteProgress` after each batch of
 regions and at the end of each iteration.
 """
 
 from __future__ import annotations
 
+import math
 import time
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
+from functools import partial
 from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
@@ -25,11 +33,16 @@ from xroute.net_order import (
     check_order,
 )
 from xroute import defaults
+from xroute._engine import MazeCosts, RouterSettings
 from xroute.errors import PolicyError, RouteArgumentError
 from xroute.schedule import IterationReport, SchedulePolicy, engine_planner, is_default
 
 if TYPE_CHECKING:
     from xroute.design import Design
+
+__all__ = ["MazeCosts", "RouteProgress", "RouteResult", "RouterSettings", "route_design", "router_settings"]
+
+RouteSettings = RouterSettings  # the name the library's settings had before they were the engine's struct
 
 # From the engine's RouterSettings and limits (xroute.defaults): GCells per region side (0: auto,
 # region_size_for), iteration limit, the largest region side and thread count a
@@ -53,67 +66,83 @@ VIOLATION_TYPES: tuple[str, ...] = (
 """Design-rule marker types, in the engine's order."""
 
 
-@dataclass(frozen=True)
-class RouteSettings:
-    """The settings of one routing run (validated on construction)."""
+def _integer(name: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
+    return value
 
-    region_size: int = DEFAULT_REGION_SIZE  # GCells per region side; 0: region_size_for(design, 0)
-    iterations: int = DEFAULT_ITERATIONS  # at most this many iterations (1..MAX_ITERATIONS)
-    threads: int = 1  # worker threads for the regions of one colour
-    seed: int = 1  # seed of the random policy
-    # per-iteration (region_size, offset) in GCells, cycled over the iterations; None: region_size
-    # every iteration with the offset shifted by a third of a region (0, C/3, 2C/3, 0, ...)
-    schedule: tuple[tuple[int, int], ...] | None = None
-    # seconds a Python policy's order() may take per call (None: xroute.policy_guard's default, 0: no limit)
-    policy_timeout: float | None = None
-    # check-and-reroute rounds inside each region before it is committed (iterations after the first)
-    repair_rounds: int = defaults.REPAIR_ROUNDS
 
-    def keywords(self) -> dict[str, Any]:
-        """The settings as :func:`route_design`'s keyword arguments (its setting keywords are these fields)."""
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+# RouterSettings field -> (lowest, highest: the engine's limits; the error below, the error above).
+_RANGES: dict[str, tuple[int, int, str, str]] = {
+    "region_size": (0, MAX_REGION_SIZE, "region size must be at least 1 GCell (0: auto)",
+                    "region size must be at most {hi} GCells"),
+    "iterations": (1, MAX_ITERATIONS, "iterations must be between 1 and {hi}", "iterations must be between 1 and {hi}"),
+    "threads": (1, MAX_THREADS, "threads must be at least 1", "threads must be at most {hi}"),
+    "repair_rounds": (0, defaults.MAX_REPAIR_ROUNDS, "repair_rounds must be an integer in 0..{hi}",
+                      "repair_rounds must be an integer in 0..{hi}"),
+}
 
-    def __post_init__(self) -> None:
-        if self.schedule is not None:
-            steps = tuple(tuple(step) for step in self.schedule)
-            object.__setattr__(self, "schedule", steps)
-            if not steps:
-                raise RouteArgumentError("schedule must have at least one (region_size, offset) step")
-            for i, step in enumerate(steps):
-                if len(step) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in step):
-                    raise RouteArgumentError(f"schedule step {i} must be two integers (region_size, offset), got {step!r}")
-                size, offset = step
-                if size < 1:
-                    raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
-                if size > MAX_REGION_SIZE:
-                    raise RouteArgumentError(f"schedule step {i}: region size must be at most {MAX_REGION_SIZE} GCells, "
-                                             f"got {size}")
-                if not 0 <= offset < size:
-                    raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
-        if isinstance(self.repair_rounds, bool) or not isinstance(self.repair_rounds, int) or not (
-                0 <= self.repair_rounds <= defaults.MAX_REPAIR_ROUNDS):
-            raise RouteArgumentError(f"repair_rounds must be an integer in 0..{defaults.MAX_REPAIR_ROUNDS}, "
-                                     f"got {self.repair_rounds!r}")
-        for name in ("region_size", "iterations", "threads", "seed"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int):
-                raise RouteArgumentError(f"{name} must be an integer, got {value!r}")
-        if self.region_size < 0:
-            raise RouteArgumentError(f"region size must be at least 1 GCell (0: auto), got {self.region_size}")
-        if self.region_size > MAX_REGION_SIZE:
-            raise RouteArgumentError(f"region size must be at most {MAX_REGION_SIZE} GCells, got {self.region_size}")
-        if not 1 <= self.iterations <= MAX_ITERATIONS:
-            raise RouteArgumentError(f"iterations must be between 1 and {MAX_ITERATIONS}, got {self.iterations}")
-        if self.threads < 1:
-            raise RouteArgumentError(f"threads must be at least 1, got {self.threads}")
-        if self.threads > MAX_THREADS:
-            raise RouteArgumentError(f"threads must be at most {MAX_THREADS}, got {self.threads}")
-        if not 0 <= self.seed < 2**64:
-            raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {self.seed}")
-        t = self.policy_timeout
-        if t is not None and (isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 <= t < float("inf")):
-            # NaN would switch the watchdog off silently (every comparison with it is false)
-            raise RouteArgumentError(f"policy_timeout must be a finite number of seconds >= 0 (0: no limit), got {t!r}")
+
+def _in_range(name: str, value: Any) -> int:
+    lo, hi, below, above = _RANGES[name]
+    n = _integer(name, value)
+    if not lo <= n <= hi:
+        raise RouteArgumentError(f"{(below if n < lo else above).format(hi=hi)}, got {n}")
+    return n
+
+
+def _schedule(value: Any) -> list[tuple[int, int]]:
+    steps = [tuple(step) for step in value]
+    if not steps:
+        raise RouteArgumentError("schedule must have at least one (region_size, offset) step")
+    for i, step in enumerate(steps):
+        if len(step) != 2 or any(isinstance(v, bool) or not isinstance(v, int) for v in step):
+            raise RouteArgumentError(f"schedule step {i} must be two integers (region_size, offset), got {step!r}")
+        size, offset = step
+        if size < 1:
+            raise RouteArgumentError(f"schedule step {i}: region size must be at least 1 GCell, got {size}")
+        if size > MAX_REGION_SIZE:
+            raise RouteArgumentError(f"schedule step {i}: region size must be at most {MAX_REGION_SIZE} GCells, "
+                                     f"got {size}")
+        if not 0 <= offset < size:
+            raise RouteArgumentError(f"schedule step {i}: offset must be in 0..{size - 1} GCells, got {offset}")
+    return steps  # type: ignore[return-value]
+
+
+# The settings route_design and the commands take by name, each with its check (the engine's limits).
+_CHECKS: dict[str, Callable[[Any], Any]] = {**{name: partial(_in_range, name) for name in _RANGES},
+                                             "schedule": _schedule}
+
+
+def router_settings(base: RouterSettings | None = None, **fields: Any) -> RouterSettings:
+    """A copy of ``base`` (None: the engine's defaults) with the ``fields`` that are not None (RouterSettings
+    field names). ``region_size``, ``iterations``, ``threads``, ``schedule`` (per-iteration ``(region_size,
+    offset)`` pairs, GCells, cycled) and ``repair_rounds`` are checked here against the engine's limits:
+    :class:`RouteArgumentError` naming the setting. Every route_design keyword and every command's flag or
+    config value enters the engine's settings through here; the engine's own check then only refuses
+    values set directly on a RouterSettings."""
+    changes = {name: _CHECKS[name](value) if name in _CHECKS else value
+               for name, value in fields.items() if value is not None}
+    try:
+        return (RouterSettings() if base is None else base).replace(**changes)
+    except TypeError as exc:  # a field RouterSettings does not have, or a value of the wrong type
+        raise RouteArgumentError(str(exc)) from None
+
+
+def check_seed(seed: Any) -> int:
+    """``seed`` if it is an integer in 0..2^64 - 1 (the engine's seeds are unsigned 64-bit), else RouteArgumentError."""
+    seed = _integer("seed", seed)
+    if not 0 <= seed < 2**64:
+        raise RouteArgumentError(f"seed must be between 0 and 2^64 - 1, got {seed}")
+    return seed
+
+
+def check_policy_timeout(t: Any) -> float | None:
+    """``t`` if it is None or a finite number of seconds >= 0 (0: no limit), else RouteArgumentError."""
+    if t is not None and (isinstance(t, bool) or not isinstance(t, (int, float)) or not 0 <= t < math.inf):
+        # NaN would switch the watchdog off silently (every comparison with it is false)
+        raise RouteArgumentError(f"policy_timeout must be a finite number of seconds >= 0 (0: no limit), got {t!r}")
+    return t
 
 
 @dataclass(frozen=True)
@@ -134,12 +163,13 @@ class RouteResult:
 
     iterations: tuple[IterationReport, ...]  # one per iteration run (the flow may stop early)
     policy: str  # the policy's name
-    settings: RouteSettings
+    settings: RouterSettings  # as the run was asked (region_size 0: auto)
     seconds: float  # wall time of the whole run
     violations_by_type: dict[str, int]  # after the last iteration
     policy_seconds: float | None = None  # wall time inside a Python policy's order(); None for built-ins (C++)
     policy_calls: int = 0  # calls of a Python policy's order() (one per region with candidates)
     schedule_policy: str = "rule"  # the schedule policy's name (xroute.schedule)
+    seed: int = 1  # route_design's seed
 
     @property
     def final(self) -> IterationReport:
@@ -250,11 +280,11 @@ def check_next(index: Any, n: int, policy_name: str) -> int:
     return int(index)
 
 
-def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[str, Any], _PolicyCallback | None]:
+def _policy_kwargs(pol: NetOrderPolicy, seed: int, timeout: float | None) -> tuple[dict[str, Any], _PolicyCallback | None]:
     """The engine's policy arguments: a built-in's name (run in C++), or a checked, timed callback."""
     if _builtin(pol) is not None:
-        return pol.engine_arguments(settings.seed), None  # a class of xroute.net_order.BUILTINS
-    callback = _PolicyCallback(pol, settings.policy_timeout)  # seconds per call (None: default, 0: none)
+        return pol.engine_arguments(seed), None  # a class of xroute.net_order.BUILTINS
+    callback = _PolicyCallback(pol, timeout)  # seconds per call (None: default, 0: none)
     # A policy that declares needs_region = True finds the region being routed (an _engine.Region
     # lent for the call: grid views, candidates, route_net) in region["engine_region"].
     kwargs: dict[str, Any] = {"policy_needs_region": bool(getattr(pol, "needs_region", False))}
@@ -268,27 +298,32 @@ def _policy_kwargs(pol: NetOrderPolicy, settings: RouteSettings) -> tuple[dict[s
 def route_design(
     design: Design,
     *,
-    region_size: int = DEFAULT_REGION_SIZE,
-    iterations: int = DEFAULT_ITERATIONS,
-    threads: int = 1,
+    settings: RouterSettings | None = None,
+    region_size: int | None = None,
+    iterations: int | None = None,
+    threads: int | None = None,
+    schedule: Sequence[tuple[int, int]] | None = None,
+    repair_rounds: int | None = None,
     policy: str | NetOrderPolicy = "heuristic",
     seed: int = 1,
-    schedule: Sequence[tuple[int, int]] | None = None,
     progress: Callable[[RouteProgress], None] | None = None,
     policy_timeout: float | None = None,
-    repair_rounds: int = defaults.REPAIR_ROUNDS,
     schedule_policy: SchedulePolicy | None = None,
 ) -> RouteResult:
     """Routes every net of ``design`` in place and returns the per-iteration reports.
+
+    ``settings``: a :class:`RouterSettings` (None: the engine's defaults); ``region_size``, ``iterations``,
+    ``threads``, ``schedule`` and ``repair_rounds``, when given, replace its fields (:func:`router_settings`
+    checks them: :class:`RouteArgumentError`).
 
     ``policy``: ``"heuristic"``, ``"random"`` (seeded with ``seed``), ``"rollout"``, ``"victims"``, ``"bestof"``,
     ``"best-of-K"`` (the engine's search policies with their default budget), or a policy object
     (:class:`~xroute.net_order.HeuristicPolicy`, ``RandomPolicy(seed)`` - whose own seed is used -,
     ``RolloutPolicy(budget)``, ``VictimsPolicy(budget)``, ``BestOfPolicy(k, seed)``, ``CallablePolicy(fn)``, anything with
     ``name`` and ``order``, or with ``name`` and ``next_net`` (asked after every routed net);
-    policy files and ONNX models through :func:`xroute.policies.get_policy`). The setting keywords are :class:`RouteSettings`'s
-    fields, so ``route_design(design, **settings.keywords())`` routes with a settings object.
-    Built-in policies run in C++; any other is called once per region (a sequential one once per net). Raises
+    policy files and ONNX models through :func:`xroute.policies.get_policy`).
+    Built-in policies run in C++; any other is called once per region (a sequential one once per net), at most
+    ``policy_timeout`` seconds a call (None: :mod:`xroute.policy_guard`'s default, 0: no limit). Raises
     :class:`RouteArgumentError` for invalid settings and :class:`~xroute.net_order.PolicyError`
     when the policy cannot be loaded or returns something other than a permutation; an exception
     raised inside a policy's ``order`` (or ``progress``) propagates unchanged. When routing
@@ -304,17 +339,12 @@ def route_design(
     size and offset, repair rounds, marker / history / other-net weights, or stop), seeing the
     reports so far and the plan the settings above give; None or the rule: those plans.
     """
-    settings = RouteSettings(
-        region_size=region_size,
-        iterations=iterations,
-        threads=threads,
-        seed=seed,
-        schedule=tuple(tuple(step) for step in schedule) if schedule is not None else None,
-        policy_timeout=policy_timeout,
-        repair_rounds=repair_rounds,
-    )
+    settings = router_settings(settings, region_size=region_size, iterations=iterations, threads=threads,
+                               schedule=schedule, repair_rounds=repair_rounds)
+    seed = check_seed(seed)
+    policy_timeout = check_policy_timeout(policy_timeout)
     pol = resolve_policy(policy, seed)
-    kwargs, callback = _policy_kwargs(pol, settings)
+    kwargs, callback = _policy_kwargs(pol, seed, policy_timeout)
     if progress is not None:
 
         def on_progress(report: dict[str, Any], done: int, total: int) -> None:
@@ -329,15 +359,7 @@ def route_design(
     # The engine raises PolicyError (not a permutation: the Python wrapper checks first) and
     # RouteArgumentError (a region too large for this design) itself.
     try:
-        out = _engine().route(
-            design.engine,
-            region_size=settings.region_size,
-            iterations=settings.iterations,
-            threads=settings.threads,
-            schedule=list(settings.schedule) if settings.schedule is not None else None,
-            settings=_engine().RouterSettings(repair_rounds=settings.repair_rounds),
-            **kwargs,
-        )
+        out = _engine().route(design.engine, settings=settings, **kwargs)
     finally:
         if callback is not None and callback.watchdog is not None:
             callback.watchdog.close()
@@ -352,4 +374,5 @@ def route_design(
         policy_seconds=callback.seconds if callback is not None else None,
         policy_calls=callback.calls if callback is not None else 0,
         schedule_policy=schedule_policy.name if schedule_policy is not None else "rule",
+        seed=seed,
     )

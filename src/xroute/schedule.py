@@ -11,68 +11,99 @@ plan may also stop the run (from the second iteration on: the first routes every
 * :class:`RuleSchedule` (``"rule"``, the default) runs the rule's plan: the routing is the one the
   router makes without a schedule policy, byte for byte.
 * :class:`CallableSchedule` wraps a function ``plan(history, rule) -> IterationPlan | dict | None``
-  (a dict changes the keys it names; None keeps the rule), e.g. from a policy file's ``plan``
+  (a dict changes the fields it names; None keeps the rule), e.g. from a policy file's ``plan``
   (:func:`xroute.policies.get_schedule_policy`).
+
+:class:`IterationPlan` is the engine's struct (``xroute._engine.IterationPlan``, loop/router.hpp),
+bound field by field and re-exported here (loaded on first use: importing this module loads no
+engine); ``rule.replace(region_size=5)`` is a changed copy, ``plan.to_dict()`` its fields.
 
 Every iteration's report carries the plan it ran (``IterationReport.plan``), so a run's metrics JSON
 is a logged run: :func:`logged_transitions` turns it into (history, plan, report) transitions for
 offline learning.
 
-Plans are checked here (:meth:`IterationPlan.checked`): a value out of range, a key the plan does
-not have or a return of another type is a :class:`~xroute.net_order.PolicyError` naming the
-policy; an exception raised inside ``plan`` propagates, tagged with the policy's file and line
-(the command line prints it as one line).
+Whatever a schedule policy answers - None, a plan or a dict of the fields to change - becomes the
+iteration's plan in one place, :func:`plan_from`, which checks it against the engine's limits: a
+value out of range or of the wrong type, a field the plan does not have or an answer of another type
+is a :class:`~xroute.net_order.PolicyError` naming the policy (never clamped); an exception raised
+inside ``plan`` propagates, tagged with the policy's file and line (the command line prints it as one
+line).
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, fields, replace
-from typing import Any, Callable, Mapping, Protocol, Sequence, runtime_checkable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Protocol, Sequence, runtime_checkable
 
 from xroute.net_order import PolicyError
 from xroute.policy_guard import kept_cwd, user_failure
 
+if TYPE_CHECKING:
+    from xroute._engine import IterationPlan
+
 MAX_PENALTY = 10**12  # cost units: far above any weight that steers the maze (its defaults are 1,000-8,000)
 
 
-@dataclass(frozen=True)
-class IterationPlan:
-    """What one iteration runs with (the engine's IterationPlan, loop/router.hpp)."""
+def _plan_type() -> type:
+    from xroute._engine import IterationPlan
 
-    region_size: int  # GCells per region side, 1..MAX_REGION_SIZE
-    offset: int  # GCells, 0 <= offset < region_size
-    repair_rounds: int  # check-and-reroute rounds inside each region, 0..MAX_REPAIR_ROUNDS
-    marker_penalty: int  # cost units per node near a marker of the last iteration
-    history_penalty: int  # what each marker this iteration leaves adds near it from then on
-    use_penalty: int  # cost units per shape of another net that a step would violate
-    stop: bool = False  # end the run instead of running this iteration (not the first)
-    search_budget: int = 0  # 0: the run's net-order policy; B >= 1: the victims search, B trial routings per region
+    return IterationPlan
 
-    @classmethod
-    def from_engine(cls, d: Mapping[str, Any]) -> IterationPlan:
-        return cls(**{f.name: d[f.name] for f in fields(cls)})
 
-    def to_engine(self) -> dict[str, Any]:
-        return asdict(self)
+def __getattr__(name: str) -> Any:
+    if name == "IterationPlan":  # the engine's, loaded on first use (see the module doc)
+        return _plan_type()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
-    def checked(self) -> IterationPlan:
-        """This plan; ValueError naming the first field out of range."""
-        from xroute import defaults  # the engine's limits (loads the engine: not on import)
 
-        size = self.region_size if isinstance(self.region_size, int) else 1
-        limits = {"region_size": (1, defaults.MAX_REGION_SIZE), "offset": (0, size - 1),
-                  "repair_rounds": (0, defaults.MAX_REPAIR_ROUNDS), "marker_penalty": (0, MAX_PENALTY),
-                  "history_penalty": (0, MAX_PENALTY), "use_penalty": (0, MAX_PENALTY),
-                  "search_budget": (0, defaults.MAX_SEARCH_BUDGET)}
-        for name, (lo, hi) in limits.items():
-            value = getattr(self, name)
-            if not isinstance(value, int) or isinstance(value, bool):
-                raise ValueError(f"{name} must be an integer, got {value!r}")
-            if not lo <= value <= hi:
-                raise ValueError(f"{name} must be in {lo}..{hi}, got {value}")
-        if not isinstance(self.stop, bool):
-            raise ValueError(f"stop must be true or false, got {self.stop!r}")
-        return self
+def plan_problem(values: Mapping[str, Any]) -> str | None:
+    """What is wrong with a plan's field values (IterationPlan.to_dict() keys), against the engine's
+    limits; None when nothing is."""
+    from xroute import defaults  # the engine's limits (loads the engine: not on import)
+
+    size = values["region_size"] if isinstance(values["region_size"], int) else 1
+    limits = {"region_size": (1, defaults.MAX_REGION_SIZE), "offset": (0, size - 1),
+              "repair_rounds": (0, defaults.MAX_REPAIR_ROUNDS), "marker_penalty": (0, MAX_PENALTY),
+              "history_penalty": (0, MAX_PENALTY), "use_penalty": (0, MAX_PENALTY),
+              "search_budget": (0, defaults.MAX_SEARCH_BUDGET)}
+    for name, (lo, hi) in limits.items():
+        value = values[name]
+        if not isinstance(value, int) or isinstance(value, bool):
+            return f"{name} must be an integer, got {value!r}"
+        if not lo <= value <= hi:
+            return f"{name} must be in {lo}..{hi}, got {value}"
+    if not isinstance(values["stop"], bool):
+        return f"stop must be true or false, got {values['stop']!r}"
+    return None
+
+
+def plan_from(answer: Any, rule: IterationPlan, policy: str, iteration: int) -> IterationPlan:
+    """The plan of iteration ``iteration`` from what schedule policy ``policy`` answered: None (the rule's
+    plan), an IterationPlan, or a dict of the fields to change in ``rule``; checked (:func:`plan_problem`,
+    and no stop in the first iteration). The one place an answer becomes a plan: PolicyError naming the
+    policy when it cannot."""
+    where = f"schedule policy '{policy}'"
+    fields = rule.to_dict()
+    if answer is None:
+        answer = rule
+    if isinstance(answer, type(rule)):
+        changes: dict[str, Any] = {}
+        values = answer.to_dict()
+    elif isinstance(answer, Mapping):
+        changes = {str(k): v for k, v in answer.items()}
+        unknown = sorted(set(changes) - set(fields))
+        if unknown:
+            raise PolicyError(f"{where}: plan() returned unknown key(s) {', '.join(unknown)} "
+                              f"(known: {', '.join(fields)})")
+        values = {**fields, **changes}
+    else:
+        raise PolicyError(f"{where}: plan() must return an IterationPlan, a dict or None, got {type(answer).__name__}")
+    problem = plan_problem(values)
+    if problem is not None:
+        raise PolicyError(f"{where}, iteration {iteration}: {problem}")
+    if values["stop"] and iteration == 0:
+        raise PolicyError(f"{where}: the first iteration cannot stop the run (it routes every net)")
+    return rule.replace(**changes) if isinstance(answer, Mapping) else answer
 
 
 @dataclass(frozen=True)
@@ -108,7 +139,7 @@ class IterationReport:
             violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
             violations=int(d["violations"]),
             seconds=float(d["seconds"]),
-            plan=IterationPlan.from_engine(d["plan"]) if d.get("plan") else None,
+            plan=_plan_type()(**d["plan"]) if d.get("plan") else None,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -125,13 +156,14 @@ class IterationReport:
             "violations": self.violations,
             "violations_by_type": dict(self.violations_by_type),
             "seconds": self.seconds,
-            "plan": self.plan.to_engine() if self.plan is not None else None,
+            "plan": self.plan.to_dict() if self.plan is not None else None,
         }
 
 
 @runtime_checkable
 class SchedulePolicy(Protocol):
-    """Chooses each iteration's plan: ``plan(history, rule) -> IterationPlan``."""
+    """Chooses each iteration's plan: ``plan(history, rule) -> IterationPlan`` (or a dict of the fields to
+    change, or None: :func:`plan_from`)."""
 
     name: str
 
@@ -157,47 +189,24 @@ class CallableSchedule:
         self.name = name
 
     def plan(self, history: Sequence[IterationReport], rule: IterationPlan) -> IterationPlan:
-        got = self.fn(history, rule)
-        if got is None:
-            return rule
-        if isinstance(got, IterationPlan):
-            return got
-        if isinstance(got, Mapping):
-            unknown = sorted(set(map(str, got)) - {f.name for f in fields(IterationPlan)})
-            if unknown:
-                raise PolicyError(f"schedule policy '{self.name}': plan() returned unknown key(s) "
-                                  f"{', '.join(unknown)} (known: {', '.join(f.name for f in fields(IterationPlan))})")
-            return replace(rule, **{str(k): v for k, v in got.items()})
-        raise PolicyError(f"schedule policy '{self.name}': plan() must return an IterationPlan, a dict or None, "
-                          f"got {type(got).__name__}")
+        return plan_from(self.fn(history, rule), rule, self.name, len(history))
 
 
-def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], dict[str, Any]], dict[str, Any]]:
-    """The engine's ``planner(history, rule) -> plan`` callback around ``policy``: plans checked,
-    failures named (PolicyError) or tagged with the policy's file and line."""
+def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], IterationPlan], IterationPlan]:
+    """The engine's ``planner(history, rule) -> plan`` callback around ``policy``: its answers made plans
+    by :func:`plan_from`, failures named (PolicyError) or tagged with the policy's file and line."""
 
-    def planner(history: list[Any], rule: dict[str, Any]) -> dict[str, Any]:
+    def planner(history: list[Any], rule: IterationPlan) -> IterationPlan:
         reports = [IterationReport.from_engine(d) for d in history]
-        base = IterationPlan.from_engine(rule)
         try:
             with kept_cwd():
-                plan = policy.plan(reports, base)
+                answer = policy.plan(reports, rule)
         except BaseException as exc:  # noqa: BLE001 - the user's code: named (policy_guard.user_failure)
             failure = user_failure(exc, policy, "plan")
             if failure is exc:
                 raise
             raise failure from None
-        if not isinstance(plan, IterationPlan):
-            raise PolicyError(f"schedule policy '{policy.name}': plan() must return an IterationPlan, "
-                              f"got {type(plan).__name__}")
-        try:
-            plan.checked()
-        except ValueError as exc:
-            raise PolicyError(f"schedule policy '{policy.name}', iteration {len(reports)}: {exc}") from None
-        if plan.stop and not reports:
-            raise PolicyError(f"schedule policy '{policy.name}': the first iteration cannot stop the run "
-                              "(it routes every net)")
-        return plan.to_engine()
+        return plan_from(answer, rule, policy.name, len(reports))
 
     return planner
 

@@ -21,12 +21,15 @@ A file whose ``parameters`` is null keeps the rule (training found nothing bette
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
 from xroute.net_order import PolicyError
-from xroute.schedule import IterationPlan, IterationReport
+from xroute.schedule import IterationReport
+
+if TYPE_CHECKING:
+    from xroute.schedule import IterationPlan
 
 FORMAT = "xroute-schedule-switch"
 VERSION = 1
@@ -83,12 +86,12 @@ class SwitchSchedule:
         if not history:
             return rule  # the first iteration routes every net with the rule's plan
         if self.stalled(history):
-            return replace(rule, stop=True)
+            return rule.replace(stop=True)
         if not self.switched(history):
             return rule
         i, size = len(history), self.late_size
-        return replace(rule, region_size=size, offset=(i % 3) * size // 3, repair_rounds=self.late_repair,
-                       search_budget=self.late_budget)
+        return rule.replace(region_size=size, offset=(i % 3) * size // 3, repair_rounds=self.late_repair,
+                            search_budget=self.late_budget)
 
 
 class RuleKept:
