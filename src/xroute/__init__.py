@@ -43,7 +43,6 @@ _LAZY = {
     "route_to_outputs": "xroute.pipeline",
     "RouteResult": "xroute.router",
     "RouterSettings": "xroute.router",
-    "RouteSettings": "xroute.router",
     "route_design": "xroute.router",
 }
 
@@ -60,7 +59,6 @@ __all__ = [
     "PolicyError",
     "RouteArgumentError",
     "RouteResult",
-    "RouteSettings",
     "RouterSettings",
     "SettingsError",
     "TestcaseNotFound",

@@ -42,7 +42,6 @@ if TYPE_CHECKING:
 
 __all__ = ["MazeCosts", "RouteProgress", "RouteResult", "RouterSettings", "route_design", "router_settings"]
 
-RouteSettings = RouterSettings  # the name the library's settings had before they were the engine's struct
 
 # From the engine's RouterSettings and limits (xroute.defaults): GCells per region side (0: auto,
 # region_size_for), iteration limit, the largest region side and thread count a
