@@ -28,6 +28,14 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   d["violations_by_type"] = byType;
   d["violations"] = r.markers;
   d["seconds"] = r.seconds;
+  nanobind::dict stages;
+  stages["setup"] = r.stages.setup;
+  stages["route"] = r.stages.route;
+  stages["commit"] = r.stages.commit;
+  stages["index"] = r.stages.index;
+  stages["trim"] = r.stages.trim;
+  stages["check"] = r.stages.check;
+  d["stage_seconds"] = stages;
   d["done"] = r.done;
   if (r.done) d["plan"] = planDict(r.plan);  // the plan the iteration ran
   return d;

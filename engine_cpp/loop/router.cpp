@@ -34,6 +34,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Seconds since `mark`, and `mark` moved to now.
+double lap(Clock::time_point& mark) {
+  const Clock::time_point now = Clock::now();
+  const double s = std::chrono::duration<double>(now - mark).count();
+  mark = now;
+  return s;
+}
+
 // The partition of `iteration`: the schedule's step (cycled), or the default
 // region size shifted by a third of a region each iteration.
 ScheduleStep stepFor(const RouterSettings& s, int iteration) {
@@ -105,7 +113,9 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
+      auto mark = Clock::now();
       if (s_.trimDangling) trimRerouted();
+      rep.stages.trim = lap(mark);
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
       markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
@@ -115,6 +125,7 @@ class Flow {
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
+      rep.stages.check = lap(mark);
       rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       rep.done = true;
       rep.plan = plan_;
@@ -268,6 +279,7 @@ class Flow {
   }
 
   void runIteration(int it, IterationReport& rep) {
+    auto mark = Clock::now();
     const std::vector<Region> regions = partitionRegions(ctx_.gcells, rep.regionSize, rep.offset);
     CrossingPlan plan;
     if (it == 0) plan = planCrossings(ctx_, regions, rep.regionSize, rep.offset);
@@ -281,14 +293,19 @@ class Flow {
       }
       if (it > 0) markReroutedElsewhere(tasks);
       if (it == 0 && beforeColour_) beforeColour_(color, plan, tasks);
+      rep.stages.setup += lap(mark);
       std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
+      rep.stages.route += lap(mark);
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
+      rep.stages.commit += lap(mark);
       ctx_.rebuildRoutedIndex();
 #ifdef __GLIBC__
       malloc_trim(0);
 #endif
+      rep.stages.index += lap(mark);
       if (progress_) progress_(rep, rep.regions, total);
+      mark = Clock::now();
     }
   }
 
