@@ -118,7 +118,7 @@ class Flow {
       rep.stages.trim = lap(mark);
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
-      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
+      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), checkOptions());
       ages_.assign(markers_.size(), 0);
       if (s_.ripNeighboursOfPersistent)
         for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
@@ -139,6 +139,13 @@ class Flow {
   }
 
  private:
+  // The whole-design check's options: the run's threads check layers side by side.
+  DrcOptions checkOptions() const {
+    DrcOptions o = ctx_.drcOptions();
+    o.threads = s_.threads;
+    return o;
+  }
+
   // Whether iteration `it` runs the late search (RouterSettings::lateSearchBudget).
   bool lateSearch(int it) const {
     return it > 0 && s_.lateSearchBudget > 0 && !markers_.empty() &&
