@@ -161,7 +161,8 @@ class ScheduleIterationEnv(gym.Env):
 
     def _info(self, **extra: Any) -> dict[str, Any]:
         # The reports' figures without their wall times, so that same actions give the same info.
-        history = [{k: v for k, v in r.to_dict().items() if k != "seconds"} for r in self._history]
+        timed = ("seconds", "stage_seconds")  # wall times differ from run to run
+        history = [{k: v for k, v in r.to_dict().items() if k not in timed} for r in self._history]
         return {"action_mask": self._mask(), "iteration": len(self._history), "history": history,
                 "menu": [name for name, _ in self.menu], **extra}
 

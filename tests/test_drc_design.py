@@ -129,3 +129,22 @@ def test_ispd18_test1_counts(capsys):
         print(f"\nispd18_test1 (pins + OBS): {len(db.drc_shapes())} shapes, {dict(counts)}, {seconds:.2f} s")
     # No pin of one net overlaps a pin of another.
     assert not [m for m in markers if m["type"] == "Short" and m["nets"][1] >= 0]
+
+
+def test_the_markers_do_not_depend_on_the_checks_threads(tmp_path, testcase):
+    """Layers are checked side by side: any thread count gives the same markers, report and counts.
+    The stand-in is routed one iteration at region size 2, which leaves markers on several layers."""
+    from xroute.design import load_design
+    from xroute.router import route_design
+
+    found = testcase("standin_marked")
+    design = load_design(lef=[str(found.lef)], def_=str(found.def_), guide=str(found.guide))
+    route_design(design, region_size=2, iterations=1)
+    one = design.engine.check_routing(report_path=str(tmp_path / "one.rpt"), threads=1)
+    assert len({m["layer"] for m in one["markers"]}) >= 2, "the test needs markers on several layers"
+    for threads in (2, 3, 16):
+        many = design.engine.check_routing(report_path=str(tmp_path / f"{threads}.rpt"), threads=threads)
+        assert many["markers"] == one["markers"]
+        assert (tmp_path / f"{threads}.rpt").read_bytes() == (tmp_path / "one.rpt").read_bytes()
+        assert design.engine.write_drc_report(str(tmp_path / "w.rpt"), threads=threads) == \
+            design.engine.write_drc_report(str(tmp_path / "w1.rpt"), threads=1)

@@ -38,7 +38,7 @@ def routed(size: int = SIZE, name: str = SAMPLE4, **kw: Any) -> tuple[str, Any]:
 
 def figures(reports: Any) -> list[dict[str, Any]]:
     """The reports without their wall times (which differ from run to run)."""
-    return [{k: v for k, v in r.to_dict().items() if k != "seconds"} for r in reports]
+    return [{k: v for k, v in r.to_dict().items() if k not in ("seconds", "stage_seconds")} for r in reports]
 
 
 @pytest.fixture(scope="module")

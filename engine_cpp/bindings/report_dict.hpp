@@ -27,6 +27,14 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   d["violations_by_type"] = byType;
   d["violations"] = r.markers;
   d["seconds"] = r.seconds;
+  nanobind::dict stages;
+  stages["setup"] = r.stages.setup;
+  stages["route"] = r.stages.route;
+  stages["commit"] = r.stages.commit;
+  stages["index"] = r.stages.index;
+  stages["trim"] = r.stages.trim;
+  stages["check"] = r.stages.check;
+  d["stage_seconds"] = stages;
   d["done"] = r.done;
   if (r.done) d["plan"] = nanobind::cast(r.plan).attr("to_dict")();  // the plan the iteration ran (IterationPlan's fields)
   return d;

@@ -119,7 +119,7 @@ void bindConnectivity(DatabaseClass& cls) {
 void bindCheckRouting(DatabaseClass& cls) {
   cls.def(
       "check_routing",
-      [](const Database& db, bool skip_fixed_pairs, const std::string& report_path) {
+      [](const Database& db, bool skip_fixed_pairs, const std::string& report_path, int threads) {
         ConnectivityReport conn;
         RoutingMetrics metrics;
         GuideTrackFigures figures;
@@ -132,6 +132,7 @@ void bindCheckRouting(DatabaseClass& cls) {
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
           options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);
+          options.threads = threads;
           std::vector<std::string> names;
           markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design, &names), options);
           if (!report_path.empty()) writeDrcReport(report_path, db.tech, markers, names);  // the same markers
@@ -163,9 +164,10 @@ void bindCheckRouting(DatabaseClass& cls) {
         }
         return d;
       },
-      "skip_fixed_pairs"_a = true, "report_path"_a = "",
+      "skip_fixed_pairs"_a = true, "report_path"_a = "", "threads"_a = 1,
       "Everything a routed design is judged on, in one call (the engine side of `xroute check`); with\n"
-      "report_path, also writes the markers found as write_drc_report does (no second check).\n\n"
+      "report_path, also writes the markers found as write_drc_report does (no second check). threads:\n"
+      "layers checked at once (the result does not depend on it).\n\n"
       "Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens\n"
       "(open nets), connectivity (check_connectivity's dict), markers (check_drc's list),\n"
       "wirelength_dbu/_um and vias (as metrics), wrong_way_wirelength_dbu/_um, off_track_wirelength_dbu/\n"
@@ -185,7 +187,7 @@ void bindCheckRouting(DatabaseClass& cls) {
 void bindDrcReport(DatabaseClass& cls) {
   cls.def(
       "write_drc_report",
-      [](const Database& db, const std::string& path, bool skip_fixed_pairs) {
+      [](const Database& db, const std::string& path, bool skip_fixed_pairs, int threads) {
         std::array<int64_t, kMarkerTypes> counts;
         {
           nb::gil_scoped_release release;
@@ -194,6 +196,7 @@ void bindDrcReport(DatabaseClass& cls) {
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
           options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);  // as check_routing judges
+          options.threads = threads;
           const std::vector<Marker> markers = checkShapes(db.tech, std::move(shapes), options);
           writeDrcReport(path, db.tech, markers, names);
           counts = countMarkers(markers);
@@ -202,8 +205,9 @@ void bindDrcReport(DatabaseClass& cls) {
         for (int t = 0; t < kMarkerTypes; ++t) d[nb::str(std::string(markerTypeName(MarkerType(t))).c_str())] = counts[t];
         return d;
       },
-      "path"_a, "skip_fixed_pairs"_a = true,
-      "Design-rule check of the whole design (as check_drc), written to `path` atomically: a header\n"
+      "path"_a, "skip_fixed_pairs"_a = true, "threads"_a = 1,
+      "Design-rule check of the whole design (as check_drc), written to `path` atomically (threads:\n"
+      "layers checked at once, the result does not depend on it): a header\n"
       "'# markers N <type> <count> ...' then one line per marker '<type> <layer> <xlo> <ylo> <xhi> <yhi>\n"
       "<net1> <net2>' (DBU; net names, '-' for none or an obstruction; pins on no net as comp/pin,\n"
       "*/pin or PIN/name). Returns {marker type: count} for every type. Raises InputError when the\n"

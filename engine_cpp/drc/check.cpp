@@ -1,6 +1,10 @@
 // checkShapes: groups the shapes by layer, builds each layer's index and
 // connectivity, runs the rule families, then filters, merges and sorts.
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <tuple>
 
 #include "drc/layer_shapes.hpp"
@@ -138,9 +142,12 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
   shapes.clear();
   shapes.shrink_to_fit();
 
-  MarkerSink raw;
-  for (size_t l = 0; l < byLayer.size(); ++l) {
-    if (byLayer[l].empty()) continue;
+  // Layers are independent: each is checked on its own (by up to options.threads workers) into its
+  // own sink, and the sinks are joined in layer order, so the markers do not depend on the threads.
+  std::vector<MarkerSink> sinks(byLayer.size());
+  auto checkLayer = [&](size_t l) {
+    if (byLayer[l].empty()) return;
+    MarkerSink& raw = sinks[l];
     LayerShapes ls;
     ls.layer = LayerId(int32_t(l));
     ls.rules = &tech.layers[l];
@@ -158,7 +165,37 @@ std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, 
       checkShorts(ls, MarkerType::CutShort, raw);
       checkCutSpacing(ls, raw);
     }
+  };
+  const int workers = std::clamp(options.threads, 1, static_cast<int>(std::max<size_t>(1, byLayer.size())));
+  if (workers == 1) {
+    for (size_t l = 0; l < byLayer.size(); ++l) checkLayer(l);
+  } else {
+    // The layers with the most shapes first, so that no worker is left with a large one at the end.
+    std::vector<size_t> order(byLayer.size());
+    for (size_t l = 0; l < order.size(); ++l) order[l] = l;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return byLayer[a].size() > byLayer[b].size(); });
+    std::atomic<size_t> next{0};
+    std::exception_ptr error;
+    std::mutex errorMutex;
+    auto work = [&]() {
+      for (size_t i = next.fetch_add(1); i < order.size(); i = next.fetch_add(1)) {
+        try {
+          checkLayer(order[i]);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(errorMutex);
+          if (!error) error = std::current_exception();
+          next = order.size();
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 0; w < workers; ++w) pool.emplace_back(work);
+    for (std::thread& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
   }
+  MarkerSink raw;
+  for (MarkerSink& sink : sinks) raw.insert(raw.end(), sink.begin(), sink.end());
 
   std::vector<Marker> markers;
   markers.reserve(raw.size());

@@ -43,6 +43,7 @@ struct DrcOptions {
   // NONDEFAULTRULE spacing: ndrSpacing[layer id][net id], DBU, the least gap a net's metal needs
   // on that layer besides the layer's own rules (0 = none); empty when no net has a rule.
   std::vector<std::vector<Dbu>> ndrSpacing;
+  int threads = 1;                // layers checked at once (the markers do not depend on it)
 };
 
 // Markers sorted by (type, layer, box, net1, net2); independent of input order.

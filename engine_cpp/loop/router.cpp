@@ -34,6 +34,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Seconds since `mark`, and `mark` moved to now.
+double lap(Clock::time_point& mark) {
+  const Clock::time_point now = Clock::now();
+  const double s = std::chrono::duration<double>(now - mark).count();
+  mark = now;
+  return s;
+}
+
 // The partition of `iteration`: the schedule's step (cycled), or the default
 // region size shifted by a third of a region each iteration.
 ScheduleStep stepFor(const RouterSettings& s, int iteration) {
@@ -92,16 +100,19 @@ class Flow {
       rep.regionSize = plan_.regionSize;
       rep.offset = plan_.offset;
       runIteration(it, rep);
+      auto mark = Clock::now();
       if (s_.trimDangling) trimRerouted();
+      rep.stages.trim = lap(mark);
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
-      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), ctx_.drcOptions());
+      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), checkOptions());
       ages_.assign(markers_.size(), 0);
       if (s_.ripNeighboursOfPersistent)
         for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
       for (const Marker& m : markers_) ++rep.markersByType[static_cast<int>(m.type)];
       rep.markers = static_cast<int>(markers_.size());
       routingTotals(design_, rep.wirelength, rep.vias);
+      rep.stages.check = lap(mark);
       rep.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       rep.done = true;
       rep.plan = plan_;
@@ -115,6 +126,13 @@ class Flow {
   }
 
  private:
+  // The whole-design check's options: the run's threads check layers side by side.
+  DrcOptions checkOptions() const {
+    DrcOptions o = ctx_.drcOptions();
+    o.threads = s_.threads;
+    return o;
+  }
+
   // Whether iteration `it` runs the late search (RouterSettings::lateSearchBudget).
   bool lateSearch(int it) const {
     return it > 0 && s_.lateSearchBudget > 0 && !markers_.empty() &&
@@ -255,6 +273,7 @@ class Flow {
   }
 
   void runIteration(int it, IterationReport& rep) {
+    auto mark = Clock::now();
     const std::vector<Region> regions = partitionRegions(ctx_.gcells, rep.regionSize, rep.offset);
     CrossingPlan plan;
     if (it == 0) plan = planCrossings(ctx_, regions, rep.regionSize, rep.offset);
@@ -268,14 +287,19 @@ class Flow {
       }
       if (it > 0) markReroutedElsewhere(tasks);
       if (it == 0 && beforeColour_) beforeColour_(color, plan, tasks);
+      rep.stages.setup += lap(mark);
       std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
+      rep.stages.route += lap(mark);
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
+      rep.stages.commit += lap(mark);
       ctx_.rebuildRoutedIndex();
 #ifdef __GLIBC__
       malloc_trim(0);
 #endif
+      rep.stages.index += lap(mark);
       if (progress_) progress_(rep, rep.regions, total);
+      mark = Clock::now();
     }
   }
 

@@ -85,6 +85,16 @@ struct IterationPlan {
   int searchBudget = 0;
 };
 
+// Wall seconds of an iteration's stages (they add up to about IterationReport::seconds).
+struct StageSeconds {
+  double setup = 0;                // regions, tasks and rip-ups made ready (incl. iteration 0's crossing plan)
+  double route = 0;                // the regions' batches: pin access, grids, maze, in-region checks
+  double commit = 0;               // the batches' routing written into the design
+  double index = 0;                // the routed-shape index rebuilt after each colour
+  double trim = 0;                 // rerouted nets' dangling routing cut back
+  double check = 0;                // the whole design's rule check and the totals
+};
+
 struct IterationReport {
   int iteration = 0;
   int regionSize = 0;              // GCells per region side in this iteration
@@ -97,6 +107,7 @@ struct IterationReport {
   std::array<int, kMarkerTypes> markersByType{};  // indexed by MarkerType
   int markers = 0;
   double seconds = 0;              // wall time of the iteration (routing + check)
+  StageSeconds stages;             // where `seconds` went
   bool done = false;               // the check has run: markers, totals and seconds are final
   IterationPlan plan;              // what the iteration ran with (set with done)
 };

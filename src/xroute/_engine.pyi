@@ -201,10 +201,11 @@ class Database:
         vias_by_cut_layer {cut layer: count}, nets_routed (nets with any routing)}.
         """
 
-    def check_routing(self, skip_fixed_pairs: bool = True, report_path: str = '') -> dict:
+    def check_routing(self, skip_fixed_pairs: bool = True, report_path: str = '', threads: int = 1) -> dict:
         """
         Everything a routed design is judged on, in one call (the engine side of `xroute check`); with
-        report_path, also writes the markers found as write_drc_report does (no second check).
+        report_path, also writes the markers found as write_drc_report does (no second check). threads:
+        layers checked at once (the result does not depend on it).
 
         Regular nets (NETS) only, except the markers (the whole design, as check_drc). Returns {opens
         (open nets), connectivity (check_connectivity's dict), markers (check_drc's list),
@@ -221,9 +222,10 @@ class Database:
         guide of its net on its bottom metal, or none on its top metal, contains its point.
         """
 
-    def write_drc_report(self, path: str, skip_fixed_pairs: bool = True) -> dict:
+    def write_drc_report(self, path: str, skip_fixed_pairs: bool = True, threads: int = 1) -> dict:
         """
-        Design-rule check of the whole design (as check_drc), written to `path` atomically: a header
+        Design-rule check of the whole design (as check_drc), written to `path` atomically (threads:
+        layers checked at once, the result does not depend on it): a header
         '# markers N <type> <count> ...' then one line per marker '<type> <layer> <xlo> <ylo> <xhi> <yhi>
         <net1> <net2>' (DBU; net names, '-' for none or an obstruction; pins on no net as comp/pin,
         */pin or PIN/name). Returns {marker type: count} for every type. Raises InputError when the

@@ -87,11 +87,13 @@ def contest_terms(raw: dict[str, Any], pitch_dbu: int) -> dict[str, float]:
     return {k: SCORE_WEIGHTS[k] * v for k, v in figures.items()}
 
 
-def check_design(design: Design, report_path: str | os.PathLike[str] | None = None) -> CheckResult:
+def check_design(design: Design, report_path: str | os.PathLike[str] | None = None, threads: int = 1) -> CheckResult:
     """Checks the routing ``design`` holds (a routed DEF, read with its LEF and, for the guide
     figures, its guide file); with ``report_path``, the markers are also written there as a text
-    DRC report (atomically, from the same check)."""
-    raw = design.engine.check_routing(report_path=os.fspath(report_path) if report_path is not None else "")
+    DRC report (atomically, from the same check). ``threads`` layers are checked at once (the
+    result does not depend on it)."""
+    raw = design.engine.check_routing(report_path=os.fspath(report_path) if report_path is not None else "",
+                                      threads=threads)
     by_type: dict[str, int] = {}
     for m in raw["markers"]:
         by_type[m["type"]] = by_type.get(m["type"], 0) + 1

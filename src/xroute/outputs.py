@@ -154,7 +154,8 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
     written = load_design(lef=design.lef_paths, def_=staged_def)  # check the file, not the memory
     conn = written.engine.check_connectivity()
     measured = written.engine.metrics()
-    drc = {str(k): int(v) for k, v in written.engine.write_drc_report(str(staged_drc)).items()}
+    drc_report = written.engine.write_drc_report(str(staged_drc), threads=result.settings.threads)
+    drc = {str(k): int(v) for k, v in drc_report.items()}
 
     counts = design.counts()
     runtime = time.perf_counter() - started if started is not None else result.seconds

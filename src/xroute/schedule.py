@@ -122,6 +122,8 @@ class IterationReport:
     violations_by_type: dict[str, int] = field(default_factory=dict)  # marker type -> count
     violations: int = 0  # all markers after the iteration
     seconds: float = 0.0  # wall time of the iteration (routing + check)
+    # wall seconds by stage (setup, route, commit, index, trim, check; about `seconds` in all)
+    stage_seconds: dict[str, float] = field(default_factory=dict)
     plan: IterationPlan | None = None  # what the iteration ran with (None while it runs)
 
     @classmethod
@@ -139,6 +141,7 @@ class IterationReport:
             violations_by_type={str(k): int(v) for k, v in d["violations_by_type"].items()},
             violations=int(d["violations"]),
             seconds=float(d["seconds"]),
+            stage_seconds={str(k): float(v) for k, v in d.get("stage_seconds", {}).items()},
             plan=_plan_type()(**d["plan"]) if d.get("plan") else None,
         )
 
@@ -156,6 +159,7 @@ class IterationReport:
             "violations": self.violations,
             "violations_by_type": dict(self.violations_by_type),
             "seconds": self.seconds,
+            "stage_seconds": dict(self.stage_seconds),
             "plan": self.plan.to_dict() if self.plan is not None else None,
         }
 
