@@ -385,6 +385,7 @@ void DefParser::readTracks() {
   if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
   TrackPattern pat;
   pat.isX = axis.text == "X";
+  pat.line = axis.line;
   pat.start = lex_.dbu();
   lex_.expect("DO");
   const Token countTok = lex_.peek();
@@ -556,11 +557,13 @@ void DefParser::readBlockage() {
 
 void readDef(const std::string& path, const Tech& tech, Design& design) {
   Lexer lex = Lexer::fromFile(path);
+  design.path = path;
   DefParser(lex, tech, design).parse();
 }
 
 void readDefText(const std::string& name, std::string text, const Tech& tech, Design& design) {
   Lexer lex(name, std::move(text));
+  design.path = name;
   DefParser(lex, tech, design).parse();
 }
 
