@@ -66,6 +66,20 @@ def print_error(exc: BaseException) -> None:
     typer.echo(error_line(exc), err=True)
 
 
+MAX_WARNINGS_SHOWN = 5  # warnings read from the input files that check and route print (info prints all)
+
+
+def print_read_warnings(design: Design) -> None:
+    """The warnings of reading ``design``'s files, on stderr as ``warning: <file>:<line>: ...`` lines:
+    the first :data:`MAX_WARNINGS_SHOWN`, then how many more (``xroute info`` lists them all)."""
+    messages = design.warnings()
+    for message in messages[:MAX_WARNINGS_SHOWN]:
+        typer.echo("warning: " + " ".join(message.split()), err=True)
+    if len(messages) > MAX_WARNINGS_SHOWN:
+        typer.echo(f"warning: ... and {len(messages) - MAX_WARNINGS_SHOWN} more warnings reading the inputs "
+                   "(xroute info lists them all)", err=True)
+
+
 USER_ERRORS: tuple[type[BaseException], ...] = (XrouteError, OSError)
 
 

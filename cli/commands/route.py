@@ -23,6 +23,7 @@ from xroute.cli.console import (
     counted,
     load_design_args,
     print_json,
+    print_read_warnings,
     stdout_console,
 )
 from xroute.cli.options import (
@@ -175,6 +176,7 @@ def route(
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
     design = load_design_args(testcase, lef, def_, guide, prepare=True)
+    print_read_warnings(design)
     if net_router is not None:
         from xroute.policies.net_router import NetRouterPolicy
 
