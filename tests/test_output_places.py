@@ -1,14 +1,22 @@
-"""Where outputs go: ``~`` in a config's output folder is the home folder (as the shell makes it
-on the command line)."""
+"""Where outputs go and what a failed write says: ``~`` in a config's output folder is the home
+folder (as the shell makes it on the command line), and a full disk names the file it could not
+write while the folder keeps its previous set whole.
+
+The full disk is simulated here: ``fsync`` (where a full disk also shows on some file systems)
+fails with ENOSPC for the one file named; ``fuzz/hostile_cli.py`` fills a real tmpfs.
+"""
 
 from __future__ import annotations
 
+import errno
+import os
 from pathlib import Path
 
 import pytest
 
-from conftest import make_runner
+from conftest import make_runner, one_error
 from xroute.cli.app import app
+from xroute.output_set import file_sha256
 
 BATCH = "testcases: [demo]\nout_dir: ~/runs/b\nsettings:\n  - {name: one, iteration_count: 1}\n"
 
@@ -43,3 +51,53 @@ def test_a_batch_out_dir_under_home(home: Path, tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert (home / "runs" / "b" / "summary.json").is_file()
     assert list(Path.cwd().iterdir()) == []
+
+
+@pytest.fixture
+def routed_once(tmp_path: Path) -> tuple[Path, dict[str, str]]:
+    """An output folder holding one routed set of the demo, and the SHA-256 of its files."""
+    out = tmp_path / "o"
+    assert make_runner().invoke(app, ["route", "--out", str(out), "--quiet", "--iterations", "1"]).exit_code == 0
+    return out, {p.name: file_sha256(p) for p in out.iterdir()}
+
+
+@pytest.mark.parametrize("nth, named", [(1, "demo.metrics.json"), (2, "")])
+def test_a_full_disk_names_the_file_and_keeps_the_old_set(routed_once: tuple[Path, dict[str, str]],
+                                                         monkeypatch: pytest.MonkeyPatch, nth: int, named: str) -> None:
+    """The n-th flush of the run fails as on a full disk: the metrics JSON (1st), the note that
+    publishes the set (2nd, named by the output folder)."""
+    import xroute.atomic_files as atomic_files
+
+    out, before = routed_once
+    real_fsync, calls = os.fsync, []
+
+    def fsync(fd: int) -> None:
+        calls.append(fd)
+        if len(calls) == nth:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        real_fsync(fd)
+
+    monkeypatch.setattr(atomic_files.os, "fsync", fsync)
+    result = make_runner().invoke(app, ["route", "--out", str(out), "--quiet", "--iterations", "2"])
+    one_error(result, f"{out / named if named else out}: No space left on device")
+    assert {p.name: file_sha256(p) for p in out.iterdir()} == before  # the old set, whole, nothing else
+
+
+def test_an_engine_write_error_names_the_final_file(routed_once: tuple[Path, dict[str, str]],
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """The routed DEF (written by the engine into the staging folder) cannot be written: the error
+    names the file it would have become, not the staging folder that is gone."""
+    import xroute.output_set as output_set
+
+    out, before = routed_once
+    make_stage = output_set.make_stage
+
+    def blocked_stage(out_dir: Path) -> Path:
+        stage = make_stage(out_dir)
+        (stage / "demo.routed.def").mkdir()  # what the DEF would replace: the engine refuses a folder
+        return stage
+
+    monkeypatch.setattr(output_set, "make_stage", blocked_stage)
+    result = make_runner().invoke(app, ["route", "--out", str(out), "--quiet", "--iterations", "2"])
+    one_error(result, f"{out / 'demo.routed.def'}: ")
+    assert {p.name: file_sha256(p) for p in out.iterdir()} == before
