@@ -65,7 +65,7 @@ def _load_module(p: Path) -> Any:
         here = os.path.abspath(p)  # the frames name the file by its absolute path
         lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if os.path.abspath(f.filename) == here]
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
-        where = f"{p}:{line}: " if line else ""
+        where = f"{p}:{line}: " if line else f"{p}: "
         message = safe_text(exc)
         raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}"
                           + (f": {message}" if message else "")) from None

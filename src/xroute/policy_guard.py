@@ -10,6 +10,9 @@
   fails is shown as ``<Type: unprintable>``. Only ``KeyboardInterrupt`` passes as it is.
 * :func:`kept_cwd` puts the working directory back after user code ran: a policy that calls
   ``os.chdir`` cannot move where the run reads and writes.
+* Every failure names the policy's file: :func:`policy_source` is the file that defines it (a
+  model file for ONNX and JSON policies), :func:`policy_where` that file and the line of the
+  method (for a wrong return value).
 * :class:`Watchdog` enforces a per-call time limit (``policy.call_timeout`` in the config,
   :data:`DEFAULT_CALL_TIMEOUT` by default). When a call runs past it, the watchdog raises
   :class:`PolicyTimeout` inside the policy's thread (delivered at the policy's next Python
@@ -55,17 +58,35 @@ def stray_threads() -> list[threading.Thread]:
 
 
 def policy_source(policy: Any) -> str | None:
-    """The file that defines a policy's order function (None for built-ins and C++)."""
-    fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None)
-    code = getattr(fn, "__code__", None)
+    """The file that defines a policy: its ``source`` (a model file: ONNX, JSON) when it has one,
+    else the file of its order (or plan) function; None for built-ins and C++."""
+    source = getattr(policy, "source", None)
+    if isinstance(source, str) and source:
+        return source
+    code = _method_code(policy)
     return code.co_filename if code is not None else None
 
 
+def _method_code(policy: Any) -> Any:
+    fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None) or getattr(type(policy), "plan", None)
+    return getattr(fn, "__code__", None)
+
+
+def policy_where(policy: Any) -> str:
+    """``<file>:<line>`` of a Python policy's function, ``<file>`` of a model; "" for built-ins."""
+    source = policy_source(policy)
+    if source is None:
+        return ""
+    code = _method_code(policy)
+    if code is not None and code.co_filename == source:
+        return f"{source}:{code.co_firstlineno}"
+    return source
+
+
 def _where(exc: BaseException, source: str | None) -> tuple[str, int]:
-    """(file, line) of the innermost frame of ``exc`` in the policy's file (else the innermost frame)."""
+    """(file, line) of the innermost frame of ``exc`` in the policy's file; the file alone when no
+    frame is in it (a model file), else the innermost frame."""
     frames = traceback.extract_tb(exc.__traceback__)
-    if not frames:
-        return (source or "policy", 0)
     if source is not None:
         try:
             src = str(Path(source).resolve())
@@ -74,6 +95,9 @@ def _where(exc: BaseException, source: str | None) -> tuple[str, int]:
                     return (fr.filename, fr.lineno or 0)
         except OSError:
             pass
+        return (source, 0)
+    if not frames:
+        return ("policy", 0)
     fr = frames[-1]
     return (fr.filename, fr.lineno or 0)
 

@@ -30,7 +30,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any, Callable, Mapping, Protocol, Sequence, runtime_checkable
 
 from xroute.net_order import PolicyError
-from xroute.policy_guard import kept_cwd, user_failure
+from xroute.policy_guard import kept_cwd, policy_where, user_failure
 
 MAX_PENALTY = 10**12  # cost units: far above any weight that steers the maze (its defaults are 1,000-8,000)
 
@@ -162,14 +162,24 @@ class CallableSchedule:
             return rule
         if isinstance(got, IterationPlan):
             return got
+        where = _named(self)
         if isinstance(got, Mapping):
             unknown = sorted(set(map(str, got)) - {f.name for f in fields(IterationPlan)})
             if unknown:
-                raise PolicyError(f"schedule policy '{self.name}': plan() returned unknown key(s) "
+                raise PolicyError(f"{where}: plan() returned unknown key(s) "
                                   f"{', '.join(unknown)} (known: {', '.join(f.name for f in fields(IterationPlan))})")
-            return replace(rule, **{str(k): v for k, v in got.items()})
-        raise PolicyError(f"schedule policy '{self.name}': plan() must return an IterationPlan, a dict or None, "
+            try:
+                return replace(rule, **{str(k): v for k, v in got.items()})
+            except TypeError as exc:  # e.g. a key that is not a string
+                raise PolicyError(f"{where}: plan() returned a dict that is not a plan: {exc}") from None
+        raise PolicyError(f"{where}: plan() must return an IterationPlan, a dict or None, "
                           f"got {type(got).__name__}")
+
+
+def _named(policy: Any) -> str:
+    """``<file>:<line>: schedule policy '<name>'`` (the file alone for a model, nothing for the rule)."""
+    where = policy_where(policy)
+    return (f"{where}: " if where else "") + f"schedule policy '{getattr(policy, 'name', 'schedule')}'"
 
 
 def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], dict[str, Any]], dict[str, Any]]:
@@ -188,14 +198,14 @@ def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], dict[str, Any
                 raise
             raise failure from None
         if not isinstance(plan, IterationPlan):
-            raise PolicyError(f"schedule policy '{policy.name}': plan() must return an IterationPlan, "
+            raise PolicyError(f"{_named(policy)}: plan() must return an IterationPlan, "
                               f"got {type(plan).__name__}")
         try:
             plan.checked()
         except ValueError as exc:
-            raise PolicyError(f"schedule policy '{policy.name}', iteration {len(reports)}: {exc}") from None
+            raise PolicyError(f"{_named(policy)}, iteration {len(reports)}: {exc}") from None
         if plan.stop and not reports:
-            raise PolicyError(f"schedule policy '{policy.name}': the first iteration cannot stop the run "
+            raise PolicyError(f"{_named(policy)}: the first iteration cannot stop the run "
                               "(it routes every net)")
         return plan.to_engine()
 
