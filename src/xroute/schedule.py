@@ -30,7 +30,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any, Callable, Mapping, Protocol, Sequence, runtime_checkable
 
 from xroute.net_order import PolicyError
-from xroute.policy_guard import kept_cwd, policy_where, user_failure
+from xroute.policy_guard import policy_code, policy_where, user_failure
 
 MAX_PENALTY = 10**12  # cost units: far above any weight that steers the maze (its defaults are 1,000-8,000)
 
@@ -190,7 +190,7 @@ def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], dict[str, Any
         reports = [IterationReport.from_engine(d) for d in history]
         base = IterationPlan.from_engine(rule)
         try:
-            with kept_cwd():
+            with policy_code(policy, "plan"):
                 plan = policy.plan(reports, base)
         except BaseException as exc:  # noqa: BLE001 - the user's code: named (policy_guard.user_failure)
             failure = user_failure(exc, policy, "plan")
