@@ -186,7 +186,8 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
         replace(tmp, final)
     except (XrouteError, OSError) as exc:
         shutil.rmtree(tmp, ignore_errors=True)
-        record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
+        message = error_line(exc)[len("error: "):].replace(str(tmp), str(final))  # the folder the user will look in
+        record.update(status="error", seconds=time.perf_counter() - started, message=message)
     except Exception as exc:
         from xroute.policy_guard import policy_failure_line
 

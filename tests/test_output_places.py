@@ -101,3 +101,25 @@ def test_an_engine_write_error_names_the_final_file(routed_once: tuple[Path, dic
     result = make_runner().invoke(app, ["route", "--out", str(out), "--quiet", "--iterations", "2"])
     one_error(result, f"{out / 'demo.routed.def'}: ")
     assert {p.name: file_sha256(p) for p in out.iterdir()} == before
+
+
+def test_a_batch_job_that_cannot_write_names_its_final_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A job routes into a temporary folder beside its final one: its error names the final one."""
+    import xroute.output_set as output_set
+    from xroute.cli.batch import plan_jobs, run_job
+    from xroute.cli.batch_config import load_batch_config
+
+    batch = tmp_path / "b.yaml"
+    batch.write_text(BATCH.replace("out_dir: ~/runs/b\n", ""))
+    (job,) = plan_jobs(load_batch_config(batch))
+    make_stage = output_set.make_stage
+
+    def blocked_stage(out_dir: Path) -> Path:
+        stage = make_stage(out_dir)
+        (stage / "demo.routed.def").mkdir()
+        return stage
+
+    monkeypatch.setattr(output_set, "make_stage", blocked_stage)
+    record = run_job(job, str(tmp_path / "out"))
+    assert record["status"] == "error"
+    assert record["message"] == f"{tmp_path / 'out' / 'jobs' / job.id / 'demo.routed.def'}: cannot write DEF: Is a directory"
