@@ -34,9 +34,10 @@ from xroute.cli.commands import (
     train,
     train_schedule,
 )
-from xroute.cli.console import USER_ERRORS, print_error
+from xroute.cli.console import USER_ERRORS, echo_error, print_error
 from xroute.errors import safe_text
 from xroute.policy_guard import stray_threads
+from xroute.policy_process import install_exit_guard, real_exit
 
 EXIT_USER_ERROR = 2
 
@@ -53,21 +54,36 @@ class XrouteGroup(TyperGroup):
             ctx.exit(EXIT_USER_ERROR)
         except MemoryError as exc:  # e.g. std::bad_alloc in the engine on an absurdly large input
             _debug_traceback(exc)
-            typer.echo(f"error: out of memory ({exc or 'MemoryError'}): the input or the settings ask for too much",
-                       err=True)
+            echo_error(f"error: out of memory ({exc or 'MemoryError'}): the input or the settings ask for too much")
             ctx.exit(EXIT_USER_ERROR)
         except Exception as exc:  # an exception raised inside a user's policy: one line naming it
             from xroute.policy_guard import policy_failure_line
 
             line = policy_failure_line(exc)
             if line is None:
+                if _streams_closed():  # a policy closed stdout or stderr: no traceback could be seen
+                    echo_error(f"error: the run failed after stdout or stderr was closed (by a policy?): "
+                               f"{type(exc).__name__}: {safe_text(exc)}")
+                    ctx.exit(EXIT_USER_ERROR)
                 raise  # anything else is a bug: its traceback
             _debug_traceback(exc)
-            typer.echo("error: " + line, err=True)
+            echo_error("error: " + line)
             ctx.exit(EXIT_USER_ERROR)
 
 
 DEBUG = {"on": False}  # set by --debug
+
+
+def _streams_closed() -> bool:
+    """Whether stdout or stderr (the Python objects or file descriptors 1 and 2) is closed."""
+    for stream, fd in ((sys.stdout, 1), (sys.stderr, 2)):
+        if stream is None or getattr(stream, "closed", False):
+            return True
+        try:
+            os.fstat(fd)
+        except OSError:
+            return True
+    return False
 
 
 def _debug_traceback(exc: BaseException) -> None:
@@ -167,7 +183,7 @@ def finish(code: object) -> None:
             stream.flush()
         except (ValueError, OSError):
             pass
-    os._exit(status)
+    real_exit(status)
 
 
 def _click_exceptions() -> tuple[tuple[type[BaseException], ...], tuple[type[BaseException], ...]]:
@@ -193,6 +209,7 @@ def main() -> None:
     """Console-script entry point (``xroute``): text that the terminal's encoding cannot show is
     escaped, and threads a policy left running do not outlive the command (:func:`finish`)."""
     tolerant_streams()
+    install_exit_guard()  # os._exit from a policy: one error line and status 2 (xroute.policy_process)
     threading.excepthook = _thread_failure
     usage_errors, aborts = _click_exceptions()
     code: object = 0

@@ -185,7 +185,8 @@ def run_job(job: Job, out_root: str, events: Any = None) -> dict[str, Any]:
         replace(tmp, final)
     except (XrouteError, OSError) as exc:
         shutil.rmtree(tmp, ignore_errors=True)
-        record.update(status="error", seconds=time.perf_counter() - started, message=error_line(exc)[len("error: "):])
+        message = error_line(exc)[len("error: "):].replace(str(tmp), str(final))  # the folder the user will look in
+        record.update(status="error", seconds=time.perf_counter() - started, message=message)
     except Exception as exc:
         from xroute.policy_guard import policy_failure_line
 
@@ -208,6 +209,9 @@ def end_with_parent(parent: int) -> None:
     (:func:`end_despite_threads`)."""
     import multiprocessing.util
 
+    from xroute.policy_process import install_exit_guard, real_exit
+
+    install_exit_guard()  # os._exit in a policy's order(): the job's error, not a silent end
     # Run when the worker's loop has returned (every result sent), before the process waits for its
     # threads; the lowest priority, so after the other exit finalizers.
     multiprocessing.util.Finalize(None, end_despite_threads, exitpriority=-100)
@@ -219,7 +223,7 @@ def end_with_parent(parent: int) -> None:
         except (OSError, AttributeError):
             return
     if os.getppid() != parent:  # the batch ended before the signal was set up
-        os._exit(1)
+        real_exit(1)
 
 
 def end_despite_threads() -> None:
@@ -229,6 +233,7 @@ def end_despite_threads() -> None:
     the batch. The worker's results were all sent before this runs (as ``xroute route`` does,
     :func:`xroute.cli.app.finish`)."""
     from xroute.policy_guard import stray_threads
+    from xroute.policy_process import real_exit
 
     if not stray_threads():
         return
@@ -237,7 +242,7 @@ def end_despite_threads() -> None:
             stream.flush()
         except (ValueError, OSError):
             pass
-    os._exit(0)
+    real_exit(0)
 
 
 @dataclass

@@ -70,7 +70,8 @@ class BatchFile:
     settings: tuple[SettingsEntry, ...] = ()  # empty: one entry named "default" with the base config's settings
     config: str | None = setting(None, check="input_file", help="base config (like configs/default.yaml)")
     jobs: int = setting(1, min=1, max=256, help="parallel jobs (processes); --jobs overrides")
-    out_dir: str = "runs/batch"  # relative to the current directory; --out overrides
+    out_dir: str = setting("runs/batch", check="output_dir", help="relative to the current directory (~ expanded); "
+                           "--out overrides")
     gates: Gates = Gates()
 
     def __post_init__(self) -> None:

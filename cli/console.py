@@ -5,10 +5,13 @@ Only the command layer uses this module; the library never prints.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import json
 import os
+import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any, Callable, Iterator
 
 import typer
 from rich.console import Console
@@ -56,14 +59,76 @@ def error_line(exc: BaseException) -> str:
             text += "; also " + "; ".join(shown) + (f"; and {left} more" if left else "")
     elif isinstance(exc, OSError) and exc.filename is not None:
         text = f"{exc.filename}: {exc.strerror or exc}"
+    elif isinstance(exc, OSError) and exc.errno == errno.EBADF:
+        text = f"standard output or error closed during the run (by a policy?): {exc.strerror or exc}"
     else:
         text = str(exc)
     return "error: " + " ".join(text.split())  # one line, whatever the message held
 
 
 def print_error(exc: BaseException) -> None:
-    """Prints :func:`error_line` on stderr (plain text: no wrapping, no colour codes)."""
-    typer.echo(error_line(exc), err=True)
+    """Prints :func:`error_line` on stderr (plain text: no wrapping, no colour codes); when stderr
+    cannot be written (a policy closed it), on the copy of it kept at start
+    (:func:`xroute.policy_process.write_error`)."""
+    echo_error(error_line(exc))
+
+
+def echo_error(line: str) -> None:
+    """Writes one ``error: ...`` line on stderr, or where :func:`xroute.policy_process.write_error` can."""
+    try:
+        typer.echo(line, err=True)
+    except (OSError, ValueError):  # a closed stderr (its fd, or the Python object)
+        from xroute.policy_process import write_error
+
+        write_error(line)
+
+
+MAX_WARNINGS_SHOWN = 5  # warnings read from the input files that check and route print (info prints all)
+
+
+def print_read_warnings(design: Design) -> None:
+    """The warnings of reading ``design``'s files, on stderr as ``warning: <file>:<line>: ...`` lines:
+    the first :data:`MAX_WARNINGS_SHOWN`, then how many more (``xroute info`` lists them all)."""
+    messages = design.warnings()
+    for message in messages[:MAX_WARNINGS_SHOWN]:
+        typer.echo("warning: " + " ".join(message.split()), err=True)
+    if len(messages) > MAX_WARNINGS_SHOWN:
+        typer.echo(f"warning: ... and {len(messages) - MAX_WARNINGS_SHOWN} more warnings reading the inputs "
+                   "(xroute info lists them all)", err=True)
+
+
+@contextlib.contextmanager
+def json_output(active: bool) -> Iterator[Callable[[Any], None]]:
+    """A context for a command's work that yields the function printing its JSON document. When
+    ``active`` (``--json``) stdout is the document's alone: anything else written there from now
+    on (a policy's prints, by C code too, a thread it left running) goes to stderr. On the real
+    stdout (file descriptor 1) that holds for the rest of the process: descriptor 1 is pointed at
+    stderr and the document is written to a copy of the original."""
+    if not active:
+        yield print_json
+        return
+    out = sys.stdout
+    try:
+        fd = out.fileno()
+    except (AttributeError, ValueError, OSError):  # not a file (an in-process runner's stream)
+        fd = None
+    if fd != 1:
+        sys.stdout = sys.stderr
+        try:
+            yield lambda data: _write_json(out, data)
+        finally:
+            sys.stdout = out
+        return
+    out.flush()
+    stream = os.fdopen(os.dup(1), "w", encoding=getattr(out, "encoding", None) or "utf-8", errors="backslashreplace")
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    yield lambda data: _write_json(stream, data)
+
+
+def _write_json(stream: Any, data: Any) -> None:
+    stream.write(json.dumps(data, indent=2, sort_keys=False) + "\n")
+    stream.flush()
 
 
 USER_ERRORS: tuple[type[BaseException], ...] = (XrouteError, OSError)

@@ -23,11 +23,16 @@ categories:
   summary set's) killed just before a random rename (XROUTE_TEST_KILL_AT), then run again: the
   set must be consistent (hashes agree, summary.json's too) and no leftover remain.
 
+and the six categories of ``hostile_failures.py`` (what a failure tells the user: failing
+policies of every form, ``--json`` with printing policies, ``~`` in configs, a full disk, DEFs
+without preferred tracks, odd DEF values that must be warned).
+
 Verdicts: crash (a signal other than the kill asked for), traceback, hang, escape (a file written
 outside ``work/out``), replaced (a special file no longer special), not-one-line (a failing exit
-without exactly one ``error:`` line), accepted (a non-finite or base-60 number that loaded), and
-inconsistent (after a kill and a rerun: leftovers, or a manifest whose hashes disagree). Exit
-status 1 if any was seen.
+without exactly one ``error:`` line; ``warning:`` lines aside), accepted (a non-finite or base-60
+number that loaded, or an invalid input that did not fail), and inconsistent (after a kill and a
+rerun: leftovers, or a manifest whose hashes disagree); those of ``hostile_failures.py`` besides.
+Exit status 1 if any was seen.
 """
 
 from __future__ import annotations
@@ -48,6 +53,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from mutate_cli import DEMO, REPO, run_process, snapshot  # noqa: E402 - the sibling harness's helpers
+import hostile_failures  # noqa: E402 - the categories of what a failure tells the user
 
 KINDS = ("fifo", "dir", "socket", "devnull", "devzero")
 DEMO_ARGS = ["--lef", str(DEMO / "demo.lef"), "--def", str(DEMO / "demo.def")]
@@ -66,6 +72,14 @@ class Case:
     kill: bool = False  # a kill case: SIGKILL expected, then a rerun and the consistency check
     setup: list[list[str]] = field(default_factory=list)  # commands run first (no kill), e.g. a batch to resume
     must_refuse: bool = False  # the input is invalid: exit 2 expected
+    extra: dict = field(default_factory=dict)  # what hostile_failures.judge checks (and how to set the case up)
+
+
+def make(category: str, label: str, argv: list[str], files: dict[str, str | bytes], must_refuse: bool = False,
+         extra: dict | None = None) -> Case:
+    """A case of hostile_failures.py's categories (files as text or bytes)."""
+    data = {k: v.encode() if isinstance(v, str) else v for k, v in files.items()}
+    return Case(category, label, argv, data, must_refuse=must_refuse, extra=extra or {})
 
 
 def make_special(path: Path, kind: str, held: list[socket.socket]) -> None:
@@ -277,6 +291,8 @@ def kill_case(rng: random.Random, routed: dict[str, bytes]) -> Case:
 CATEGORIES = {"special-input": (special_input, 3), "special-output": (special_output, 3),
               "policy": (lambda rng, routed: policy_case(rng), 3), "yaml-number": (lambda rng, routed: yaml_number(rng), 3),
               "deep-json": (deep_json, 2), "names": (names, 2), "kill": (kill_case, 2)}
+CATEGORIES.update({name: ((lambda f: lambda rng, routed: f(rng, routed, make))(maker), weight)
+                   for name, (maker, weight) in hostile_failures.categories().items()})
 
 
 # ----------------------------------------------------------------------------- running and judging
@@ -320,11 +336,16 @@ def execute(argv: list[str], work: Path, env: dict[str, str], timeout: float) ->
 def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
     root = Path(tempfile.mkdtemp(prefix="xroute-hostile-"))
     inp, work, out = root / "in", root / "work", root / "work" / "out"
-    for d in (inp, work, out, root / "elsewhere"):
+    for d in (inp, work, out, root / "elsewhere", root / "home"):
         d.mkdir(parents=True, exist_ok=True)
     for name, data in case.files.items():
-        (inp / name).parent.mkdir(parents=True, exist_ok=True)
-        (inp / name).write_bytes(data.replace(b"{root}", str(root).encode()))
+        dest = root / name if name.startswith("home/") else inp / name
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        dest.write_bytes(data.replace(b"{root}", str(root).encode()))
+    disk = case.extra.get("tmpfs_kb")
+    if disk and not hostile_failures.mount_tmpfs(out, disk):
+        shutil.rmtree(root, ignore_errors=True)
+        return ["skipped"], "mount -t tmpfs failed (not root?)", root
     for name, data in case.prefill.items():
         (root / name).parent.mkdir(parents=True, exist_ok=True)
         (root / name).write_bytes(data)
@@ -335,10 +356,16 @@ def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
         return [a.replace("{in}", str(inp)).replace("{out}", str(out)).replace("{root}", str(root)) for a in args]
 
     argv = fill(case.argv)
+    env = {**case.env, "HOME": str(root / "home")} if case.extra.get("home") else case.env
     for setup in case.setup:
         execute(fill(setup), work, {}, timeout)
-    before = snapshot(root, (out, inp))
-    rc, so, se = execute(argv, work, case.env, timeout)
+    before_set = None
+    if disk:  # the run once with room: the old set; then the disk filled
+        execute(argv, work, env, timeout)
+        before_set = hostile_failures.set_hashes(out)
+        hostile_failures.fill(out, case.extra["free_kb"])
+    before = snapshot(root, (out, inp, root / "home"))
+    rc, so, se = execute(argv, work, env, timeout)
     verdict: list[str] = []
     text = so + se
     if rc is None:
@@ -347,7 +374,7 @@ def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
         verdict.append("crash")
     if "Traceback (most recent call last)" in text:
         verdict.append("traceback")
-    after = snapshot(root, (out, inp))
+    after = snapshot(root, (out, inp, root / "home"))
     escaped = sorted(set(after) - set(before)) + sorted(k for k in before if k in after and after[k] != before[k])
     if escaped:
         verdict.append("escape")
@@ -355,13 +382,19 @@ def run_case(case: Case, timeout: float) -> tuple[list[str], str, Path]:
     if any(not still_special(root / n, k) for n, k in case.specials.items()):
         verdict.append("replaced")
     if rc not in (0, 1, None) and not case.kill and not verdict:
-        lines = se.strip().splitlines()
+        lines = [line for line in se.strip().splitlines() if not line.startswith("warning: ")]
+        if case.category == "json-print":  # what the policy printed is on stderr too: the last line
+            lines = lines[-1:]
         if not (len(lines) == 1 and lines[0].startswith("error: ")):
             verdict.append("not-one-line")
     if case.must_refuse and rc in (0, 1):
         verdict.append("accepted")
-    if case.category == "policy" and rc in (0, 1) and not (out / "demo.routed.def").is_file() and not any(
-            out.glob("jobs/*/demo.routed.def")):
+    verdict += hostile_failures.judge(case.extra, lambda a: fill([a])[0], rc, so, se, root, work, before_set, out)
+    if disk:
+        (out / "filler").unlink(missing_ok=True)
+        hostile_failures.unmount(out)
+    if case.category in ("policy", "policy-failure") and rc in (0, 1) and not (out / "demo.routed.def").is_file() \
+            and not any(out.glob("jobs/*/demo.routed.def")):
         verdict.append("escape")  # a run that went well must have written into work/out
     if case.kill and not verdict:
         env = {k: v for k, v in case.env.items() if k != "XROUTE_TEST_KILL_AT"}
@@ -399,11 +432,13 @@ def main() -> int:
     rng = random.Random(args.seed)
     routed = routed_demo()
     names_, weights = zip(*((n, w) for n, (_, w) in CATEGORIES.items() if args.only in (None, n)))
-    verdicts = ("crash", "traceback", "hang", "escape", "replaced", "not-one-line", "accepted", "inconsistent")
+    verdicts = ("crash", "traceback", "hang", "escape", "replaced", "not-one-line", "accepted", "inconsistent",
+                "no-file", "not-json", "fatal", "lib-log", "silent", "tilde", "disk")
     counts = {n: dict.fromkeys(("cases", *verdicts), 0) for n in names_}
     if args.keep.exists():
         shutil.rmtree(args.keep)
     started, failures, ran = time.perf_counter(), 0, 0
+    exits: dict[str, dict[str, int]] = {}
     for i in range(args.cases):
         if args.seconds and time.perf_counter() - started > args.seconds:
             break
@@ -411,7 +446,12 @@ def main() -> int:
         category = rng.choices(names_, weights)[0]
         case = CATEGORIES[category][0](rng, routed)
         verdict, log, root = run_case(case, args.timeout)
+        if verdict == ["skipped"]:
+            print(f"[{i}] skipped: {category}: {log}", flush=True)
+            continue
         counts[category]["cases"] += 1
+        status = log.split("\n", 1)[0]  # "rc=N": the exit statuses per category (in --json's counts)
+        exits.setdefault(category, {})[status] = exits.setdefault(category, {}).get(status, 0) + 1
         for v in verdict:
             counts[category][v] += 1
         if verdict:
@@ -423,11 +463,12 @@ def main() -> int:
         shutil.rmtree(root, ignore_errors=True)
     took = time.perf_counter() - started
     print(f"\n{ran} cases in {took:.0f} s (seed {args.seed})")
-    print(f"{'category':15s} " + " ".join(f"{h:>12s}" for h in ("cases", *verdicts)))
+    print(f"{'category':15s} " + " ".join(f"{h[:8]:>8s}" for h in ("cases", *verdicts)))
     for n, c in counts.items():
-        print(f"{n:15s} " + " ".join(f"{c[h]:>12d}" for h in ("cases", *verdicts)))
+        print(f"{n:15s} " + " ".join(f"{c[h]:>8d}" for h in ("cases", *verdicts)))
     if args.json:
-        args.json.write_text(json.dumps({"seed": args.seed, "seconds": round(took, 1), "counts": counts}, indent=2) + "\n")
+        args.json.write_text(json.dumps({"seed": args.seed, "seconds": round(took, 1), "counts": counts,
+                                         "exit_statuses": exits}, indent=2) + "\n")
     return 1 if failures else 0
 
 

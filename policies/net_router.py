@@ -34,6 +34,7 @@ class NetRouterPolicy:
 
         self.model = OnnxNetRouter(model)
         self.name = f"net-router:{Path(model).name}"
+        self.source = str(model)  # named by every failure of the model (xroute.policy_guard)
         self.dbu = int(dbu_per_micron)
         self.t_min_scale = float(t_min_scale)
         self.max_moves = int(max_moves)

@@ -23,7 +23,9 @@ A second kind, the set scorer (:mod:`xroute.policies.rl.set_scorer`), is recogni
 its features (:func:`xroute.policies.rl.set_features.set_features`, a few numbers per net)
 computed from the region's grid when it opens. A model with other inputs, outputs, shapes or
 metadata is refused with a :class:`PolicyError` naming the file and both signatures. onnxruntime is imported when a model is loaded (the ``rl``
-extra), never when this module is.
+extra), never when this module is. A model that fails while it runs (e.g. asks for more memory
+than there is) is a :class:`PolicyError` naming the file, with onnxruntime's message on the same
+line; onnxruntime's own log lines are silenced (:func:`quiet_session_options`).
 """
 
 from __future__ import annotations
@@ -51,6 +53,33 @@ SET_INPUTS: dict[str, tuple[str, tuple[int | None, ...]]] = {
     "set_features": ("tensor(float)", (None, len(SET_FEATURES))),
     "mask": ("tensor(bool)", (None,)),
 }
+
+
+ORT_LOG_FATAL = 4  # onnxruntime's log severities: 0 verbose ... 3 error, 4 fatal
+
+
+def quiet_session_options(onnxruntime: Any) -> Any:
+    """Session options of one thread each that keep onnxruntime's log lines off stderr: a failure
+    comes back as an exception, which the caller reports as one line naming the model."""
+    options = onnxruntime.SessionOptions()
+    options.intra_op_num_threads = 1
+    options.inter_op_num_threads = 1
+    options.log_severity_level = ORT_LOG_FATAL
+    return options
+
+
+def run_model(session: Any, source: Any, outputs: list[str], feeds: dict[str, Any]) -> list[Any]:
+    """``session.run(outputs, feeds)`` with onnxruntime's logging silenced; a failure is a
+    :class:`PolicyError` naming the model file ``source``."""
+    import onnxruntime
+
+    run_options = onnxruntime.RunOptions()
+    run_options.log_severity_level = ORT_LOG_FATAL
+    try:
+        return session.run(outputs, feeds, run_options)
+    except Exception as exc:  # noqa: BLE001 - onnxruntime's exception classes are not a public API
+        text = " ".join(str(exc).split()) or type(exc).__name__
+        raise PolicyError(f"{source}: the model failed while it ran: {text}") from None
 
 
 def _dims(shape: tuple[int | None, ...]) -> str:
@@ -97,16 +126,14 @@ class OnnxPolicy:
     def __init__(self, path: str | Path) -> None:
         self.path = Path(path)
         self.name = self.path.name
+        self.source = str(self.path)  # named by every failure of the model (xroute.policy_guard)
         if not self.path.is_file():
             raise PolicyError(f"ONNX model not found: {self.path}")
         try:
             import onnxruntime
         except ImportError as exc:
             raise PolicyError(f"{self.path}: ONNX policies need onnxruntime: pip install 'xroute[rl]'") from exc
-        options = onnxruntime.SessionOptions()
-        options.intra_op_num_threads = 1
-        options.inter_op_num_threads = 1
-        options.log_severity_level = 3
+        options = quiet_session_options(onnxruntime)
         try:
             self.session = onnxruntime.InferenceSession(str(self.path), options, providers=["CPUExecutionProvider"])
         except Exception as exc:  # noqa: BLE001 - any load failure is a bad model file
@@ -139,7 +166,7 @@ class OnnxPolicy:
 
     def scores(self, obstacle: np.ndarray, nets: np.ndarray, net_features: np.ndarray, mask: np.ndarray) -> np.ndarray:
         """float32[N]: the model's scores of N candidates (one call)."""
-        out = self.session.run(["scores"], {
+        out = run_model(self.session, self.path, ["scores"], {
             "obstacle": np.ascontiguousarray(obstacle, dtype=np.float32).reshape((1,) + ALIGNED_SHAPE),
             "nets": np.ascontiguousarray(nets, dtype=np.float32),
             "net_features": np.ascontiguousarray(net_features, dtype=np.float32),
@@ -149,7 +176,7 @@ class OnnxPolicy:
 
     def set_scores(self, features: np.ndarray, mask: np.ndarray) -> np.ndarray:
         """float32[N]: a set scorer's scores of N candidates (one call)."""
-        out = self.session.run(["scores"], {
+        out = run_model(self.session, self.path, ["scores"], {
             "set_features": np.ascontiguousarray(features, dtype=np.float32),
             "mask": np.ascontiguousarray(mask, dtype=bool),
         })[0]
@@ -174,7 +201,7 @@ class OnnxPolicy:
                                  select=pending)
             s = self.scores(obs.obstacle, obs.nets, obs.net_features, obs.mask)
         if s.shape != (n,):
-            raise PolicyError(f"ONNX policy {self.name} returned {s.shape} scores for {n} candidate nets")
+            raise PolicyError(f"{self.path}: ONNX policy {self.name} returned {s.shape} scores for {n} candidate nets")
         rank = np.empty(n, dtype=np.int64)
         rank[heuristic_order(features)] = np.arange(n)
         return np.lexsort((rank, -s.astype(np.float64)))

@@ -28,6 +28,7 @@ from xroute.net_order import (
 )
 from xroute.errors import InputError, did_you_mean, safe_text
 from xroute.policy_guard import kept_cwd
+from xroute.policy_process import PolicyExit, user_code
 from xroute.regular_files import check_input
 from xroute.schedule import CallableSchedule, RuleSchedule, SchedulePolicy
 
@@ -53,7 +54,8 @@ def _load_module(p: Path) -> Any:
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module
     try:
-        with kept_cwd():  # a module that calls os.chdir does not move the run
+        # a module that calls os.chdir does not move the run; its prints go to stderr (policy_process)
+        with kept_cwd(), user_code(p.stem, str(p), "load"):
             spec.loader.exec_module(module)
     except KeyboardInterrupt:
         sys.modules.pop(module_name, None)
@@ -65,7 +67,10 @@ def _load_module(p: Path) -> Any:
         here = os.path.abspath(p)  # the frames name the file by its absolute path
         lines = [f.lineno for f in traceback.extract_tb(exc.__traceback__) if os.path.abspath(f.filename) == here]
         line = getattr(exc, "lineno", None) if isinstance(exc, SyntaxError) else (lines[-1] if lines else None)
-        where = f"{p}:{line}: " if line else ""
+        where = f"{p}:{line}: " if line else f"{p}: "
+        if isinstance(exc, PolicyExit):
+            raise PolicyError(f"{where}policy file {p} failed to load: it called os._exit({safe_text(exc.code)}) "
+                              "(a policy cannot end the run)") from None
         message = safe_text(exc)
         raise PolicyError(f"{where}policy file {p} failed to load: {type(exc).__name__}"
                           + (f": {message}" if message else "")) from None

@@ -199,7 +199,8 @@ def test_failing_job_is_an_error_in_junit(tmp_path: Path, testcase) -> None:
     batch.write_text(f"testcases: [{S1}]\npolicies: [heuristic, bad.py]\nout_dir: {tmp_path / 'out'}\n")
     result = make_runner().invoke(app, ["batch", str(batch), "--quiet"], env={"CI": "true"})
     assert result.exit_code == 1
-    assert result.stderr.startswith(f"job failed: {S1}__bad__default: net-order policy 'bad' returned index 0 twice")
+    assert result.stderr.startswith(f"job failed: {S1}__bad__default: {tmp_path / 'bad.py'}:1: net-order policy 'bad' "
+                                    "returned index 0 twice")
     cases = junit_cases(tmp_path / "out" / "junit.xml")
     assert cases[f"{S1}__bad__default"].find("error") is not None
     assert cases[f"{S1}__heuristic__default"].find("error") is None

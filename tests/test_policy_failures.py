@@ -128,3 +128,39 @@ def test_a_thread_that_fails_is_one_warning_line(tmp_path: Path) -> None:
     assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("warning: thread ") and "ValueError: in a thread" in lines[0]
+
+
+@pytest.mark.parametrize("returned, message", [
+    ("42", "plan() must return an IterationPlan, a dict or None, got int"),
+    ("{'bogus': 1}", "plan() returned unknown key(s) bogus"),
+    ("{'region_size': 10**9}", "iteration 0: region_size must be in 1.."),
+])
+def test_a_plan_that_is_no_plan_names_the_file_and_line(runner: CliRunner, tmp_path: Path, returned: str,
+                                                         message: str) -> None:
+    pol = policy_file(tmp_path, "import os\n" + PLAN.format(body=f"return {returned}"))
+    one_error(runner.invoke(app, ["route", "--schedule-policy", str(pol), "--out", str(tmp_path / "o")]),
+              f"{pol}:2: schedule policy 'pol'", message)
+
+
+def test_an_order_that_is_no_permutation_names_the_file_and_line(runner: CliRunner, tmp_path: Path) -> None:
+    pol = policy_file(tmp_path, "\n" + ORDER.format(body="return [0] * len(features)"))
+    one_error(runner.invoke(app, ["route", "--policy", str(pol), "--out", str(tmp_path / "o")]),
+              f"{pol}:2: net-order policy 'pol' returned index 0 twice")
+
+
+@pytest.mark.slow
+def test_a_policy_thread_that_keeps_changing_folder_does_not_move_a_batch(tmp_path: Path) -> None:
+    """The thread starts when the batch loads the policy (before it routes) and calls os.chdir for
+    as long as the process lives: the relative --out is the folder the batch was started in."""
+    work, elsewhere = tmp_path / "work", tmp_path / "elsewhere"
+    work.mkdir()
+    elsewhere.mkdir()
+    text = (f"import os, threading\nthreading.Thread(target=lambda: [os.chdir({str(elsewhere)!r}) for _ in iter(int, 1)],"
+            " daemon=True).start()\n" + ORDER.format(body="pass"))
+    pol = policy_file(tmp_path, text)
+    (tmp_path / "b.yaml").write_text(f"testcases: [demo]\npolicies: [{pol}]\nsettings:\n  - {{name: one, iteration_count: 1}}\n")
+    proc = subprocess.run([sys.executable, "-m", "xroute", "batch", str(tmp_path / "b.yaml"), "--out", "out", "--quiet"],
+                          capture_output=True, text=True, timeout=240, cwd=work)
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert (work / "out" / "summary.json").is_file() and (work / "out" / "jobs" / "demo__pol__one").is_dir()
+    assert list(elsewhere.iterdir()) == []

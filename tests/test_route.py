@@ -276,7 +276,7 @@ def test_engine_check_of_the_order_is_named_after_the_policy(monkeypatch: pytest
     import xroute.router as router
 
     n = one_region_nets(SAMPLE)
-    monkeypatch.setattr(router, "check_order", lambda order, n, name: list(order))
+    monkeypatch.setattr(router, "check_order", lambda order, n, name, source="": list(order))
     with pytest.raises(PolicyError, match=rf"net-order policy 'dup' returned an order that is not a permutation of {n}\b"):
         route_design(fresh(SAMPLE), policy=CallablePolicy(lambda r, f: [0] * len(f), name="dup"))
 

@@ -10,14 +10,14 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Callable
 
 import typer
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from xroute.cli.console import print_json, stdout_console
+from xroute.cli.console import json_output, stdout_console
 from xroute.cli.options import JsonOption, QuietOption
 from xroute.cli.progress import output_mode
 
@@ -134,36 +134,39 @@ def batch(
         from xroute.regular_files import check_output
 
         check_output(write_baseline, "baseline file")  # refused before any job runs
+    cwd = Path.cwd()  # the output folder is resolved against it, whatever a policy's code (a thread's os.chdir) does later
     cfg = load_batch_config(batch_file)
     baseline = load_baseline(cfg.batch.gates.baseline)
     if backend == "ray" and ray_address:
         from xroute.ray_backend import check_address
 
         check_address(ray_address)  # an unreachable cluster fails at once, before OUT is made
-    job_list = _checked_jobs(cfg)
-    out_root = out if out is not None else Path(cfg.batch.out_dir)
-    _prepare_out(out_root)
-    workers = jobs if jobs is not None else cfg.batch.jobs
-
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.base.output.mode)
-    wall = time.perf_counter()
-    resumed = {} if force else {j.id: r for j in job_list if (r := completed_record(out_root, j)) is not None}
-    todo = [j for j in job_list if j.id not in resumed]
-    display = BatchDisplay(console, mode if mode in ("rich", "lines") else "off", len(todo))
-    if mode == "lines":
-        typer.echo(f"batch {batch_file}: {len(job_list)} jobs ({len(resumed)} already done), {workers} parallel, "
-                   f"backend {backend} -> {out_root}")
-    with display:
-        progress = BatchProgress(on_start=display.on_start, on_event=display.on_event, on_done=display.on_done)
-        records = _run(backend, todo, out_root, workers, progress, ray_address)
+    # From here on stdout is the JSON's alone with --json: policies are loaded (and may print) next.
+    shown = out if out is not None else Path(cfg.batch.out_dir)  # as printed
+    out_root = cwd / shown
+    with json_output(mode == "json") as print_json:
+        job_list = _checked_jobs(cfg)
+        _prepare_out(out_root)
+        workers = jobs if jobs is not None else cfg.batch.jobs
+        wall = time.perf_counter()
+        resumed = {} if force else {j.id: r for j in job_list if (r := completed_record(out_root, j)) is not None}
+        todo = [j for j in job_list if j.id not in resumed]
+        display = BatchDisplay(console, mode if mode in ("rich", "lines") else "off", len(todo))
+        if mode == "lines":
+            typer.echo(f"batch {batch_file}: {len(job_list)} jobs ({len(resumed)} already done), {workers} parallel, "
+                       f"backend {backend} -> {shown}")
+        with display:
+            progress = BatchProgress(on_start=display.on_start, on_event=display.on_event, on_done=display.on_done)
+            records = _run(backend, todo, out_root, workers, progress, ray_address)
 
-    doc = summary_doc(batch_file, out_root, backend, time.perf_counter() - wall, cfg, job_list, resumed, records,
-                      baseline)
-    paths = write_summary(out_root, doc)
-    if write_baseline is not None:
-        atomic_write_text(write_baseline, json.dumps(baseline_doc(doc), indent=2) + "\n")
-    _print_summary(console, mode, batch_file, doc, paths)
+        doc = summary_doc(batch_file, shown, backend, time.perf_counter() - wall, cfg, job_list, resumed, records,
+                          baseline)
+        paths = write_summary(out_root, doc)
+        if write_baseline is not None:
+            atomic_write_text(write_baseline, json.dumps(baseline_doc(doc), indent=2) + "\n")
+        _print_summary(console, mode, batch_file, doc, {k: shown / p.name for k, p in paths.items()}, print_json)
     if not doc["passed"]:
         raise typer.Exit(EXIT_FAILED)
 
@@ -225,7 +228,8 @@ def summary_doc(batch_file: Path, out_root: Path, backend: str, wall_seconds: fl
     }
 
 
-def _print_summary(console: Any, mode: str, batch_file: Path, doc: dict[str, Any], paths: dict[str, Path]) -> None:
+def _print_summary(console: Any, mode: str, batch_file: Path, doc: dict[str, Any], paths: dict[str, Path],
+                   print_json: Callable[[Any], None]) -> None:
     rows = doc["jobs"]
     failed = [r for r in rows if r["gate_failures"]]
     errors = [r for r in rows if r["status"] != "done"]

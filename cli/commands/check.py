@@ -16,7 +16,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute.cli.console import print_json, stdout_console
+from xroute.cli.console import print_json, print_read_warnings, stdout_console
 from xroute.cli.options import JsonOption, QuietOption
 from xroute.glossary import SCORE_NAME, score_line
 
@@ -91,6 +91,7 @@ def check(
         if guide is None and found.guide is not None:
             guide = found.guide
     design = load_design(lef=[str(p) for p in lef or []], def_=str(def_), guide=str(guide) if guide else None)
+    print_read_warnings(design)
     stem = _stem(def_)
     out_dir = out if out is not None else Path("out") / f"check-{stem}"
     result, paths = check_to_outputs(design, out_dir, stem)  # published as one set

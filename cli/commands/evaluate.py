@@ -11,13 +11,13 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Callable
 
 import typer
 from rich.markup import escape
 from rich.table import Table
 
-from xroute.cli.console import TestcaseArg, print_json, stdout_console
+from xroute.cli.console import TestcaseArg, json_output, stdout_console
 from xroute.cli.options import (
     ConfigOption,
     IterationsOption,
@@ -109,27 +109,27 @@ def evaluate(
     if name is None:
         raise typer.BadParameter("give a testcase name (or testcase_name in --config)", param_hint="TESTCASE")
     specs = {"policy": policy, "baseline": baseline}
-    settings = _checked_settings(cfg, specs, name, region_size=region_size, iterations=iterations,
-                                 threads=threads, seed=seed)
-    if out is None:
-        out = Path(cfg.output.out_dir) if cfg.output.out_dir else Path("out") / "evaluate" / name
-    out.mkdir(parents=True, exist_ok=True)
-
     console = stdout_console()
     mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
-    runs: dict[str, dict[str, Any]] = {}
-    for label, rs in settings.items():
-        folder = out / f"{label}-{policy_label(specs[label])}"
-        if mode == "lines":
-            typer.echo(f"{label}: routing {name} with policy {specs[label]} -> {folder}")
-        with ProgressDisplay(console, mode, rs.router.iterations, label=label) as display:
-            outputs = route_testcase(name, rs, folder, progress=display)
-        runs[label] = {"spec": specs[label], **run_summary(outputs, cfg.cost)}
+    with json_output(mode == "json") as print_json:  # stdout holds the JSON only, whatever a policy prints
+        settings = _checked_settings(cfg, specs, name, region_size=region_size, iterations=iterations,
+                                     threads=threads, seed=seed)
+        if out is None:
+            out = Path(cfg.output.out_dir) if cfg.output.out_dir else Path("out") / "evaluate" / name
+        out.mkdir(parents=True, exist_ok=True)
+        runs: dict[str, dict[str, Any]] = {}
+        for label, rs in settings.items():
+            folder = out / f"{label}-{policy_label(specs[label])}"
+            if mode == "lines":
+                typer.echo(f"{label}: routing {name} with policy {specs[label]} -> {folder}")
+            with ProgressDisplay(console, mode, rs.router.iterations, label=label) as display:
+                outputs = route_testcase(name, rs, folder, progress=display)
+            runs[label] = {"spec": specs[label], **run_summary(outputs, cfg.cost)}
 
-    doc = evaluation_doc(name, settings["policy"], cfg.cost, runs)
-    path = out / "evaluation.json"
-    atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
-    _print_evaluation(console, mode, doc, policy, baseline, path)
+        doc = evaluation_doc(name, settings["policy"], cfg.cost, runs)
+        path = out / "evaluation.json"
+        atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
+        _print_evaluation(console, mode, doc, policy, baseline, path, print_json)
     pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
     if pf["open_nets"] or bf["open_nets"]:
         typer.echo(f"open nets: policy {pf['open_nets']}, baseline {bf['open_nets']}", err=True)
@@ -170,7 +170,8 @@ def evaluation_doc(name: str, settings: Any, cost: Any, runs: dict[str, dict[str
     }
 
 
-def _print_evaluation(console: Any, mode: str, doc: dict[str, Any], policy: str, baseline: str, path: Path) -> None:
+def _print_evaluation(console: Any, mode: str, doc: dict[str, Any], policy: str, baseline: str, path: Path,
+                      print_json: Callable[[Any], None]) -> None:
     runs = doc["runs"]
     pf, bf = runs["policy"]["final"], runs["baseline"]["final"]
     c = doc["comparison"]

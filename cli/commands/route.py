@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Callable
 
 import typer
 from rich.markup import escape
@@ -21,8 +21,9 @@ from xroute.cli.console import (
     TestcaseArg,
     check_design_args,
     counted,
+    json_output,
     load_design_args,
-    print_json,
+    print_read_warnings,
     stdout_console,
 )
 from xroute.cli.options import (
@@ -44,7 +45,9 @@ from xroute.cli.options import (
 from xroute.cli.progress import ProgressDisplay, output_mode
 
 if TYPE_CHECKING:
+    from rich.console import Console
 
+    from xroute.config import RunSettings, XrouteConfig
     from xroute.groute import GlobalRouteStats
     from xroute.outputs import RouteOutputs
 
@@ -159,21 +162,31 @@ def route(
     if net_router is not None and not net_router.is_file():
         raise typer.BadParameter(f"no such model file: {net_router}", param_hint="--net-router")
     started = time.perf_counter()
+    steps = parse_schedule(schedule) if schedule is not None else None
+    rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
+                      repair_rounds=repair_rounds, search_budget=search_budget,
+                      schedule=steps, schedule_policy=schedule_policy)  # checked: fails before loading
+    console = stdout_console()
+    mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
+    with json_output(mode == "json") as print_json:  # stdout holds the JSON only, whatever a policy prints
+        outputs, out_dir, pol = _route(cfg, rs, mode, console, (testcase, lef, def_, guide), out, cwd,
+                                       net_router, started)
+        _report(outputs, out_dir, pol, mode, console, net_router is not None, print_json)
 
+
+def _route(cfg: XrouteConfig, rs: RunSettings, mode: str, console: Console,
+           design_args: tuple[str | None, list[Path] | None, Path | None, Path | None], out: Path | None, cwd: Path,
+           net_router: Path | None, started: float) -> tuple[RouteOutputs, Path, Any]:
+    """Loads the policies and the design, routes and writes the outputs: (outputs, out_dir, policy)."""
     from xroute import pipeline
     from xroute.policies import get_policy, get_schedule_policy
     from xroute.regular_files import make_output_folder
     from xroute.safe_paths import safe_stem
 
-    steps = parse_schedule(schedule) if schedule is not None else None
-    rs = run_settings(cfg, region_size=region_size, iterations=iterations, threads=threads, policy=policy, seed=seed,
-                      repair_rounds=repair_rounds, search_budget=search_budget,
-                      schedule=steps, schedule_policy=schedule_policy)  # checked: fails before loading
     pol = get_policy(rs.policy, rs.seed, rs.search_budget)
     planner = get_schedule_policy(rs.schedule_policy)
-    console = stdout_console()
-    mode = output_mode(console, as_json=as_json, quiet=quiet, configured=cfg.output.mode)
-    design = load_design_args(testcase, lef, def_, guide, prepare=True)
+    design = load_design_args(*design_args, prepare=True)
+    print_read_warnings(design)
     if net_router is not None:
         from xroute.policies.net_router import NetRouterPolicy
 
@@ -195,8 +208,13 @@ def route(
         # A progress callback even when nothing is shown: Ctrl-C is handled there.
         outputs = pipeline.route_to_outputs(design, write_dir, rs.router, pol, progress=display, started=started,
                                             schedule_policy=planner, seed=rs.seed, policy_timeout=rs.policy_timeout)
+    return outputs, out_dir, pol
 
-    if net_router is not None and mode in ("rich", "lines"):
+
+def _report(outputs: RouteOutputs, out_dir: Path, pol: Any, mode: str, console: Console, net_router: bool,
+            print_json: Callable[[Any], None]) -> None:
+    """What the command prints once the outputs are written; exit status 1 when opens remain."""
+    if net_router and mode in ("rich", "lines"):
         st = pol.stats
         typer.echo(f"net router: {st['agent_connected']} nets connected by the model, "
                    f"{st['astar_fallback']} taken over by A*")

@@ -70,7 +70,7 @@ void bindDatabaseSummary(DatabaseClass& cls) {
   cls
       .def_prop_ro("design_name", [](const Database& d) { return d.design.name; }, "DESIGN name from the DEF.")
       .def_prop_ro("lef_paths", [](const Database& d) { return d.lefPaths; }, "LEF files read, in order.")
-      .def_prop_ro("def_path", [](const Database& d) { return d.defPath; }, "DEF file read.")
+      .def_prop_ro("def_path", [](const Database& d) { return d.design.path; }, "DEF file read.")
       .def_prop_ro("guide_path", [](const Database& d) { return d.guidePath; }, "Guide file read, or ''.")
       .def_prop_ro("dbu_per_micron", [](const Database& d) { return d.design.dbuPerMicron; },
                    "DEF UNITS DISTANCE MICRONS.")

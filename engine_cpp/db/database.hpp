@@ -13,8 +13,7 @@ namespace xroute {
 struct Database {
   Tech tech;
   Design design;
-  std::vector<std::string> lefPaths;
-  std::string defPath;
+  std::vector<std::string> lefPaths;  // the DEF's path is the design's (Design::path)
   std::string guidePath;  // empty when no guide was read
 };
 

@@ -34,6 +34,7 @@ struct TrackPattern {
   Dbu start = 0;   // DBU
   int count = 0;
   Dbu step = 0;    // DBU
+  int line = 0;    // line of its TRACKS statement in the DEF (0: not read from a file)
 };
 
 // "GCELLGRID X start DO count STEP step": grid lines at start + i*step.
@@ -190,6 +191,7 @@ struct PlacedShape {
 };
 
 struct Design {
+  std::string path;  // the DEF file read ("" for a design built in code): named by later errors
   std::string name;
   std::string version;
   int dbuPerMicron = 0;      // DEF UNITS DISTANCE MICRONS (the LEF's when the DEF was rescaled)

@@ -38,7 +38,13 @@ TrackSet buildTracks(const Tech& tech, const Design& design) {
     sortUnique(lt.pref);
     sortUnique(lt.cross);
     if (lt.pref.empty()) {
-      throw InputError("DEF", 0, "routing layer " + tech.layer(lt.layer).name + " has no tracks in its preferred direction");
+      // The file and line of the layer's TRACKS (they run the other way), else of none.
+      int line = 0;
+      for (const TrackPattern& t : design.tracks) line = line == 0 && t.layer == lt.layer ? t.line : line;
+      const std::string& name = tech.layer(lt.layer).name;
+      throw InputError(design.path.empty() ? std::string("DEF") : design.path, line,
+                       "routing layer " + name + " has no tracks in its preferred direction: routing needs a TRACKS " +
+                           (lt.horizontal ? "Y" : "X") + " ... LAYER " + name + " statement");
     }
     lt.pitch = 0;
     for (size_t i = 1; i < lt.pref.size(); ++i) {

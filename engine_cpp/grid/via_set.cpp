@@ -59,7 +59,9 @@ ViaSet chooseVias(const Tech& tech, const TrackSet& tracks) {
       }
     }
     if (!found) {
-      throw InputError("LEF", 0, "no VIA connects " + tech.layer(lo).name + " and " + tech.layer(hi).name);
+      const Layer& upper = tech.layer(hi);  // named by the LEF that defines the upper layer
+      throw InputError(upper.path.empty() ? std::string("LEF") : upper.path, upper.line,
+                       "no VIA connects " + tech.layer(lo).name + " and " + upper.name);
     }
     set.cuts.push_back(choice);
   }

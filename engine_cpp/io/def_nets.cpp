@@ -140,10 +140,12 @@ void DefParser::readSpecialNet() {
       const LayerId layer = layerAt(lex_.next());
       if (lex_.accept("+")) {
         lex_.expect("MASK");
-        lex_.integer();
+        const Token v = lex_.peek();
+        checkMask(v, lex_.integer(), false);
       }
       const Point a = readPoint();
       const Point b = readPoint();
+      checkCorners(kw.line, a, b, "SPECIALNETS RECT");
       net.rects.push_back({layer, Rect::fromCorners(a, b)});
     } else if (k == "POLYGON") {
       const LayerId layer = layerAt(lex_.next());
@@ -223,7 +225,13 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
       if (is(kw, "SHAPE")) {
         shape = plainWord("a shape type");
       } else if (is(kw, "STYLE") || is(kw, "MASK")) {
-        lex_.integer();
+        const Token v = lex_.peek();
+        const int64_t value = lex_.integer();
+        if (is(kw, "STYLE")) {
+          useStyle(v, value);
+        } else {
+          checkMask(v, value, false);
+        }
         countSkip("SPECIALNETS." + std::string(kw.text));
       } else {
         unexpected(kw, "SHAPE, STYLE or MASK");
@@ -257,7 +265,9 @@ void DefParser::readSpecialWiring(SpecialNet& net) {
         cur.havePoint = true;
       } else if (is(t, "MASK")) {
         lex_.next();
-        lex_.integer();
+        const Token v = lex_.peek();
+        const int64_t value = lex_.integer();
+        checkMask(v, value, !peekIs("("));
         countSkip("SPECIALNETS.MASK");
       } else if (is(t, "NEW") || is(t, "+") || is(t, ";")) {
         if (cur.havePoint && !cur.emitted) net.wires.push_back({cur.layer, width, shape, cur.at, cur.at});
@@ -368,7 +378,8 @@ void DefParser::readRegularWiring(Net& net) {
         lex_.word("a rule name");
         countSkip("NETS.TAPERRULE");
       } else if (lex_.accept("STYLE")) {
-        lex_.integer();
+        const Token v = lex_.peek();
+        useStyle(v, lex_.integer());
         countSkip("NETS.STYLE");
       } else {
         break;
@@ -391,7 +402,9 @@ void DefParser::readRegularWiring(Net& net) {
         cur.havePoint = true;
       } else if (is(t, "MASK")) {
         lex_.next();
-        lex_.integer();
+        const Token v = lex_.peek();
+        const int64_t value = lex_.integer();
+        checkMask(v, value, !peekIs("(") && !peekIs("RECT"));  // else a via's mask
         countSkip("NETS.MASK");
       } else if (is(t, "RECT")) {
         const Token rectTok = lex_.next();
@@ -400,6 +413,7 @@ void DefParser::readRegularWiring(Net& net) {
         const Dbu x1 = lex_.dbu(), y1 = lex_.dbu(), x2 = lex_.dbu(), y2 = lex_.dbu();
         lex_.expect(")");
         const Point a{cur.at.x + x1, cur.at.y + y1}, b{cur.at.x + x2, cur.at.y + y2};  // each term within kMaxDbu
+        checkCorners(rectTok.line, {x1, y1}, {x2, y2}, "RECT");
         r.patches.push_back({cur.layer, Rect::fromCorners(a, b)});
         requireInRange(rectTok.line, r.patches.back().rect, "RECT");
         cur.emitted = true;

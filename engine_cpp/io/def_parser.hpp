@@ -81,8 +81,12 @@ class DefParser {
   LayerId layerAfterVia(const Token& viaTok, ViaRef ref, LayerId layer) const;
 
   // Shared helpers (def_reader.cpp).
-  // `t` is the unquoted word `w` (keywords in any case).
-  static bool is(const Token& t, std::string_view w) { return !t.quoted && isKeyword(t.text, w); }
+  // `t` is the unquoted word `w` (keywords in any case; one not in upper case is noted).
+  bool is(const Token& t, std::string_view w) const {
+    if (t.quoted || !isKeyword(t.text, w)) return false;
+    lex_.noteKeyword(t);
+    return true;
+  }
   bool peekIs(std::string_view w) { return !lex_.atEnd() && is(lex_.peek(), w); }
   Point readPoint();                      // "( x y )"
   // Fails at `line` unless every corner of `r` (a shape placed from values read) is within kMaxDbu.
@@ -96,6 +100,14 @@ class DefParser {
   std::vector<Point> readPolygonPoints(const Token& kw);
   // A warning "file:line: message" in Design::warnings (and warningCount).
   void warn(int line, const std::string& message);
+  // Odd but readable values, summed per file in the lexer's tally (def_checks.cpp): a MASK number
+  // that is not one (`via`: before a via, three digits), a RECT whose first corner is not its lower
+  // left, a STYLE that no STYLES entry defined; flushTally() turns the tally into warnings.
+  void checkMask(const Token& valueTok, int64_t value, bool via);
+  void checkCorners(int line, Point a, Point b, std::string_view what);
+  void readStyles();
+  void useStyle(const Token& valueTok, int64_t value);
+  void flushTally();
   LayerId layerAt(const Token& t) const;  // throws on an unknown layer
   LayerId routingLayerAt(const Token& t) const;
   ViaRef findVia(std::string_view name) const;  // invalid if unknown
@@ -129,6 +141,7 @@ class DefParser {
   const Tech& tech_;
   Design& design_;
   std::vector<std::optional<Rect>> macroShapeBox_;  // DBU, by macro id: its pin and OBS shapes' box, once
+  std::vector<int64_t> styles_;  // the STYLES section's style numbers (read before NETS)
 };
 
 }  // namespace xroute

@@ -79,7 +79,10 @@ void DefParser::readPin() {
       const Token viaTok = lex_.next();
       const ViaRef ref = findVia(viaTok.text);
       if (!ref.valid()) lex_.failAt(viaTok, "unknown via " + quoteToken(viaTok.text));
-      if (lex_.accept("MASK")) lex_.integer();
+      if (lex_.accept("MASK")) {
+        const Token v = lex_.peek();
+        checkMask(v, lex_.integer(), true);
+      }
       const Point at = readPoint();
       requireViaInRange(viaTok.line, ref, at);
       for (const ViaShape& s : design_.via(tech_, ref).shapes) {
@@ -120,7 +123,8 @@ IoPinShape DefParser::readPinRect() {
   const int line = lex_.peek().line;
   const Point a = readPoint();
   const Point b = readPoint();
-  if (a.x == b.x || a.y == b.y) warn(line, "pin RECT without area");  // any two opposite corners are fine
+  if (a.x == b.x || a.y == b.y) warn(line, "pin RECT without area");
+  checkCorners(line, a, b, "pin RECT");  // read as the rectangle between the corners, with a warning
   return {layer, Rect::fromCorners(a, b)};
 }
 

@@ -35,7 +35,7 @@ namespace {
 // Sections we do not use: skipped up to "END <keyword>" and counted.
 constexpr std::string_view kSkippedSections[] = {
     "PROPERTYDEFINITIONS", "REGIONS", "GROUPS", "FILLS", "SCANCHAINS",
-    "STYLES", "SLOTS", "PINPROPERTIES", "IOTIMINGS", "FLOORPLANCONSTRAINTS", "TIMINGDISABLES",
+    "SLOTS", "PINPROPERTIES", "IOTIMINGS", "FLOORPLANCONSTRAINTS", "TIMINGDISABLES",
     "CONSTRAINTS", "ASSERTIONS"};
 
 // Statements "KEYWORD ... ;" we do not use.
@@ -222,6 +222,7 @@ void DefParser::parse() {
     std::string upper(t.text);  // keywords are case-insensitive; an error still quotes what was written
     for (char& c : upper) c = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
     const std::string_view k = upper;
+    lex_.noteKeyword(t);
     if (k == "END") {
       design_.endLine = t.line;
       lex_.expect("DESIGN");
@@ -265,6 +266,8 @@ void DefParser::parse() {
       readNets();
     } else if (k == "NONDEFAULTRULES") {
       readNonDefaultRules();
+    } else if (k == "STYLES") {
+      readStyles();
     } else if (k.starts_with("&DEFINE")) {  // &defines / &defineS / &defineB: "&defineX &name = value ;"
       lex_.skipStatement();
       countSkip(k);
@@ -284,6 +287,7 @@ void DefParser::parse() {
     lex_.failAt(t, "unexpected text after END DESIGN: " + quoteToken(t.text));
   }
   resolveIoPinNets();
+  flushTally();
 }
 
 void DefParser::readUnits() {
@@ -385,6 +389,7 @@ void DefParser::readTracks() {
   if (!is(axis, "X") && !is(axis, "Y")) unexpected(axis, "X or Y");
   TrackPattern pat;
   pat.isX = axis.text == "X";
+  pat.line = axis.line;
   pat.start = lex_.dbu();
   lex_.expect("DO");
   const Token countTok = lex_.peek();
@@ -541,6 +546,7 @@ void DefParser::readBlockage() {
     } else if (is(t, "RECT")) {
       const Point a = readPoint();
       const Point c = readPoint();
+      checkCorners(t.line, a, c, "BLOCKAGES RECT");
       b.rects.push_back(Rect::fromCorners(a, c));
     } else if (is(t, "POLYGON")) {
       b.polygons.push_back(readPolygonPoints(t));
@@ -556,11 +562,13 @@ void DefParser::readBlockage() {
 
 void readDef(const std::string& path, const Tech& tech, Design& design) {
   Lexer lex = Lexer::fromFile(path);
+  design.path = path;
   DefParser(lex, tech, design).parse();
 }
 
 void readDefText(const std::string& name, std::string text, const Tech& tech, Design& design) {
   Lexer lex(name, std::move(text));
+  design.path = name;
   DefParser(lex, tech, design).parse();
 }
 

@@ -240,12 +240,15 @@ ViaShape DefParser::readViaShape(const Token& kw) {
   const LayerId layer = layerAt(lex_.next());
   if (lex_.accept("+")) {
     lex_.expect("MASK");
-    lex_.integer();
+    const Token v = lex_.peek();
+    checkMask(v, lex_.integer(), false);
     countSkip("VIAS.MASK");
   }
   if (kw.text == "RECT") {
+    const int line = lex_.peek().line;
     const Point a = readPoint();
     const Point b = readPoint();
+    checkCorners(line, a, b, "via RECT");
     return {layer, Rect::fromCorners(a, b)};
   }
   const std::vector<Point> pts = readPolygonPoints(kw);

@@ -191,13 +191,13 @@ void LefParser::parseGeometry(std::string_view block, std::vector<MacroShape>& s
       skipStatement(block, kw);
       continue;
     }
-    if (accept("MASK")) integer();  // the mask comes before ITERATE: "RECT MASK 2 ITERATE ..."
+    if (accept("MASK")) maskNumber(k == "VIA");  // the mask comes before ITERATE: "RECT MASK 2 ITERATE ..."
     if (peekIs("ITERATE")) {
       skipStatement(block, kw);
       continue;
     }
     if (k == "VIA") {
-      if (accept("MASK")) integer();
+      if (accept("MASK")) maskNumber(true);
       const Point at = point();
       const Token v = name("a via name");
       const ViaId via = tech_.findVia(v.text);

@@ -54,7 +54,9 @@ class LefParser {
   double number();
   int64_t integer();
   Point point();        // two distances
-  Rect rect();          // RECT body: [MASK n] x1 y1 x2 y2 (corners in any order)
+  Rect rect();          // RECT body: [MASK n] x1 y1 x2 y2 (any two opposite corners, as the LEF reference says)
+  // After MASK: the mask number (not kept), warned in the tally unless it is one (`via`: three digits).
+  void maskNumber(bool via);
   // POLYGON body: [MASK n] x y x y ... ; (consumes the ';'); at least 3 points.
   std::vector<Point> polygon();
   LayerId layerRef();   // a defined layer name

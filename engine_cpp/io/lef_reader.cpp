@@ -156,7 +156,7 @@ Point LefParser::point() {
 }
 
 Rect LefParser::rect() {
-  if (accept("MASK")) integer();
+  if (accept("MASK")) maskNumber(false);
   const int line = peek().line;
   const Point a = point();
   const Point b = point();
@@ -165,8 +165,18 @@ Rect LefParser::rect() {
   return Rect::fromCorners(a, b);
 }
 
+void LefParser::maskNumber(bool via) {
+  const Token v = peek();
+  const int64_t m = integer();
+  if (via ? m < 0 || m > 999 : m < 1) {
+    lex_.tally().add(via ? "via mask" : "mask", v.line,
+                     "MASK " + quoteToken(v.text) + (via ? ": a via's mask is three digits <top><cut><bottom>"
+                                                         : ": a mask number is a positive integer") + " (not kept)");
+  }
+}
+
 std::vector<Point> LefParser::polygon() {
-  if (accept("MASK")) integer();
+  if (accept("MASK")) maskNumber(false);
   const int line = peek().line;
   std::vector<Point> pts;
   while (!accept(";")) pts.push_back(point());
@@ -306,11 +316,12 @@ void LefParser::parse() {
       const Token t = next();
       if (t.quoted || !isKeyword(t.text, "LIBRARY")) failAt(t, "expected END LIBRARY, found END " + quoteToken(t.text));
       if (!lex_.atEnd()) count("LEF", "text after END LIBRARY");
-      return;
+      break;
     } else {
       skipStatement("LEF", kw);
     }
   }
+  for (const WarningTally::Entry& e : lex_.tally().entries()) warn(e.line, WarningTally::text(e));
 }
 
 void LefParser::parseUnits(const Token& opener) {

@@ -179,7 +179,7 @@ Token Lexer::next() {
 bool Lexer::accept(std::string_view w) {
   scan();
   if (!hasLookahead_ || lookahead_.quoted || !isKeyword(lookahead_.text, w)) return false;
-  next();
+  noteKeyword(next());
   return true;
 }
 
@@ -189,13 +189,39 @@ void Lexer::expect(std::string_view w) {
   if (lookahead_.quoted || !isKeyword(lookahead_.text, w)) {
     failAt(lookahead_, "expected '" + std::string(w) + "', found " + quoteToken(lookahead_.text));
   }
-  next();
+  noteKeyword(next());
+}
+
+void WarningTally::add(std::string_view kind, int line, std::string message) {
+  for (Entry& e : entries_) {
+    if (e.kind == kind) {
+      ++e.count;
+      return;
+    }
+  }
+  entries_.push_back({std::string(kind), line, std::move(message), 1});
+}
+
+std::string WarningTally::text(const Entry& e) {
+  if (e.count < 2) return e.message;
+  return e.message + " (the first of " + std::to_string(e.count) + " in the file)";
+}
+
+void Lexer::noteKeyword(const Token& t) {
+  if (t.quoted || t.text.data() == lastNoted_) return;
+  bool lower = false;
+  for (char c : t.text) lower = lower || (c >= 'a' && c <= 'z');
+  if (!lower) return;
+  lastNoted_ = t.text.data();
+  tally_.add("keyword case", t.line,
+             "keyword " + quoteToken(t.text) + " not in upper case (LEF and DEF keywords are; read all the same)");
 }
 
 void Lexer::upcase(const Token& t) {
   const char* base = text_.data();
   const char* p = t.text.data();
   if (t.quoted || p < base || p + t.text.size() > base + text_.size()) return;  // a split-off ';'
+  noteKeyword(t);
   for (size_t i = static_cast<size_t>(p - base), e = i + t.text.size(); i < e; ++i) {
     if (text_[i] >= 'a' && text_[i] <= 'z') text_[i] = static_cast<char>(text_[i] - 'a' + 'A');
   }

@@ -5,12 +5,14 @@
 // lexer, so they live as long as the lexer. A gzip-compressed file (magic bytes 1f 8b) is
 // decompressed when read. LEF and DEF keywords are case-insensitive ("Via", "layer", "by"), names
 // are not: accept() and expect() match a keyword in any case, and a parser that takes a token in a
-// keyword position calls upcase() on it before comparing.
+// keyword position calls upcase() on it before comparing. A keyword read that is not written in
+// upper case (the specification's spelling) is noted in the lexer's WarningTally.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geom/geom.hpp"
 #include "io/input_error.hpp"
@@ -21,6 +23,25 @@ struct Token {
   std::string_view text;
   int line = 0;         // 1-based line where the token starts
   bool quoted = false;  // was a "string" (text excludes the quotes)
+};
+
+// Odd but readable things of one kind, added up over a file: the first one's line and message and
+// how many there were (a file that repeats an oddity a million times gets one warning).
+class WarningTally {
+ public:
+  struct Entry {
+    std::string kind;
+    int line = 0;         // of the first one
+    std::string message;  // of the first one
+    int64_t count = 0;
+  };
+  void add(std::string_view kind, int line, std::string message);
+  const std::vector<Entry>& entries() const { return entries_; }
+  // The warning of `e`: its first message, and how many there were when more than one.
+  static std::string text(const Entry& e);
+
+ private:
+  std::vector<Entry> entries_;
 };
 
 class Lexer {
@@ -34,8 +55,12 @@ class Lexer {
   Token next();                        // throws at end of file
   bool accept(std::string_view word);  // consume the next token if it is `word` (any case)
   void expect(std::string_view word);  // throws unless the next token is `word` (any case)
-  // Rewrites a token of this lexer's text in upper case, in place (for a keyword position).
+  // Rewrites a token of this lexer's text in upper case, in place (for a keyword position); a
+  // token that was not in upper case is noted (noteKeyword).
   void upcase(const Token& t);
+  // Notes `t`, read as a keyword, in tally() when it is not written in upper case.
+  void noteKeyword(const Token& t);
+  WarningTally& tally() { return tally_; }
   std::string_view word();             // any token (the name of something)
   std::string word(std::string_view what);  // a token, naming `what` in the error
   int64_t integer();                   // throws unless an integer
@@ -76,6 +101,8 @@ class Lexer {
   bool eof_ = false;
   int scaleMul_ = 1;  // dbu(): v * scaleMul_ / scaleDiv_
   int scaleDiv_ = 1;
+  WarningTally tally_;
+  const char* lastNoted_ = nullptr;  // the token noteKeyword() saw last (a peeked token is matched twice)
 };
 
 // True when `text` is the keyword `word` (upper case) written in any case.

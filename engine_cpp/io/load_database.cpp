@@ -9,7 +9,6 @@ Database loadDatabase(const std::vector<std::string>& lefPaths, const std::strin
                       const std::string& guidePath) {
   Database db;
   db.lefPaths = lefPaths;
-  db.defPath = defPath;
   db.guidePath = guidePath;
   for (const std::string& lef : lefPaths) readLef(lef, db.tech);
   validateTech(db.tech, lefPaths);

@@ -136,10 +136,22 @@ void validateDesign(const Tech& tech, Design& design, const std::string& defPath
     warn(design, defPath, design.dieLine, std::to_string(tracks) + " TRACKS pattern(s) with no track in the die area " + dieText);
   }
   for (LayerId id : tech.routingLayers) {
-    bool has = false;
-    for (const TrackPattern& t : design.tracks) has = has || t.layer == id;
-    if (!has && !design.tracks.empty()) {
-      warn(design, defPath, design.dieLine, "no TRACKS for routing layer '" + tech.layer(id).name + "'");
+    const Layer& l = tech.layer(id);
+    const bool horizontal = l.direction != Direction::Vertical;  // as the router takes it (grid/tracks.cpp)
+    const TrackPattern* any = nullptr;
+    bool preferred = false;
+    for (const TrackPattern& t : design.tracks) {
+      if (t.layer != id) continue;
+      any = any ? any : &t;
+      preferred = preferred || t.isX != horizontal;  // "TRACKS Y" lines carry horizontal wires
+    }
+    if (!any && !design.tracks.empty()) {
+      warn(design, defPath, design.dieLine, "no TRACKS for routing layer '" + l.name + "'");
+    } else if (any && !preferred) {
+      warn(design, defPath, any->line,
+           "routing layer '" + l.name + "' has TRACKS " + (horizontal ? "X" : "Y") + " only, none in its preferred (" +
+               (horizontal ? "horizontal" : "vertical") + ") direction: it cannot be routed without TRACKS " +
+               (horizontal ? "Y" : "X"));
     }
   }
 }

@@ -206,17 +206,40 @@ class OnnxNetRouter:
     """An exported net-router model: ``act(state, legal)`` -> direction."""
 
     def __init__(self, path: str | Path) -> None:
-        import onnxruntime as ort
+        """Loads the model; a :class:`~xroute.errors.PolicyError` naming the file when it is not a
+        readable net-router model (onnxruntime's log lines silenced)."""
+        from xroute.errors import PolicyError
+        from xroute.policies.onnx_policy import quiet_session_options
 
+        try:
+            import onnxruntime as ort
+        except ImportError as exc:
+            raise PolicyError(f"{path}: net-router models need onnxruntime: pip install 'xroute[rl]'") from exc
         self.path = str(path)
-        self.session = ort.InferenceSession(self.path, providers=["CPUExecutionProvider"])
+        try:
+            self.session = ort.InferenceSession(self.path, quiet_session_options(ort), providers=["CPUExecutionProvider"])
+        except Exception as exc:  # noqa: BLE001 - any load failure is a bad model file
+            first = " ".join(str(exc).split()) or type(exc).__name__
+            raise PolicyError(f"{self.path}: not a readable ONNX model ({first})") from None
         meta = self.session.get_modelmeta().custom_metadata_map
         if meta.get("xroute_model") != "net-router":
-            raise ValueError(f"{self.path} is not a net-router model (xroute_model = {meta.get('xroute_model')!r})")
+            raise PolicyError(f"{self.path}: not a net-router model (xroute_model = {meta.get('xroute_model')!r})")
+        names = ([a.name for a in self.session.get_inputs()], [a.name for a in self.session.get_outputs()])
+        if names != (["state"], ["q"]):
+            raise PolicyError(f"{self.path}: a net-router model has input state float32[B,{STATE_SIZE}] and output "
+                              f"q float32[B,{ACTIONS}]; this one has inputs {names[0]} and outputs {names[1]}")
 
     def q_values(self, state: np.ndarray) -> np.ndarray:
+        from xroute.policies.onnx_policy import run_model
+
         s = np.asarray(state, dtype=np.float32).reshape(-1, STATE_SIZE)
-        return self.session.run(["q"], {"state": s})[0]
+        q = np.asarray(run_model(self.session, self.path, ["q"], {"state": s})[0])
+        if q.ndim != 2 or q.shape[1] != ACTIONS:
+            from xroute.errors import PolicyError
+
+            raise PolicyError(f"{self.path}: the net-router model returned q of shape {list(q.shape)}, "
+                              f"not [B, {ACTIONS}]")
+        return q
 
     def act(self, state: np.ndarray, legal: np.ndarray | None = None) -> int:
         q = self.q_values(state)[0]

@@ -9,7 +9,8 @@ key with its unit and default. The file is validated once, when loaded; any prob
 :class:`~xroute.config_schema.ConfigError` with the file, the line and the dotted key.
 
 Paths *read* from a config (policy files, baseline files) are relative to the config file's
-folder; output folders are relative to the current directory.
+folder; output folders are relative to the current directory. A leading ``~`` is expanded in both,
+as the shell expands it on the command line.
 
 Other commands compose these sections with their own into a dataclass and load it with
 :func:`xroute.config_schema.load_sections` (passing :data:`CHECKS`), e.g.::
@@ -120,8 +121,14 @@ def check_input_file(value: str, ctx: Context) -> tuple[Any, str | None]:
     return str(path), None
 
 
+def check_output_dir(value: str, ctx: Context) -> tuple[Any, str | None]:
+    """An output folder: ``~`` expanded as the shell does for a command-line path; a relative one
+    stays relative to the current directory (not the file's folder). Checked when it is created."""
+    return os.path.expanduser(value), None
+
+
 CHECKS = {"testcase": check_testcase, "policy": check_policy, "schedule_policy": check_schedule_policy,
-          "input_file": check_input_file}
+          "input_file": check_input_file, "output_dir": check_output_dir}
 
 
 # -- sections ----------------------------------------------------------------------------------------
@@ -210,7 +217,7 @@ class CostSection:
 class OutputSection:
     """Where results go and how progress is shown."""
 
-    out_dir: str | None = None  # default ./out/<design>
+    out_dir: str | None = setting(None, check="output_dir", help="default ./out/<design>; ~ is expanded")
     mode: Literal["auto", "rich", "lines", "quiet", "json"] = "auto"
 
 

@@ -338,10 +338,10 @@ class CallableSequentialPolicy:
         return f"CallableSequentialPolicy({self.name!r})"
 
 
-def check_order(order: Any, n: int, policy_name: str) -> list[int]:
+def check_order(order: Any, n: int, policy_name: str, source: str = "") -> list[int]:
     """``order`` as a list of ints if it is a permutation of ``range(n)``; otherwise a
-    :class:`PolicyError` naming the policy and what is wrong."""
-    where = f"net-order policy '{policy_name}'"
+    :class:`PolicyError` naming the policy (and ``source``, its file) and what is wrong."""
+    where = (f"{source}: " if source else "") + f"net-order policy '{policy_name}'"
     try:
         values = np.asarray(order)
     except Exception as exc:  # noqa: BLE001 - anything that is not array-like

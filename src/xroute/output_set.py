@@ -55,16 +55,41 @@ def make_stage(out_dir: Path) -> Path:
 
 @contextlib.contextmanager
 def staging(out_dir: Path) -> Iterator[Path]:
-    """A new staging folder in ``out_dir``, locked as in use while the block runs, removed after it."""
+    """A new staging folder in ``out_dir``, locked as in use while the block runs, removed after it.
+    An error naming a file in it (a full disk while writing it) names the file's final place
+    instead: the staging folder is gone by the time the error is read."""
+    from xroute.errors import InputError
+
     stage = make_stage(out_dir)
     fd = None
     try:
         fd = open_locked_folder(stage)
         yield stage
+    except InputError as exc:
+        final = _final_name(exc.path, stage, out_dir)
+        if final is None:
+            raise
+        raise InputError(exc.message, final, exc.line) from exc
+    except OSError as exc:
+        final = _final_name(exc.filename, stage, out_dir)
+        if final is None:
+            raise
+        raise OSError(exc.errno, exc.strerror or str(exc), final) from exc
     finally:
         shutil.rmtree(stage, ignore_errors=True)
         if fd is not None:
             os.close(fd)
+
+
+def _final_name(path: Any, stage: Path, out_dir: Path) -> str | None:
+    """Where a file named by ``path`` inside ``stage`` is published (in ``out_dir``; the folder itself
+    for the publishing note); None for a path elsewhere."""
+    if not isinstance(path, (str, os.PathLike)) or not str(path):
+        return None
+    p = Path(path)
+    if p.parent != stage:
+        return None
+    return str(out_dir) if p.name == NOTE else str(out_dir / p.name)
 
 
 def file_sha256(path: Path) -> str:

@@ -9,7 +9,12 @@
   :func:`policy_failure_line`; the traceback only with ``--debug``). A message whose ``__str__``
   fails is shown as ``<Type: unprintable>``. Only ``KeyboardInterrupt`` passes as it is.
 * :func:`kept_cwd` puts the working directory back after user code ran: a policy that calls
-  ``os.chdir`` cannot move where the run reads and writes.
+  ``os.chdir`` cannot move where the run reads and writes. :func:`policy_code` adds the guards of
+  :mod:`xroute.policy_process` (prints to stderr, streams put back, forks and ``os._exit`` kept
+  from ending the run quietly); every entry into a policy's code goes through it.
+* Every failure names the policy's file: :func:`policy_source` is the file that defines it (a
+  model file for ONNX and JSON policies), :func:`policy_where` that file and the line of the
+  method (for a wrong return value).
 * :class:`Watchdog` enforces a per-call time limit (``policy.call_timeout`` in the config,
   :data:`DEFAULT_CALL_TIMEOUT` by default). When a call runs past it, the watchdog raises
   :class:`PolicyTimeout` inside the policy's thread (delivered at the policy's next Python
@@ -32,6 +37,7 @@ from typing import Any, Iterator
 
 from xroute.errors import safe_text
 from xroute.net_order import PolicyError
+from xroute.policy_process import PolicyExit, real_exit, user_code
 
 DEFAULT_CALL_TIMEOUT = 300.0  # seconds per order() call: generous (the built-in policies take milliseconds)
 GRACE_SECONDS = 5.0  # after the limit, before a call blocked outside Python ends the process
@@ -55,17 +61,43 @@ def stray_threads() -> list[threading.Thread]:
 
 
 def policy_source(policy: Any) -> str | None:
-    """The file that defines a policy's order function (None for built-ins and C++)."""
-    fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None)
-    code = getattr(fn, "__code__", None)
+    """The file that defines a policy: its ``source`` (a model file: ONNX, JSON) when it has one,
+    else the file of its order (or plan) function; None for built-ins and C++."""
+    source = getattr(policy, "source", None)
+    if isinstance(source, str) and source:
+        return source
+    code = _method_code(policy)
     return code.co_filename if code is not None else None
 
 
+def _method_code(policy: Any) -> Any:
+    fn = getattr(policy, "fn", None) or getattr(type(policy), "order", None) or getattr(type(policy), "plan", None)
+    return getattr(fn, "__code__", None)
+
+
+def policy_where(policy: Any) -> str:
+    """``<file>:<line>`` of a Python policy's function, ``<file>`` of a model; "" for built-ins."""
+    source = policy_source(policy)
+    if source is None:
+        return ""
+    code = _method_code(policy)
+    if code is not None and code.co_filename == source:
+        return f"{source}:{code.co_firstlineno}"
+    return source
+
+
+@contextlib.contextmanager
+def policy_code(policy: Any, method: str) -> Iterator[None]:
+    """Runs the block (``policy``'s ``method``, or ``"load"``) under :func:`kept_cwd` and the guards of
+    :mod:`xroute.policy_process`."""
+    with kept_cwd(), user_code(safe_text(getattr(policy, "name", "policy")), policy_source(policy), method):
+        yield
+
+
 def _where(exc: BaseException, source: str | None) -> tuple[str, int]:
-    """(file, line) of the innermost frame of ``exc`` in the policy's file (else the innermost frame)."""
+    """(file, line) of the innermost frame of ``exc`` in the policy's file; the file alone when no
+    frame is in it (a model file), else the innermost frame."""
     frames = traceback.extract_tb(exc.__traceback__)
-    if not frames:
-        return (source or "policy", 0)
     if source is not None:
         try:
             src = str(Path(source).resolve())
@@ -74,6 +106,9 @@ def _where(exc: BaseException, source: str | None) -> tuple[str, int]:
                     return (fr.filename, fr.lineno or 0)
         except OSError:
             pass
+        return (source, 0)
+    if not frames:
+        return ("policy", 0)
     fr = frames[-1]
     return (fr.filename, fr.lineno or 0)
 
@@ -115,9 +150,10 @@ def user_failure(exc: BaseException, policy: Any, method: str) -> BaseException:
         tag_failure(exc, policy)
         return exc
     file, line = _where(exc, policy_source(policy))
-    if isinstance(exc, SystemExit):
+    if isinstance(exc, (SystemExit, PolicyExit)):
         where = f"{file}:{line}" if line else file
-        return PolicyCallError(f"{where}: policy '{name}' called sys.exit({safe_text(exc.code)}) inside {method}(): "
+        call = "os._exit" if isinstance(exc, PolicyExit) else "sys.exit"
+        return PolicyCallError(f"{where}: policy '{name}' called {call}({safe_text(exc.code)}) inside {method}(): "
                                "a policy cannot end the run")
     return PolicyCallError(_raised_line(exc, name, file, line) + f" inside {method}()")
 
@@ -197,7 +233,7 @@ class Watchdog:
                         if now - self._fired[tid] > GRACE_SECONDS:
                             sys.stderr.write(f"error: {self.message}; it did not stop, ending the run\n")
                             sys.stderr.flush()
-                            os._exit(EXIT_USER_ERROR)
+                            real_exit(EXIT_USER_ERROR)
                     elif now - start > self.limit:
                         self._fired[tid] = now
                         ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(tid),
@@ -211,7 +247,7 @@ def call_policy(policy: Any, region: Any, features: Any, watchdog: Watchdog | No
         watchdog.begin()
     try:
         try:
-            with kept_cwd():
+            with policy_code(policy, method):
                 return getattr(policy, method)(region, features)
         finally:
             if watchdog is not None:

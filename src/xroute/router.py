@@ -236,10 +236,11 @@ class _PolicyCallback:
     adds up the time spent in it (the check included)."""
 
     def __init__(self, policy: NetOrderPolicy, timeout: float | None = None) -> None:
-        from xroute.policy_guard import DEFAULT_CALL_TIMEOUT, Watchdog
+        from xroute.policy_guard import DEFAULT_CALL_TIMEOUT, Watchdog, policy_where
 
         self.policy = policy
         self.name = policy.name  # the engine names the policy by it in its errors
+        self.where = policy_where(policy)  # its file (and line): named in errors about what it returned
         self.seconds = 0.0  # wall time in order() and the check
         self.calls = 0
         limit = DEFAULT_CALL_TIMEOUT if timeout is None else timeout
@@ -251,7 +252,7 @@ class _PolicyCallback:
         start = time.perf_counter()
         try:
             order = call_policy(self.policy, region, features, self.watchdog)  # SystemExit -> PolicyError
-            return check_order(order, len(features), self.policy.name)
+            return check_order(order, len(features), self.policy.name, self.where)
         finally:
             self.seconds += time.perf_counter() - start
             self.calls += 1
@@ -263,15 +264,15 @@ class _PolicyCallback:
         start = time.perf_counter()
         try:
             index = call_policy(self.policy, region, features, self.watchdog, method="next_net")
-            return check_next(index, len(features), self.policy.name)
+            return check_next(index, len(features), self.policy.name, self.where)
         finally:
             self.seconds += time.perf_counter() - start
             self.calls += 1
 
 
-def check_next(index: Any, n: int, policy_name: str) -> int:
+def check_next(index: Any, n: int, policy_name: str, source: str = "") -> int:
     """``index`` as an int if it is a row of ``n`` unrouted candidates; otherwise a :class:`PolicyError`."""
-    where = f"net-order policy '{policy_name}'"
+    where = (f"{source}: " if source else "") + f"net-order policy '{policy_name}'"
     if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
         raise PolicyError(f"{where}: next_net returned {type(index).__name__}, not the int index of a candidate row")
     if not 0 <= int(index) < n:

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Protocol, Sequence, runtime_checkable
 
 from xroute.net_order import PolicyError
-from xroute.policy_guard import kept_cwd, user_failure
+from xroute.policy_guard import policy_code, policy_where, user_failure
 
 if TYPE_CHECKING:
     from xroute._engine import IterationPlan
@@ -77,12 +77,18 @@ def plan_problem(values: Mapping[str, Any]) -> str | None:
     return None
 
 
-def plan_from(answer: Any, rule: IterationPlan, policy: str, iteration: int) -> IterationPlan:
+def named(policy: Any) -> str:
+    """``<file>:<line>: schedule policy '<name>'`` (the file alone for a model, no file for the rule)."""
+    where = policy_where(policy)
+    return (f"{where}: " if where else "") + f"schedule policy '{getattr(policy, 'name', 'schedule')}'"
+
+
+def plan_from(answer: Any, rule: IterationPlan, policy: Any, iteration: int) -> IterationPlan:
     """The plan of iteration ``iteration`` from what schedule policy ``policy`` answered: None (the rule's
     plan), an IterationPlan, or a dict of the fields to change in ``rule``; checked (:func:`plan_problem`,
     and no stop in the first iteration). The one place an answer becomes a plan: PolicyError naming the
-    policy when it cannot."""
-    where = f"schedule policy '{policy}'"
+    policy (its file and line, :func:`named`) when it cannot."""
+    where = named(policy)
     fields = rule.to_dict()
     if answer is None:
         answer = rule
@@ -193,7 +199,7 @@ class CallableSchedule:
         self.name = name
 
     def plan(self, history: Sequence[IterationReport], rule: IterationPlan) -> IterationPlan:
-        return plan_from(self.fn(history, rule), rule, self.name, len(history))
+        return plan_from(self.fn(history, rule), rule, self, len(history))
 
 
 def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], IterationPlan], IterationPlan]:
@@ -203,14 +209,14 @@ def engine_planner(policy: SchedulePolicy) -> Callable[[list[Any], IterationPlan
     def planner(history: list[Any], rule: IterationPlan) -> IterationPlan:
         reports = [IterationReport.from_engine(d) for d in history]
         try:
-            with kept_cwd():
+            with policy_code(policy, "plan"):
                 answer = policy.plan(reports, rule)
         except BaseException as exc:  # noqa: BLE001 - the user's code: named (policy_guard.user_failure)
             failure = user_failure(exc, policy, "plan")
             if failure is exc:
                 raise
             raise failure from None
-        return plan_from(answer, rule, policy.name, len(reports))
+        return plan_from(answer, rule, policy, len(reports))
 
     return planner
 

@@ -21,7 +21,7 @@ A file whose ``parameters`` is null keeps the rule (training found nothing bette
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
 
@@ -47,6 +47,7 @@ class SwitchSchedule:
     late_repair: int = 0  # repair rounds once switched
     late_budget: int = 0  # once switched: the victims search with this many trial routings per region (0: none)
     name: str = "switch"
+    source: str = field(default="", compare=False)  # the model file it was read from (named in errors)
 
     def __post_init__(self) -> None:
         checks = (
@@ -69,6 +70,7 @@ class SwitchSchedule:
     def parameters(self) -> dict[str, Any]:
         d = asdict(self)
         d.pop("name")
+        d.pop("source")
         return d
 
     def switched(self, history: Sequence[IterationReport]) -> bool:
@@ -97,8 +99,9 @@ class SwitchSchedule:
 class RuleKept:
     """What a model file with null parameters runs: the rule's plan (named after the file)."""
 
-    def __init__(self, name: str) -> None:
+    def __init__(self, name: str, source: str = "") -> None:
         self.name = name
+        self.source = source  # the model file (named in errors)
 
     def plan(self, history: Sequence[IterationReport], rule: IterationPlan) -> IterationPlan:
         return rule
@@ -120,7 +123,7 @@ def schedule_from_document(doc: Any, source: str) -> SwitchSchedule | RuleKept:
     params = doc.get("parameters")
     name = Path(source).stem
     if params is None:
-        return RuleKept(name)
+        return RuleKept(name, source)
     if not isinstance(params, Mapping):
         raise PolicyError(f"{source}: \"parameters\" must be an object or null")
     known = {"late_size", "switch_ratio", "patience", "late_repair", "late_budget"}
@@ -131,7 +134,7 @@ def schedule_from_document(doc: Any, source: str) -> SwitchSchedule | RuleKept:
     if missing:
         raise PolicyError(f"{source}: missing parameter(s) {', '.join(missing)}")
     try:
-        return SwitchSchedule(**{str(k): v for k, v in params.items()}, name=name)
+        return SwitchSchedule(**{str(k): v for k, v in params.items()}, name=name, source=source)
     except ValueError as exc:
         raise PolicyError(f"{source}: {exc}") from None
 
