@@ -19,7 +19,9 @@ contest name when it is found, else its stand-in's name; ``available(*names)`` d
 list (for ``parametrize``: the contest ids are unchanged when the data is there). Stand-ins are
 generated with ``xroute.testcases.generator`` on first use into one temporary folder per session,
 which ``pytest_configure`` appends to ``$XROUTE_TESTCASES`` so that everything that looks a
-testcase up by name (the CLI, batch jobs in child processes, the envs) finds them.
+testcase up by name (the CLI, batch jobs in child processes, the envs) finds them; the folders the
+test process itself finds go before it, so a child started in another working directory (an
+installed package looks beside the working directory) finds the contest data too.
 ``load_file(path)`` imports a repository file that is not part of the package (``fuzz/``,
 ``examples/``) as a module of its own, without putting its folder on ``sys.path``.
 ``sample_lef()`` is ispd18_sample's LEF, or tests/data/lef/sample_names.lef (our own LEF with the
@@ -72,9 +74,13 @@ def pytest_configure(config: pytest.Config) -> None:
     global _standin_root
     from xroute.testcases import ENV_VAR
 
+    from xroute.testcases import search_path
+
     _standin_root = Path(tempfile.mkdtemp(prefix="xroute-standins-"))
-    old = os.environ.get(ENV_VAR, "")
-    os.environ[ENV_VAR] = os.pathsep.join(p for p in (old, str(_standin_root)) if p)
+    # The folders this process finds (../shared/testcases beside the working directory among them)
+    # go first, so that a child process started in another directory finds the same testcases.
+    found = [str(p) for p in search_path() if p.is_dir()]
+    os.environ[ENV_VAR] = os.pathsep.join(dict.fromkeys([*found, str(_standin_root)]))
 
 
 def pytest_unconfigure(config: pytest.Config) -> None:
