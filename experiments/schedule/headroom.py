@@ -3,6 +3,7 @@
     python -m experiments.schedule.headroom menu   DESIGN --out OUT [--threads 2] [--cutoff-ratio 1.5]
     python -m experiments.schedule.headroom search DESIGN --out OUT [--depth 3] [--threads 2]
     python -m experiments.schedule.headroom early  DESIGN --out OUT [--threads 2]
+    python -m experiments.schedule.headroom plans  DESIGN --out OUT --prefixes "rule,size8;size10"
     python -m experiments.schedule.headroom table  OUT/*.jsonl
 
 DESIGN is a testcase on the search path (``ispd18_test1_4x4`` is made on first use with
@@ -16,6 +17,8 @@ DESIGN is a testcase on the search path (``ispd18_test1_4x4`` is made on first u
   ``--depth`` iterations in turn, every action of :data:`ACTIONS` is tried at that iteration, with the
   best prefix found so far before it and the rule after it; the action whose run ends at 0
   violations soonest (CPU seconds; wire and vias within 0.3% of the default's) is kept.
+* ``plans``: the default, then each named prefix of :data:`ACTIONS` (``;`` between prefixes, ``,``
+  between iterations) with the rule after it: the sequences the greedy search would reach deeper.
 * ``early``: the decisions that move iteration 1's cost: routes of two iterations, iteration 1
   with each action; prints iteration 1's seconds, regions, net routes and violations after it.
 
@@ -38,25 +41,28 @@ XROUTE = (sys.executable, "-m", "xroute")
 HERE = Path(__file__).resolve().parent
 REPLAY = HERE / "replay_plans.py"
 STALE_MODEL = HERE.parents[1] / "policies" / "models" / "schedule_switch.json"
-TEN_THEN_FIVE = "10:0,5:1,5:3,5:0,5:1,5:3,5:0,5:1,5:3,5:0"
-MENU: list[tuple[str, list[str]]] = [
-    ("default", []),
-    ("victims2", ["--policy", "victims", "--search-budget", "2"]),
-    ("victims4", ["--policy", "victims", "--search-budget", "4"]),
-    ("victims8", ["--policy", "victims", "--search-budget", "8"]),
-    ("bestof4", ["--policy", "bestof", "--search-budget", "4"]),
-    ("repair1", ["--repair-rounds", "1"]),
-    ("repair3", ["--repair-rounds", "3"]),
-    ("size5", ["--region-size", "5"]),
-    ("size7", ["--region-size", "7"]),
-    ("size10then5", ["--schedule", TEN_THEN_FIVE]),
-    ("stale_model", ["--schedule-policy", str(STALE_MODEL)]),
-]
+
+
+def _bench_menu() -> list[tuple[str, list[str]]]:
+    """bench/schedule_menu.py's menu (one list of the hand-written settings), loaded from its file."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("schedule_menu", HERE.parents[1] / "bench" / "schedule_menu.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return list(module.MENU)
+
+
+MENU: list[tuple[str, list[str]]] = [*_bench_menu(), ("stale_model", ["--schedule-policy", str(STALE_MODEL)])]
+
 # Changes to one iteration's plan (replay_plans.py's entries).
 ACTIONS: dict[str, dict[str, Any]] = {
     "rule": {},
     "size5": {"region_size": 5},
     "size8": {"region_size": 8},
+    "size10": {"region_size": 10},
+    "size12": {"region_size": 12},
     "size24": {"region_size": 24},
     "repair1": {"repair_rounds": 1},
     "weights0.5": {"weights": 0.5},
@@ -177,6 +183,22 @@ def search(args: argparse.Namespace, out: Path, env: dict[str, str]) -> None:
     record(log, {"design": args.design, "setting": "best", "prefix": prefix, **best})
 
 
+def plans(args: argparse.Namespace, out: Path, env: dict[str, str]) -> None:
+    log = out / f"plans-{args.design}.jsonl"
+    base = run(args.design, [], args.threads, out / "runs" / f"{args.design}-plans-default", env)
+    record(log, {"design": args.design, "setting": "default", "prefix": [], **base})
+    for text in (args.prefixes or "").split(";"):
+        prefix = [a.strip() for a in text.split(",") if a.strip()]
+        unknown = [a for a in prefix if a not in ACTIONS]
+        if unknown or not prefix:
+            raise SystemExit(f"error: --prefixes: unknown or empty prefix {text!r} (actions: {', '.join(ACTIONS)})")
+        name = "-".join(prefix)
+        flags = replay_flags(out, f"{args.design}-{name}", [ACTIONS[a] for a in prefix], env)
+        row = run(args.design, flags, args.threads, out / "runs" / f"{args.design}-plans-{name}", env,
+                  args.cutoff_ratio * base["cpu_s"])
+        record(log, {"design": args.design, "setting": name, "prefix": prefix, **row})
+
+
 def early(args: argparse.Namespace, out: Path, env: dict[str, str]) -> None:
     log = out / f"early-{args.design}.jsonl"
     for action, change in ACTIONS.items():
@@ -200,13 +222,14 @@ def table(paths: list[str]) -> None:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("command", choices=["menu", "search", "early", "table"])
+    ap.add_argument("command", choices=["menu", "search", "early", "plans", "table"])
     ap.add_argument("design", nargs="+")
     ap.add_argument("--out", default="runs/headroom")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--cutoff-ratio", type=float, default=1.5)
     ap.add_argument("--depth", type=int, default=3)
     ap.add_argument("--only", default=None, help="menu: comma-separated setting names")
+    ap.add_argument("--prefixes", default=None, help="plans: prefixes of actions, ';' between, ',' inside")
     args = ap.parse_args()
     if args.command == "table":
         table(args.design)
@@ -216,7 +239,7 @@ def main() -> int:
     for design in args.design:
         args.design = design
         env = environment(out, design)
-        {"menu": menu, "search": search, "early": early}[args.command](args, out, env)
+        {"menu": menu, "search": search, "early": early, "plans": plans}[args.command](args, out, env)
     return 0
 
 
