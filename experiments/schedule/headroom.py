@@ -69,6 +69,8 @@ ACTIONS: dict[str, dict[str, Any]] = {
     "weights2": {"weights": 2.0},
     "victims2": {"search_budget": 2},
     "victims4": {"search_budget": 4},
+    # the shipped switch schedule's late plan: size 5 with the victims search at 4 trials
+    "late5b4": {"region_size": 5, "search_budget": 4},
 }
 BAND = 0.003  # contest score within 0.3% of the default's
 
