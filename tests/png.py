@@ -1,18 +1,55 @@
-"""A minimal PNG reader for tests (8-bit greyscale/RGB/RGBA, no interlace): are the pixels all one colour?"""
+"""PNG pixels for tests (8-bit greyscale/RGB/RGBA, no interlace): are the pixels all one colour?
+
+Pillow (a dependency of matplotlib, in the test group) decodes when it is installed; otherwise a
+minimal reader of our own does, slowly (pure Python: seconds for a full-page screenshot). Each
+file is decoded once per content; the counts run on numpy arrays.
+"""
 
 from __future__ import annotations
 
+import functools
 import struct
 import zlib
 from pathlib import Path
+
+import numpy as np
 
 CHANNELS = {0: 1, 2: 3, 4: 2, 6: 4}  # PNG colour type -> samples per pixel
 
 
 def read_png(path: Path) -> tuple[int, int, int, list[bytes]]:
     """(width, height, bytes per pixel, unfiltered rows)."""
+    pixels = _pixels(path)
+    height, width, bpp = pixels.shape
+    return width, height, bpp, [row.tobytes() for row in pixels]
+
+
+def _pixels(path: Path) -> np.ndarray:
+    """The image as a (height, width, samples) uint8 array."""
     data = path.read_bytes()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return _decode(data)
+
+
+@functools.lru_cache(maxsize=8)
+def _decode(data: bytes) -> np.ndarray:
+    try:
+        from PIL import Image
+    except ImportError:
+        return _decode_here(data)
+    import io
+
+    with Image.open(io.BytesIO(data)) as image:
+        assert image.format == "PNG", image.format
+        mode = {"L": 1, "LA": 2, "RGB": 3, "RGBA": 4}
+        if image.mode not in mode:
+            image = image.convert("RGBA")
+        array = np.asarray(image, dtype=np.uint8)
+    return array.reshape(array.shape[0], array.shape[1], -1)
+
+
+def _decode_here(data: bytes) -> np.ndarray:
+    """The pure-Python decoder: unfilter every row (filters None, Sub, Up, Average, Paeth)."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
     pos, idat, header = 8, b"", None
     while pos < len(data):
         length, kind = struct.unpack(">I4s", data[pos:pos + 8])
@@ -49,27 +86,20 @@ def read_png(path: Path) -> tuple[int, int, int, list[bytes]]:
                 line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
         rows.append(bytes(line))
         prev = line
-    return width, height, bpp, rows
+    return np.frombuffer(b"".join(rows), dtype=np.uint8).reshape(height, width, bpp)
 
 
 def distinct_colours(path: Path, limit: int = 1000) -> int:
-    """How many distinct pixel values the image holds (counting stops at ``limit``)."""
-    _, _, bpp, rows = read_png(path)
-    seen: set[bytes] = set()
-    for row in rows:
-        for i in range(0, len(row), bpp):
-            seen.add(row[i:i + bpp])
-            if len(seen) >= limit:
-                return limit
-    return len(seen)
+    """How many distinct pixel values the image holds (at most ``limit``)."""
+    pixels = _pixels(path).astype(np.uint32)
+    packed = np.zeros(pixels.shape[:2], dtype=np.uint32)
+    for channel in range(pixels.shape[2]):  # at most 4 samples of 8 bits: one 32-bit key per pixel
+        packed = (packed << 8) | pixels[:, :, channel]
+    return min(limit, len(np.unique(packed)))
 
 
 def colour_pixels(path: Path, rgb: tuple[int, int, int], tolerance: int = 12) -> int:
     """How many pixels are within ``tolerance`` of ``rgb`` in every channel."""
-    _, _, bpp, rows = read_png(path)
-    n = 0
-    for row in rows:
-        for i in range(0, len(row), bpp):
-            if all(abs(row[i + c] - rgb[c]) <= tolerance for c in range(3)):
-                n += 1
-    return n
+    pixels = _pixels(path)[:, :, :3].astype(np.int16)
+    close = np.abs(pixels - np.array(rgb, dtype=np.int16)) <= tolerance
+    return int(np.count_nonzero(close.all(axis=2)))
