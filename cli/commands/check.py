@@ -103,6 +103,8 @@ def check(
             stdout_console().print(_table(result))
             if result.score is not None:
                 typer.echo(score_line())
+        for item in result.not_checked:  # also under --quiet: a count of 0 claims nothing of these
+            typer.echo(f"not checked: {item['rule']} on {', '.join(item['layers'])}")
         typer.echo(f"{result.design}: {result.opens} open, {result.violations} violations, "
                    f"WL {result.wirelength_um:,.1f} um, {result.vias:,} vias"
                    + (f", {SCORE_NAME} {result.score:,.1f}" if result.score is not None else "")

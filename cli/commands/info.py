@@ -95,6 +95,7 @@ def summarize(design: Design) -> dict[str, Any]:
         "warnings": design.warning_count,
         "warning_messages": list(design.engine.warnings()),
         "skipped_statements": design.skipped_statements(),
+        "not_modelled_rules": design.unjudged_rules(),
         "counts": counts,
     }
 
@@ -166,6 +167,15 @@ def _skipped_table(skipped: dict[str, int]) -> Table:
     return table
 
 
+def _not_modelled_table(rules: list[dict]) -> Table:
+    table = Table(title="Rules stated and not modelled (xroute check does not judge them)", title_justify="left")
+    table.add_column("rule")
+    table.add_column("layers")
+    for item in rules:
+        table.add_row(escape(item["rule"]), escape(", ".join(item["layers"])))
+    return table
+
+
 def info(
     testcase: TestcaseArg = None,
     lef: LefOption = None,
@@ -185,5 +195,7 @@ def info(
     console.print(_layer_table(summary))
     if summary["skipped_statements"]:
         console.print(_skipped_table(summary["skipped_statements"]))
+    if summary["not_modelled_rules"]:
+        console.print(_not_modelled_table(summary["not_modelled_rules"]))
     for message in summary["warning_messages"]:
         typer.echo(f"warning: {message}")

@@ -5,6 +5,7 @@
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
@@ -125,6 +126,18 @@ void bindDatabaseSummary(DatabaseClass& cls) {
             return all;
           },
           "Statements the readers skipped (not understood), keyword -> count.")
+      .def(
+          "unjudged_rules",
+          [](const Database& d) {
+            std::vector<std::pair<std::string, std::string>> out;
+            for (const Layer& l : d.tech.layers)
+              for (const std::string& rule : l.unjudged) out.emplace_back(l.name, rule);
+            return out;
+          },
+          "The rules the LEF states on metal and cut layers that the checker does not judge, as "
+          "(layer, rule) pairs in LEF order: skipped statements and forms (MINSTEP, SPACING "
+          "NOTCHLENGTH, SPACINGTABLE TWOWIDTHS, ...), LEF58 properties other than the corner "
+          "spacing it models, and rules kept for the router only (MINWIDTH, SPACING SAMENET).")
       .def_prop_ro("warning_count", [](const Database& d) { return d.tech.warningCount + d.design.warningCount; },
                    "Warnings raised while reading (LEF + DEF).")
       .def(

@@ -101,6 +101,11 @@ struct Layer {
   // including the ones parsed into rules above).
   std::vector<std::pair<std::string, std::string>> properties;
 
+  // Rules this layer states that the checker does not judge, each once, in the order read:
+  // "MINSTEP", "SPACING NOTCHLENGTH", "SPACINGTABLE TWOWIDTHS", "LEF58_SPACING", ... (the
+  // reader's noteUnjudged; electrical properties such as RESISTANCE are no rules and not listed).
+  std::vector<std::string> unjudged;
+
   // Smallest spacing any rule asks for between two min-width shapes: the
   // table's first entry, else the smallest plain SPACING; 0 if none.
   Dbu minSpacing() const;

@@ -35,6 +35,7 @@ void LefParser::parseLef58CornerSpacing(Layer& layer, const Token& valueTok) {
       const Token head = sub.next();
       if (isWord(head, ";")) continue;
       if (!isWord(head, "CORNERSPACING")) {
+        noteUnjudged(layer, "LEF58_CORNERSPACING " + std::string(head.text));
         skipRule(sub);
         count("LAYER.LEF58_CORNERSPACING", head.text);
         continue;
@@ -69,12 +70,14 @@ void LefParser::parseLef58CornerSpacing(Layer& layer, const Token& valueTok) {
       }
       if (supported) {
         sub.accept(";");
+        if (rule.concaveCorner) noteUnjudged(layer, "LEF58_CORNERSPACING CONCAVECORNER");
         if (rule.widths.empty()) sub.fail(sub.line(), "CORNERSPACING without WIDTH ... SPACING ...");
         if (rule.convexCorner == rule.concaveCorner) {
           sub.fail(sub.line(), "CORNERSPACING needs exactly one of CONVEXCORNER and CONCAVECORNER");
         }
         layer.cornerSpacings.push_back(std::move(rule));
       } else {
+        noteUnjudged(layer, "LEF58_CORNERSPACING " + std::string(unsupportedWord));
         count("LAYER.LEF58_CORNERSPACING", unsupportedWord);
       }
     }

@@ -18,6 +18,22 @@ bool typeFromName(std::string_view s, LayerType& out) {
   return true;
 }
 
+// Whether a LAYER statement the reader skips states a design rule (Layer::unjudged): not the
+// electrical and process descriptions (RESISTANCE, CAPACITANCE, THICKNESS, ...), not the
+// parameters of another statement's rule (ANTENNAMODEL selects the oxide the ANTENNA ratios after
+// it apply to; the density window and step belong to MAXIMUMDENSITY / MINIMUMDENSITY), nor the
+// diagonal-routing values of a router that draws no diagonal metal.
+bool isRuleKeyword(std::string_view k) {
+  static constexpr std::string_view kNotRules[] = {
+      "RESISTANCE", "CAPACITANCE", "EDGECAPACITANCE", "CAPMULTIPLIER", "THICKNESS", "HEIGHT", "SHRINKAGE",
+      "WIREEXTENSION", "ANTENNAMODEL", "DENSITYCHECKWINDOW", "DENSITYCHECKSTEP", "FILLACTIVESPACING",
+      "DIAGPITCH", "DIAGWIDTH", "DIAGSPACING", "DIAGMINEDGELENGTH"};
+  for (std::string_view n : kNotRules) {
+    if (k == n) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // DIRECTION HORIZONTAL | VERTICAL ;  (DIAG45 / DIAG135 are counted and read as no direction)
@@ -115,6 +131,7 @@ void LefParser::parseLayer(const Token& opener) {
       parseLayerPitchOrOffset(layer, k == "PITCH");
     } else if (routing && k == "MINWIDTH") {
       layer.minWidth = positiveDist("MINWIDTH of LAYER " + quoteToken(layer.name));
+      noteUnjudged(layer, "MINWIDTH");  // stored for the router; no marker judges it
       endStatement();
     } else if (routing && k == "AREA") {
       const Token at = peek();
@@ -130,10 +147,13 @@ void LefParser::parseLayer(const Token& opener) {
     } else if (k == "ACCURRENTDENSITY" || k == "DCCURRENTDENSITY") {
       skipCurrentDensity(k);
     } else {
+      if (isRuleKeyword(k)) noteUnjudged(layer, std::string(k));
       skipStatement("LAYER", kw);
     }
   }
   if (!hasType) failAt(n, "LAYER " + quoteToken(layer.name) + " has no TYPE");
+  // Only metal and cut layers carry routing: the rules of implant or masterslice layers judge cells.
+  if (layer.type != LayerType::Routing && layer.type != LayerType::Cut) layer.unjudged.clear();
 
   const LayerId id(static_cast<int32_t>(tech_.layers.size()));
   if (layer.type == LayerType::Routing) {
@@ -172,6 +192,7 @@ void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
     next();
     if (accept(";")) {
       layer.spacings.push_back({space, false, 0, 0, true});
+      noteUnjudged(layer, "SPACING SAMENET");  // kept, not judged on metal (drc/README.md)
       return;
     }
   } else if (!t.quoted && isKeyword(t.text, "ENDOFLINE")) {
@@ -195,6 +216,7 @@ void LefParser::parseRoutingSpacing(Layer& layer, const Token& kw) {
   }
   // A form this reader does not model: drop the whole statement, say which.
   const Token stop = keyword("a LAYER SPACING statement");
+  noteUnjudged(layer, "SPACING " + std::string(stop.text));
   skipStatement("LAYER.SPACING", stop);
 }
 
@@ -219,6 +241,7 @@ void LefParser::parseCutSpacing(Layer& layer, const Token& kw) {
     return;
   }
   const Token stop = keyword("a cut LAYER SPACING statement");
+  noteUnjudged(layer, "SPACING " + std::string(stop.text));
   skipStatement("LAYER.SPACING", stop);
 }
 
@@ -227,6 +250,7 @@ void LefParser::parseCutSpacing(Layer& layer, const Token& kw) {
 void LefParser::parseSpacingTable(Layer& layer, const Token& kw) {
   const Token form = keyword("SPACINGTABLE");
   if (!isKeyword(form.text, "PARALLELRUNLENGTH")) {
+    noteUnjudged(layer, "SPACINGTABLE " + std::string(form.text));
     skipStatement("LAYER.SPACINGTABLE", form);
     return;
   }
@@ -282,6 +306,7 @@ void LefParser::parseLayerProperty(Layer& layer, const Token& kw) {
     if (pn.text == "LEF58_CORNERSPACING" && value.quoted) {
       parseLef58CornerSpacing(layer, value);
     } else if (pn.text.substr(0, 6) == "LEF58_") {
+      if (pn.text != "LEF58_TYPE") noteUnjudged(layer, std::string(pn.text));  // a TYPE is no rule
       count("LAYER.PROPERTY", pn.text);
     }
   } while (!accept(";"));

@@ -72,6 +72,8 @@ class LefParser {
   // --- skipping and counting ---
   void count(std::string_view block, std::string_view keyword);
   void skipStatement(std::string_view block, const Token& keyword);
+  // Records a rule of `layer` that the checker does not judge (Layer::unjudged), once.
+  static void noteUnjudged(Layer& layer, std::string rule);
   // Skips tokens until "END <name>" (name empty: until a lone "END").
   void skipBlock(std::string_view block, const Token& opener, std::string_view endName);
   void endBlock(std::string_view name);  // expects END name

@@ -3,6 +3,7 @@
 // PROPERTYDEFINITIONS, END LIBRARY), SITE, and the blocks that are skipped
 // whole (top-level SPACING, ARRAY, NOISETABLE, CORRECTIONTABLE, IRDROP, BEGINEXT). The other
 // blocks live in lef_layer.cpp, lef58.cpp, lef_via.cpp and lef_macro.cpp.
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -214,6 +215,13 @@ void LefParser::count(std::string_view block, std::string_view keyword) {
   }
   ++tech_.skippedStatements[it->second].second;
   ++tech_.warningCount;
+}
+
+void LefParser::noteUnjudged(Layer& layer, std::string rule) {
+  for (char& c : rule) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (std::find(layer.unjudged.begin(), layer.unjudged.end(), rule) == layer.unjudged.end()) {
+    layer.unjudged.push_back(std::move(rule));
+  }
 }
 
 void LefParser::skipStatement(std::string_view block, const Token& keyword) {

@@ -48,6 +48,11 @@ class Database:
     def skipped_statements(self) -> dict[str, int]:
         """Statements the readers skipped (not understood), keyword -> count."""
 
+    def unjudged_rules(self) -> list[tuple[str, str]]:
+        """
+        The rules the LEF states on metal and cut layers that the checker does not judge, as (layer, rule) pairs in LEF order: skipped statements and forms (MINSTEP, SPACING NOTCHLENGTH, SPACINGTABLE TWOWIDTHS, ...), LEF58 properties other than the corner spacing it models, and rules kept for the router only (MINWIDTH, SPACING SAMENET).
+        """
+
     @property
     def warning_count(self) -> int:
         """Warnings raised while reading (LEF + DEF)."""

@@ -59,6 +59,9 @@ class CheckResult:
     dbu_per_micron: int
     score_terms: dict[str, float] = field(default_factory=dict)  # weighted, per SCORE_WEIGHTS key
     score: float | None = None  # contest score before violations; None without a guide
+    # The rules the LEF states that this check does not judge (Design.unjudged_rules): a count of
+    # 0 violations claims nothing about them.
+    not_checked: list[dict[str, Any]] = field(default_factory=list)
 
     def to_dict(self, with_markers: bool = False) -> dict[str, Any]:
         d = asdict(self)
@@ -120,6 +123,7 @@ def check_design(design: Design, report_path: str | os.PathLike[str] | None = No
         dbu_per_micron=design.dbu_per_micron,
         score_terms=terms,
         score=sum(terms.values()) if terms else None,
+        not_checked=design.unjudged_rules(),
     )
 
 

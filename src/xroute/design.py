@@ -93,6 +93,16 @@ class Design:
         """LEF/DEF statements the readers did not understand and skipped, by keyword."""
         return dict(self._db.skipped_statements())
 
+    def unjudged_rules(self) -> list[dict[str, Any]]:
+        """The rules the LEF states on metal and cut layers that the checker does not judge, one
+        entry per rule in the order first read: ``{"rule": "MINSTEP", "layers": ["M1", "M2"]}``
+        (skipped statements and forms, LEF58 properties it does not model, rules kept for the
+        router only such as MINWIDTH; electrical properties are no rules and are not listed)."""
+        by_rule: dict[str, list[str]] = {}
+        for layer, rule in self._db.unjudged_rules():
+            by_rule.setdefault(rule, []).append(layer)
+        return [{"rule": rule, "layers": layers} for rule, layers in by_rule.items()]
+
     def warnings(self) -> list[str]:
         """Odd but readable things the readers found (LEF then DEF), one 'file:line: message' each."""
         return list(self._db.warnings())
