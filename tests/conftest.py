@@ -72,9 +72,7 @@ _standin_root: Path | None = None
 def pytest_configure(config: pytest.Config) -> None:
     """One folder for this session's stand-ins, appended to $XROUTE_TESTCASES (files made on first use)."""
     global _standin_root
-    from xroute.testcases import ENV_VAR
-
-    from xroute.testcases import search_path
+    from xroute.testcases import ENV_VAR, search_path
 
     _standin_root = Path(tempfile.mkdtemp(prefix="xroute-standins-"))
     # The folders this process finds (../shared/testcases beside the working directory among them)
