@@ -5,7 +5,8 @@ reader keeps or skips without judging: a skipped statement (MINSTEP, ENCLOSURE),
 (SPACING ... NOTCHLENGTH, SPACINGTABLE TWOWIDTHS), an antenna ratio and a density limit, LEF58
 properties (LEF58_SPACING, LEF58_MINSTEP, a CONCAVECORNER corner spacing) and a value kept for the
 router only (MINWIDTH). Electrical values (RESISTANCE, THICKNESS), the parameters of another
-rule (ANTENNAMODEL, DENSITYCHECKWINDOW) and the rules of a masterslice layer are not listed. ``xroute check`` prints one "not checked" line per rule and carries the list in its JSON;
+rule (ANTENNAMODEL, DENSITYCHECKWINDOW), a cut layer's PITCH and the rules of a masterslice layer
+are not listed. ``xroute check`` prints one "not checked" line per rule and carries the list in its JSON;
 ``xroute info`` lists the same.
 """
 
@@ -46,6 +47,7 @@ END M1
 LAYER V1
   TYPE CUT ;
   WIDTH 0.1 ;
+  PITCH 0.2 ;
   SPACING 0.1 ;
   ENCLOSURE BELOW 0.01 0.02 ;
 END V1

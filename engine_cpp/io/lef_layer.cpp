@@ -22,10 +22,11 @@ bool typeFromName(std::string_view s, LayerType& out) {
 // electrical and process descriptions (RESISTANCE, CAPACITANCE, THICKNESS, ...), not the
 // parameters of another statement's rule (ANTENNAMODEL selects the oxide the ANTENNA ratios after
 // it apply to; the density window and step belong to MAXIMUMDENSITY / MINIMUMDENSITY), nor the
-// diagonal-routing values of a router that draws no diagonal metal.
+// diagonal-routing values of a router that draws no diagonal metal, nor the track values a cut or
+// other layer may carry (PITCH, OFFSET, DIRECTION describe tracks, not a rule of the layout).
 bool isRuleKeyword(std::string_view k) {
   static constexpr std::string_view kNotRules[] = {
-      "RESISTANCE", "CAPACITANCE", "EDGECAPACITANCE", "CAPMULTIPLIER", "THICKNESS", "HEIGHT", "SHRINKAGE",
+      "PITCH", "OFFSET", "DIRECTION", "RESISTANCE", "CAPACITANCE", "EDGECAPACITANCE", "CAPMULTIPLIER", "THICKNESS", "HEIGHT", "SHRINKAGE",
       "WIREEXTENSION", "ANTENNAMODEL", "DENSITYCHECKWINDOW", "DENSITYCHECKSTEP", "FILLACTIVESPACING",
       "DIAGPITCH", "DIAGWIDTH", "DIAGSPACING", "DIAGMINEDGELENGTH"};
   for (std::string_view n : kNotRules) {
