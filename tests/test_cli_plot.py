@@ -10,7 +10,7 @@ import pytest
 from typer.testing import CliRunner
 
 from conftest import available
-from png import distinct_colours, read_png
+from png import distinct_colours, png_size
 from test_cli_plot_region import need_matplotlib
 from xroute.cli.app import app
 from xroute.cli.plot_data import read_drc_report
@@ -49,7 +49,7 @@ def test_plot_shows_the_violations_by_type(runner: CliRunner, marked: Path, tmp_
     assert text.count("<use ") >= total
     png = tmp_path / "d.png"
     assert runner.invoke(app, ["plot", str(marked), "--out", str(png)]).exit_code == 0
-    width, height, _, _ = read_png(png)
+    width, height = png_size(png)
     assert width > 1000 and height > 500 and distinct_colours(png) > 50
 
 
