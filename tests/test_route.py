@@ -94,7 +94,7 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
         assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",
-                           "wirelength_um", "vias", "violations", "violations_by_type", "seconds", "stage_seconds", "plan"}
+                           "wirelength_um", "vias", "violations", "violations_by_type", "seconds", "stage_seconds", "checked_shapes", "plan"}
         assert set(it["plan"]) == {"region_size", "offset", "repair_rounds", "marker_penalty", "history_penalty",
                                    "use_penalty", "stop", "search_budget"}
         assert (it["plan"]["region_size"], it["plan"]["offset"]) == (it["region_size"], it["offset"])

@@ -35,6 +35,7 @@ inline nanobind::dict reportDict(const IterationReport& r, int dbuPerMicron) {
   stages["trim"] = r.stages.trim;
   stages["check"] = r.stages.check;
   d["stage_seconds"] = stages;
+  d["checked_shapes"] = r.checkedShapes;
   d["done"] = r.done;
   if (r.done) d["plan"] = nanobind::cast(r.plan).attr("to_dict")();  // the plan the iteration ran (IterationPlan's fields)
   return d;

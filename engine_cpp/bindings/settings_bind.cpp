@@ -28,6 +28,7 @@ template <class M>
 std::string stubType() {
   if constexpr (std::is_same_v<M, bool>) return "bool";
   else if constexpr (std::is_integral_v<M>) return "int";
+  else if constexpr (std::is_floating_point_v<M>) return "float";
   else return nb::cast<std::string>(nb::type<M>().attr("__name__"));
 }
 
@@ -35,6 +36,7 @@ template <class M>
 std::string stubDefault(const M& value) {
   if constexpr (std::is_same_v<M, bool>) return value ? "True" : "False";
   else if constexpr (std::is_integral_v<M>) return std::to_string(value);
+  else if constexpr (std::is_floating_point_v<M>) return nb::cast<std::string>(nb::repr(nb::float_(value)));
   else return "...";
 }
 
@@ -206,6 +208,9 @@ void bindRouterSettings(nb::module_& m) {
              "Trial routings per region of that late search (0: never; at most max_search_budget).")
       .field("trim_dangling", &RouterSettings::trimDangling,
              "After each iteration's routing, cut the routing of every net it rerouted back to what joins its pins.")
+      .field("partial_check_share", &RouterSettings::partialCheckShare,
+             "After the first iteration, an iteration that changed at most this share of the nets is checked again "
+             "only where it changed (the same markers as a whole check); 0: every check is whole.")
       .finish();
 }
 

@@ -29,6 +29,8 @@ inline void checkSettings(const RouterSettings& s) {
   requireIn("repair_rounds", s.repairRounds, 0, kMaxRepairRounds);
   requireIn("first_repair_rounds", s.firstRepairRounds, 0, kMaxRepairRounds);
   requireIn("late_search_budget", s.lateSearchBudget, 0, kMaxSearchBudget);
+  if (!(s.partialCheckShare >= 0 && s.partialCheckShare <= 1))  // NaN too
+    throw SettingError("partial_check_share must be in 0..1, got " + std::to_string(s.partialCheckShare));
   for (const ScheduleStep& step : s.schedule) {
     requireIn("schedule: region size", step.regionSize, 1, kMaxRegionSize);
     requireIn("schedule: offset", step.offset, 0, step.regionSize - 1);

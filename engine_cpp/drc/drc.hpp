@@ -2,6 +2,7 @@
 // every semantic choice are documented in drc/README.md.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -46,8 +47,68 @@ struct DrcOptions {
   int threads = 1;                // layers checked at once (the markers do not depend on it)
 };
 
+// Same-net rects on a layer are one conductor when they share a segment, not just a corner point.
+inline bool sharesSegment(const Rect& a, const Rect& b) {
+  const int64_t ox = int64_t(std::min(a.xhi, b.xhi)) - std::max(a.xlo, b.xlo);
+  const int64_t oy = int64_t(std::min(a.yhi, b.yhi)) - std::max(a.ylo, b.ylo);
+  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
+}
+
 // Markers sorted by (type, layer, box, net1, net2); independent of input order.
 std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, const DrcOptions& options = {});
+
+// What a partial check judges, after some nets' routing changed (loop/incremental_check.hpp): a
+// zone per layer, the cells of a grid over `area` that zone rects touch (cells of at least the
+// layer's reach, at most 1024 along a side), and the changed nets. A marker is the zone's when its box touches a zone cell
+// of its layer; a MinArea marker (a whole conductor's) when its net changed on its layer. Shapes
+// within reach() of a zone cell, and every shape of a net on a layer where it changed, start the rules.
+class CheckZone {
+ public:
+  CheckZone() = default;
+  CheckZone(const Tech& tech, const DrcOptions& options, size_t nets, const Rect& area);
+  void add(LayerId layer, const Rect& rect);   // marks the cells the rect touches inside the area
+  void addNet(int32_t net, LayerId layer);     // the net changed on the layer
+  bool empty() const { return nets_.empty(); }
+  // The zone's cells on the layer as rects, one per add() (the touched cells' bounding box).
+  const std::vector<Rect>& rects(LayerId layer) const { return rects_[*layer]; }
+  // DBU: how far a rule of the layer looks from a marker's box to the shapes that make it (twice the
+  // layer's interaction range, NONDEFAULTRULE spacings included, plus its widest line end).
+  Dbu reach(LayerId layer) const { return reach_[*layer]; }
+  bool judgesNet(int32_t net, LayerId layer) const {
+    const std::vector<uint8_t>& f = netFlag_[*layer];
+    return net >= 0 && size_t(net) < f.size() && f[net];
+  }
+  // Some zone cell of the layer within `margin` of `rect` (a cell is [lo, lo + side) on each axis).
+  bool near(LayerId layer, const Rect& rect, Dbu margin) const;
+  bool judges(const Marker& m) const;
+  const std::vector<int32_t>& nets() const { return nets_; }
+
+ private:
+  bool cellRange(size_t layer, const Rect& r, int& x0, int& x1, int& y0, int& y1) const;
+
+  Rect area_;
+  std::vector<Dbu> side_;                 // by layer id: DBU, a cell's side
+  std::vector<int> nx_, ny_;              // by layer id: cells along x and y
+  std::vector<std::vector<uint8_t>> cells_;  // by layer id: nx_ * ny_ flags, empty while none is set
+  std::vector<std::vector<Rect>> rects_;  // by layer id
+  std::vector<Dbu> reach_;                // by layer id
+  size_t netCount_ = 0;
+  std::vector<std::vector<uint8_t>> netFlag_;  // by layer id, by net id (empty: none on the layer)
+  std::vector<uint8_t> anyNet_;           // by net id: added on some layer
+  std::vector<int32_t> nets_;             // every net added, once
+};
+
+// checkShapes before its last step: the markers of the rules, fixed ones dropped under
+// skipFixedPairs, not merged, in no particular order. With a zone: only the zone's markers, from
+// the shapes near it; `links` (empty, or one per shape) joins the shapes that share a value >= 0
+// into one conductor besides their same-net contacts (a conductor cut by the choice of shapes).
+std::vector<Marker> checkShapesUnmerged(const Tech& tech, std::vector<DrcShape> shapes, const DrcOptions& options,
+                                        const CheckZone* zone = nullptr, const std::vector<int32_t>& links = {});
+// checkShapes's last step: merges touching markers (mergeMarkers), keeps the window's, sorts, dedupes.
+std::vector<Marker> finishMarkers(std::vector<Marker> markers, const DrcOptions& options);
+// Per shape: its conductor (same-net shapes joined on their layer, as the rules join them), an id
+// unique across layers; an obstruction is a conductor of its own, a shape on no checked layer -1.
+std::vector<int32_t> conductorIds(const Tech& tech, const std::vector<DrcShape>& shapes);
 
 // Every metal and cut shape of a placed design, with net ids: regular nets
 // [0, nets), special nets [nets, nets + specialNets), then one id per pin on

@@ -18,13 +18,6 @@ namespace xroute::drc {
 
 namespace {
 
-// Same-net rects are connected when they share a segment, not just a point.
-bool connected(const Rect& a, const Rect& b) {
-  const Dbu ox = std::min(a.xhi, b.xhi) - std::max(a.xlo, b.xlo);
-  const Dbu oy = std::min(a.yhi, b.yhi) - std::max(a.ylo, b.ylo);
-  return ox >= 0 && oy >= 0 && (ox > 0 || oy > 0);
-}
-
 struct Run {
   Rect rect;    // DBU: the union of the run's rects
   int32_t net;  // < 0: an obstruction, never joined
@@ -68,7 +61,7 @@ void joinSameNet(const LayerShapes& ls, UnionFind& uf) {
   for (const Run& r : runs) {
     if (r.net < 0) continue;
     ls.index.query(r.rect, [&](int32_t j) {
-      if (ls.nets[j] == r.net && connected(r.rect, ls.rects[j])) uf.unite(r.rep, j);
+      if (ls.nets[j] == r.net && sharesSegment(r.rect, ls.rects[j])) uf.unite(r.rep, j);
     });
   }
 }

@@ -14,6 +14,7 @@
 
 #include "loop/crossings.hpp"
 #include "loop/dangling.hpp"
+#include "loop/incremental_check.hpp"
 #include "loop/regions.hpp"
 #include "order/search_policy.hpp"
 #include "region/region_router.hpp"
@@ -72,7 +73,7 @@ class Flow {
   Flow(const Tech& tech, Design& design, const RouterSettings& s, NetOrderPolicy& policy, const RouteProgress& progress,
        const ColourHook& beforeColour, const IterationPlanner& planner)
       : tech_(tech), design_(design), s_(s), policy_(policy), progress_(progress), beforeColour_(beforeColour),
-        planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin) {
+        planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin), check_(ctx_, checkOptions()) {
     if (s_.regionSize <= 0)
       s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.points, kMaxRegionSize);
     s_.costs = designCosts(s_.costs, tech, design);
@@ -105,7 +106,9 @@ class Flow {
       rep.stages.trim = lap(mark);
       prevMarkers_ = std::move(markers_);
       prevAges_ = std::move(ages_);
-      markers_ = checkShapes(tech_, collectDesignShapes(tech_, design_), checkOptions());
+      markers_ = it == 0 || s_.partialCheckShare <= 0 || wholeCheck_ ? check_.full() : check_.update(s_.partialCheckShare);
+      wholeCheck_ = false;
+      rep.checkedShapes = check_.lastShapes();
       ages_.assign(markers_.size(), 0);
       if (s_.ripNeighboursOfPersistent)
         for (size_t i = 0; i < markers_.size(); ++i) ages_[i] = age(markers_[i]);
@@ -286,6 +289,9 @@ class Flow {
         if (!t.nets.empty()) tasks.push_back(std::move(t));
       }
       if (it > 0) markReroutedElsewhere(tasks);
+      if (it > 0 && s_.partialCheckShare > 0)
+        for (const RegionTask& t : tasks)
+          for (const RegionNetTask& nt : t.nets) check_.remember(nt.net);
       if (it == 0 && beforeColour_) beforeColour_(color, plan, tasks);
       rep.stages.setup += lap(mark);
       std::vector<RegionResult> results = runBatch(tasks, it == 0 ? &plan : nullptr);
@@ -293,7 +299,17 @@ class Flow {
       for (size_t i = 0; i < results.size(); ++i) commit(tasks[i], results[i], plan, rep);
       rep.regions += static_cast<int>(tasks.size());
       rep.stages.commit += lap(mark);
-      ctx_.rebuildRoutedIndex();
+      // Iteration 0 routes every net: the index is built again; later only the committed nets move.
+      if (it == 0) {
+        ctx_.rebuildRoutedIndex();
+      } else {
+        std::vector<int32_t> nets;
+        for (const RegionResult& r : results)
+          for (const RegionNetResult& nr : r.nets) nets.push_back(nr.net);
+        std::sort(nets.begin(), nets.end());
+        nets.erase(std::unique(nets.begin(), nets.end()), nets.end());
+        ctx_.updateRoutedIndex(nets);
+      }
 #ifdef __GLIBC__
       malloc_trim(0);
 #endif
@@ -306,13 +322,13 @@ class Flow {
   // Routing that joins nothing (loop/dangling.hpp) goes before the check. Only the nets this
   // iteration rerouted can have any: the others were cut back when they were last rerouted.
   void trimRerouted() {
-    bool any = false;
+    std::vector<int32_t> trimmed;
     for (int32_t n = 0; n < static_cast<int32_t>(rerouted_.size()); ++n) {
       if (!rerouted_[n]) continue;
       rerouted_[n] = 0;
-      any = trimDangling(tech_, design_, NetId(n)).any() || any;
+      if (trimDangling(tech_, design_, NetId(n)).any()) trimmed.push_back(n);
     }
-    if (any) ctx_.rebuildRoutedIndex();
+    ctx_.updateRoutedIndex(trimmed);
   }
 
   // Each ripped-up net of a colour's tasks learns the boxes of the other tasks that reroute it too.
@@ -366,6 +382,7 @@ class Flow {
     commitRegion(tech_, design_, task.region.box, res);
     for (const RegionNetResult& nr : res.nets) {
       rerouted_[nr.net] = 1;
+      if (!check_.remembered(nr.net)) wholeCheck_ = true;  // changed unseen: the next check is whole
       if (!nr.routed) continue;
       ++rep.netRoutes;
       rep.unreached += nr.unreached;
@@ -389,6 +406,8 @@ class Flow {
   IterationPlan plan_;  // the running iteration's
   std::unique_ptr<NetOrderPolicy> search_;  // the running iteration's search, when its plan asks for one
   RouteContext ctx_;
+  IncrementalCheck check_;  // the check after each iteration
+  bool wholeCheck_ = false;  // a net changed that check_ was not told of
   std::vector<Marker> markers_;
   std::vector<Marker> prevMarkers_;  // the check before markers_'s
   std::vector<int> ages_;            // per marker of markers_: age()

@@ -85,24 +85,52 @@ int32_t RouteContext::gcellY(Dbu y) const {
   return std::clamp(g, 0, gcells.ny() - 1);
 }
 
+namespace {
+
+// The GCell buckets the net's routing touches, ascending.
+std::vector<int32_t> routedBuckets(const RouteContext& ctx, int32_t net, std::vector<NetShape>& shapes) {
+  std::vector<int32_t> out;
+  const NetRouting& routing = ctx.design.nets[net].routing;
+  if (routing.empty()) return out;
+  const int nx = ctx.gcells.nx();
+  shapes.clear();
+  netRoutingShapes(ctx.tech, ctx.design, routing, shapes);
+  for (const NetShape& s : shapes) {
+    const int x0 = ctx.gcellX(s.rect.xlo), x1 = ctx.gcellX(s.rect.xhi);
+    const int y0 = ctx.gcellY(s.rect.ylo), y1 = ctx.gcellY(s.rect.yhi);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) out.push_back(y * nx + x);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
 void RouteContext::rebuildRoutedIndex() {
-  const int nx = gcells.nx(), ny = gcells.ny();
-  bucketNets.assign(static_cast<size_t>(nx) * ny, {});
+  bucketNets.assign(static_cast<size_t>(gcells.nx()) * gcells.ny(), {});
+  netBuckets.assign(design.nets.size(), {});
   std::vector<NetShape> shapes;
   for (size_t n = 0; n < design.nets.size(); ++n) {
-    const NetRouting& routing = design.nets[n].routing;
-    if (routing.empty()) continue;
-    shapes.clear();
-    netRoutingShapes(tech, design, routing, shapes);
-    for (const NetShape& s : shapes) {
-      const int x0 = gcellX(s.rect.xlo), x1 = gcellX(s.rect.xhi);
-      const int y0 = gcellY(s.rect.ylo), y1 = gcellY(s.rect.yhi);
-      for (int y = y0; y <= y1; ++y) {
-        for (int x = x0; x <= x1; ++x) {
-          std::vector<int32_t>& b = bucketNets[static_cast<size_t>(y) * nx + x];
-          if (b.empty() || b.back() != static_cast<int32_t>(n)) b.push_back(static_cast<int32_t>(n));
-        }
-      }
+    netBuckets[n] = routedBuckets(*this, static_cast<int32_t>(n), shapes);
+    for (int32_t b : netBuckets[n]) bucketNets[b].push_back(static_cast<int32_t>(n));
+  }
+}
+
+void RouteContext::updateRoutedIndex(const std::vector<int32_t>& nets) {
+  std::vector<NetShape> shapes;
+  for (int32_t n : nets) {
+    for (int32_t b : netBuckets[n]) {
+      std::vector<int32_t>& v = bucketNets[b];
+      const auto it = std::lower_bound(v.begin(), v.end(), n);
+      if (it != v.end() && *it == n) v.erase(it);
+    }
+    netBuckets[n] = routedBuckets(*this, n, shapes);
+    for (int32_t b : netBuckets[n]) {
+      std::vector<int32_t>& v = bucketNets[b];
+      const auto it = std::lower_bound(v.begin(), v.end(), n);
+      if (it == v.end() || *it != n) v.insert(it, n);
     }
   }
 }

@@ -59,7 +59,10 @@ struct RouteContext {
 
   // GCell bucket -> nets with routing there (ascending net ids).
   std::vector<std::vector<int32_t>> bucketNets;
+  std::vector<std::vector<int32_t>> netBuckets;  // net -> the buckets listing it (ascending)
   void rebuildRoutedIndex();
+  // The index brought up to date for these nets, whose routing changed (the buckets a rebuild gives).
+  void updateRoutedIndex(const std::vector<int32_t>& nets);
   // Nets with routing touching `window` (ascending, unique).
   std::vector<int32_t> netsNear(const Rect& window) const;
 

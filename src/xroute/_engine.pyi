@@ -407,7 +407,7 @@ class MazeCosts:
 class RouterSettings:
     """The routing run's settings, as in loop/router.hpp."""
 
-    def __init__(self, *, region_size: int = 0, iterations: int = 16, threads: int = 1, schedule: list[tuple[int, int]] = [], costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000, rip_neighbours_of_persistent: bool = True, late_search_markers: int = 50, late_search_budget: int = 4, trim_dangling: bool = True) -> None:
+    def __init__(self, *, region_size: int = 0, iterations: int = 16, threads: int = 1, schedule: list[tuple[int, int]] = [], costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000, rip_neighbours_of_persistent: bool = True, late_search_markers: int = 50, late_search_budget: int = 4, trim_dangling: bool = True, partial_check_share: float = 0.15) -> None:
         """Each field by its keyword; a field left out has the engine's default."""
 
     @property
@@ -541,7 +541,16 @@ class RouterSettings:
     @trim_dangling.setter
     def trim_dangling(self, arg: bool, /) -> None: ...
 
-    def replace(self, *, region_size: int = ..., iterations: int = ..., threads: int = ..., schedule: list[tuple[int, int]] = ..., costs: MazeCosts = ..., use_penalty_step: int = ..., access_points_per_pin: int = ..., marker_penalty: int = ..., history_penalty: int = ..., stop_at_zero: bool = ..., repair_rounds: int = ..., first_repair_rounds: int = ..., repair_penalty: int = ..., rip_neighbours_of_persistent: bool = ..., late_search_markers: int = ..., late_search_budget: int = ..., trim_dangling: bool = ...) -> RouterSettings:
+    @property
+    def partial_check_share(self) -> float:
+        """
+        After the first iteration, an iteration that changed at most this share of the nets is checked again only where it changed (the same markers as a whole check); 0: every check is whole.
+        """
+
+    @partial_check_share.setter
+    def partial_check_share(self, arg: float, /) -> None: ...
+
+    def replace(self, *, region_size: int = ..., iterations: int = ..., threads: int = ..., schedule: list[tuple[int, int]] = ..., costs: MazeCosts = ..., use_penalty_step: int = ..., access_points_per_pin: int = ..., marker_penalty: int = ..., history_penalty: int = ..., stop_at_zero: bool = ..., repair_rounds: int = ..., first_repair_rounds: int = ..., repair_penalty: int = ..., rip_neighbours_of_persistent: bool = ..., late_search_markers: int = ..., late_search_budget: int = ..., trim_dangling: bool = ..., partial_check_share: float = ...) -> RouterSettings:
         """A copy with the fields given by keyword changed."""
 
     def to_dict(self) -> dict:

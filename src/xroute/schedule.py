@@ -130,6 +130,7 @@ class IterationReport:
     seconds: float = 0.0  # wall time of the iteration (routing + check)
     # wall seconds by stage (setup, route, commit, index, trim, check; about `seconds` in all)
     stage_seconds: dict[str, float] = field(default_factory=dict)
+    checked_shapes: int = 0  # shapes the check after it looked at (all of them when the check was whole)
     plan: IterationPlan | None = None  # what the iteration ran with (None while it runs)
 
     @classmethod
@@ -148,6 +149,7 @@ class IterationReport:
             violations=int(d["violations"]),
             seconds=float(d["seconds"]),
             stage_seconds={str(k): float(v) for k, v in d.get("stage_seconds", {}).items()},
+            checked_shapes=int(d.get("checked_shapes", 0)),
             plan=_plan_type()(**d["plan"]) if d.get("plan") else None,
         )
 
@@ -166,6 +168,7 @@ class IterationReport:
             "violations_by_type": dict(self.violations_by_type),
             "seconds": self.seconds,
             "stage_seconds": dict(self.stage_seconds),
+            "checked_shapes": self.checked_shapes,
             "plan": self.plan.to_dict() if self.plan is not None else None,
         }
 
