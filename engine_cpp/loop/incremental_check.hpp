@@ -3,10 +3,11 @@
 //
 // An iteration changes the routing of the nets its regions rip up and nothing else. Before a net's
 // routing changes, remember() keeps its shapes; update() compares them with the net's shapes now.
-// Where they differ (on each layer, the changed rects and the net's extent there, widened by the
-// layer's CheckZone::reach) the rules judge again, from the shapes near that zone: the routing of
-// every net with metal there, whole, and the fixed shapes there or under that routing, each fixed
-// shape joined to the rest of its input conductor. The last check's markers outside the zone stay.
+// Where they differ (on each layer, the conductors with a changed rect, widened by the layer's
+// CheckZone::reach) the rules judge again, from the shapes near that zone: the changed net on that
+// layer and every conductor with metal near the zone, whole, and the fixed shapes there or under
+// that routing, each fixed shape joined to the rest of its input conductor. The last check's
+// markers outside the zone stay.
 // A marker depends only on shapes within reach of its box, or for MinArea on its own conductor, so
 // the result is the whole check's; tests compare the two on every iteration of routed designs.
 #pragma once
