@@ -106,6 +106,7 @@ def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: in
     rate 1e-3 and gamma 1 unless ``kwargs`` (MaskablePPO's) say otherwise. With the set extractor its
     row scores start as the heuristic prior alone (the scorer's head at zero, as in imitation)."""
     from sb3_contrib import MaskablePPO
+    from stable_baselines3.common.logger import Logger
 
     compact = "set_features" in env.observation_space.spaces
     policy_kwargs = {"features_extractor_class": SetOrderExtractor if compact else NetOrderExtractor,
@@ -114,6 +115,9 @@ def make_maskable_ppo(env: Any, seed: int = 1, n_steps: int = 64, batch_size: in
     settings = {"learning_rate": 1e-3, "gamma": 1.0, **kwargs}  # gamma 1: a region's cost is the sum of its rewards
     model = MaskablePPO("MultiInputPolicy", env, n_steps=n_steps, batch_size=batch_size, seed=seed,
                         policy_kwargs=policy_kwargs, device="cpu", **settings)
+    # A logger of its own: SB3's default one makes a folder SB3-<date> in the system's temporary
+    # folder at every learn(), outside any folder the caller named.
+    model.set_logger(Logger(folder=None, output_formats=[]))
     if compact:  # SB3's orthogonal initialisation redrew the set scorer's head, which starts at zero
         with torch.no_grad():
             for extractor in (model.policy.pi_features_extractor, model.policy.vf_features_extractor):
