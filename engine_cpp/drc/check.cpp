@@ -318,7 +318,10 @@ bool CheckZone::cellRange(size_t l, const Rect& r, int& x0, int& x1, int& y0, in
 void CheckZone::add(LayerId layer, const Rect& rect) {
   const size_t l = size_t(*layer);
   int x0, x1, y0, y1;
-  if (!cellRange(l, rect, x0, x1, y0, y1)) return;
+  if (!cellRange(l, rect, x0, x1, y0, y1)) {  // outside the grid: no cell, but the layer is checked
+    rects_[l].push_back(rect);
+    return;
+  }
   std::vector<uint8_t>& cells = cells_[l];
   if (cells.empty()) cells.assign(size_t(nx_[l]) * ny_[l], 0);
   for (int y = y0; y <= y1; ++y)

@@ -66,7 +66,8 @@ class CheckZone {
  public:
   CheckZone() = default;
   CheckZone(const Tech& tech, const DrcOptions& options, size_t nets, const Rect& area);
-  void add(LayerId layer, const Rect& rect);   // marks the cells the rect touches inside the area
+  // Marks the cells the rect touches inside the area (and has the layer checked in any case).
+  void add(LayerId layer, const Rect& rect);
   void addNet(int32_t net, LayerId layer);     // the net changed on the layer
   bool empty() const { return nets_.empty(); }
   // The zone's cells on the layer as rects, one per add() (the touched cells' bounding box).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <tuple>
 
+#include "geom/union_find.hpp"
+
 namespace xroute {
 
 namespace {
@@ -12,11 +14,25 @@ bool shapeLess(const NetShape& a, const NetShape& b) { return shapeKey(a) < shap
 
 Rect grown(const Rect& r, Dbu d) { return {r.xlo - d, r.ylo - d, r.xhi + d, r.yhi + d}; }
 
+// The conductors of one net's rects on one layer, as the checker joins them (sharesSegment):
+// a root per rect.
+std::vector<int32_t> conductorsOf(const std::vector<Rect>& rects) {
+  std::vector<int32_t> order(rects.size());
+  for (size_t i = 0; i < rects.size(); ++i) order[i] = static_cast<int32_t>(i);
+  UnionFind uf(rects.size());
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return rects[a].xlo < rects[b].xlo; });
+  for (size_t i = 0; i < order.size(); ++i)
+    for (size_t j = i + 1; j < order.size() && rects[order[j]].xlo <= rects[order[i]].xhi; ++j)
+      if (sharesSegment(rects[order[i]], rects[order[j]])) uf.unite(order[i], order[j]);
+  std::vector<int32_t> root(rects.size());
+  for (size_t i = 0; i < rects.size(); ++i) root[i] = uf.find(static_cast<int32_t>(i));
+  return root;
+}
+
 }  // namespace
 
 IncrementalCheck::IncrementalCheck(const RouteContext& ctx, DrcOptions options)
     : ctx_(ctx), options_(std::move(options)), kept_(ctx.design.nets.size(), 0) {
-  fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);
   area_ = ctx_.design.dieArea;
   for (const DrcShape& s : ctx_.fixedShapes) area_.expandToInclude(s.rect);
   const int32_t nets = static_cast<int32_t>(ctx_.design.nets.size());
@@ -48,24 +64,6 @@ void IncrementalCheck::remember(int32_t net) {
   keptNets_.push_back(net);
   old_.emplace_back();
   netRoutingShapes(ctx_.tech, ctx_.design, ctx_.design.nets[net].routing, old_.back());
-}
-
-// The conductors of one net's rects on one layer, as the checker joins them (sharesSegment):
-// a root per rect.
-std::vector<int32_t> conductorsOf(const std::vector<Rect>& rects) {
-  std::vector<int32_t> order(rects.size()), parent(rects.size());
-  for (size_t i = 0; i < rects.size(); ++i) order[i] = parent[i] = static_cast<int32_t>(i);
-  auto find = [&](int32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return rects[a].xlo < rects[b].xlo; });
-  for (size_t i = 0; i < order.size(); ++i)
-    for (size_t j = i + 1; j < order.size() && rects[order[j]].xlo <= rects[order[i]].xhi; ++j)
-      if (sharesSegment(rects[order[i]], rects[order[j]])) parent[find(order[i])] = find(order[j]);
-  std::vector<int32_t> root(rects.size());
-  for (size_t i = 0; i < rects.size(); ++i) root[i] = find(static_cast<int32_t>(i));
-  return root;
 }
 
 // For each remembered net whose shapes changed, on each layer where they changed: the net on that
@@ -232,6 +230,7 @@ std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::v
 }
 
 std::vector<Marker> IncrementalCheck::update(double maxShare) {
+  if (fixedConductor_.size() != ctx_.fixedShapes.size()) fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);
   CheckZone zone(ctx_.tech, options_, ctx_.design.nets.size(), area_);
   changeZone(zone);
   // When many nets changed, gathering the shapes near them costs more than a whole check.
