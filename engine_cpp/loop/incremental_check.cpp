@@ -230,7 +230,6 @@ std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::v
 }
 
 std::vector<Marker> IncrementalCheck::update(double maxShare) {
-  if (fixedConductor_.size() != ctx_.fixedShapes.size()) fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);
   CheckZone zone(ctx_.tech, options_, ctx_.design.nets.size(), area_);
   changeZone(zone);
   // When many nets changed, gathering the shapes near them costs more than a whole check.
@@ -240,6 +239,7 @@ std::vector<Marker> IncrementalCheck::update(double maxShare) {
   old_.clear();
   lastShapes_ = 0;
   if (!zone.empty()) {
+    if (fixedConductor_.size() != ctx_.fixedShapes.size()) fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);
     std::vector<int32_t> links;
     std::vector<DrcShape> shapes = zoneShapes(zone, links);
     lastShapes_ = static_cast<int64_t>(shapes.size());

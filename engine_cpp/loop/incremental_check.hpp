@@ -43,7 +43,7 @@ class IncrementalCheck {
   const RouteContext& ctx_;
   DrcOptions options_;
   Rect area_;                            // DBU: the die and every fixed shape
-  std::vector<int32_t> fixedConductor_;  // per ctx_.fixedShapes: conductorIds over them (at the first update)
+  std::vector<int32_t> fixedConductor_;  // per ctx_.fixedShapes: conductorIds over them (at the first partial check)
   std::vector<int32_t> netFixedStart_;   // regular net n's pin shapes: netFixed_[start[n] .. start[n+1])
   std::vector<int32_t> netFixed_;        // indices into ctx_.fixedShapes
   std::vector<Marker> unmerged_;         // the last check's markers before merging
