@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "geom/union_find.hpp"
+#include "region/region_marks.hpp"
 
 namespace xroute {
 
@@ -11,8 +12,6 @@ namespace {
 
 auto shapeKey(const NetShape& s) { return std::make_tuple(*s.layer, s.rect.xlo, s.rect.ylo, s.rect.xhi, s.rect.yhi); }
 bool shapeLess(const NetShape& a, const NetShape& b) { return shapeKey(a) < shapeKey(b); }
-
-Rect grown(const Rect& r, Dbu d) { return {r.xlo - d, r.ylo - d, r.xhi + d, r.yhi + d}; }
 
 // The conductors of one net's rects on one layer, as the checker joins them (sharesSegment):
 // a root per rect.
@@ -125,7 +124,7 @@ void IncrementalCheck::changeZone(CheckZone& zone) {
         Rect box = boxes[q].second;
         size_t e = q + 1;
         for (; e < boxes.size() && boxes[e].first == boxes[q].first; ++e) box.expandToInclude(boxes[e].second);
-        zone.add(layer, grown(box, zone.reach(layer)));
+        zone.add(layer, grownBox(box, zone.reach(layer)));
         q = e;
       }
     }
@@ -152,7 +151,7 @@ std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::v
     if (zone.rects(layer).empty()) continue;
     layerIn[l] = 1;
     for (const Rect& z : zone.rects(layer)) {
-      const Rect w = grown(z, 2 * zone.reach(layer));
+      const Rect w = grownBox(z, 2 * zone.reach(layer));
       for (int32_t n : ctx_.netsNear(w)) candidates.push_back(n);
       ctx_.fixedIndex.query(w, [&](int32_t j) {
         const DrcShape& s = ctx_.fixedShapes[j];
