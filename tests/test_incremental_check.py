@@ -1,7 +1,7 @@
 """After the first iteration the loop checks again only what each iteration changed (when few enough
-nets changed; here always); its markers are a whole check's. Routed with and without it, a design must give the same routed DEF and the same
-markers after every iteration: any marker the partial check got wrong would steer the next
-iteration's rip-up elsewhere."""
+nets changed; here always); its markers are a whole check's. Routed with and without it, a design
+must give the same routed DEF and the same markers after every iteration: any marker the partial
+check got wrong would steer the next iteration's rip-up elsewhere."""
 
 from __future__ import annotations
 
