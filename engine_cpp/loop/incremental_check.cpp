@@ -47,10 +47,14 @@ IncrementalCheck::IncrementalCheck(const RouteContext& ctx, DrcOptions options)
   }
 }
 
-std::vector<Marker> IncrementalCheck::full() {
+void IncrementalCheck::forget() {
   for (int32_t n : keptNets_) kept_[n] = 0;
   keptNets_.clear();
   old_.clear();
+}
+
+std::vector<Marker> IncrementalCheck::full() {
+  forget();
   std::vector<DrcShape> shapes = collectDesignShapes(ctx_.tech, ctx_.design);
   lastShapes_ = static_cast<int64_t>(shapes.size());
   unmerged_ = checkShapesUnmerged(ctx_.tech, std::move(shapes), options_);
@@ -233,9 +237,7 @@ std::vector<Marker> IncrementalCheck::update(double maxShare) {
   changeZone(zone);
   // When many nets changed, gathering the shapes near them costs more than a whole check.
   if (double(zone.nets().size()) > maxShare * double(ctx_.design.nets.size())) return full();
-  for (int32_t n : keptNets_) kept_[n] = 0;
-  keptNets_.clear();
-  old_.clear();
+  forget();
   lastShapes_ = 0;
   if (!zone.empty()) {
     if (fixedConductor_.size() != ctx_.fixedShapes.size()) fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);

@@ -37,6 +37,7 @@ class IncrementalCheck {
   int64_t lastShapes() const { return lastShapes_; }
 
  private:
+  void forget();  // no net remembered
   void changeZone(CheckZone& zone);
   std::vector<DrcShape> zoneShapes(const CheckZone& zone, std::vector<int32_t>& links) const;
 
