@@ -123,7 +123,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
       const int32_t v = g_.index(xx, yy, z);
       if (!(g_.flags[v] & kOnTrack)) continue;
       const Point q = g_.point(v);
-      const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+      const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
       const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
       fn(v, wireGuideLength(len, u, v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir),
          dir);
@@ -134,7 +134,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     const int32_t v = g_.wrongWayNeighbour(u, d);
     if (v < 0) continue;
     const Point q = g_.point(v);
-    const int64_t len = std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y);
+    const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
     const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
     fn(v, wireGuideLength(len, u, v) * c_.wrongWayFactor * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
               exitCost(u, v, dir),
@@ -206,7 +206,7 @@ int64_t Search::viaNodeCost(int32_t v) const {
 
 // A lower bound on the cost from v to the nearest unreached terminal: the planar distance to its
 // nodes' box and a via for each layer between v and its nodes' layers (a wire step costs at least
-// its length, a via at least viaCost). It is consistent, so the search stays exact; the layer term
+// its length in wire units, a via at least viaCost). It is consistent, so the search stays exact; the layer term
 // cuts the nodes expanded (2 threads, paired runs, median wall: ispd18_test1 0.89x of 17.1 s,
 // ispd19_test1 0.91x of 121.7 s).
 int64_t Search::heuristic(int32_t v) const {
@@ -220,7 +220,7 @@ int64_t Search::heuristic(int32_t v) const {
     const int64_t dy = p.y < b.ylo ? b.ylo - p.y : (p.y > b.yhi ? p.y - b.yhi : 0);
     const auto [zlo, zhi] = termLayers_[t];
     const int64_t dz = z < zlo ? zlo - z : (z > zhi ? z - zhi : 0);
-    best = std::min(best, dx + dy + dz * c_.viaCost);
+    best = std::min(best, (dx + dy) * c_.wireUnit + dz * c_.viaCost);
   }
   return best == kInf ? 0 : best;
 }

@@ -49,6 +49,9 @@ struct MazeCosts {
   // (loop/README.md): the detours it forced on the nets routed first cost more than the markers it spared.
   int64_t landingPenalty = 0;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
+  // Cost units per DBU of a step's wire length and of the A* estimate's distance: set by pitchCosts,
+  // 1 where the second routing layer's pitch is kCostPitch or more. crossingPull stays per DBU.
+  int64_t wireUnit = 1;
 };
 
 // `c` for a design whose guides are the built-in global router's (builtIn) or a guide file's.
@@ -57,9 +60,18 @@ inline MazeCosts guideCosts(MazeCosts c, bool builtIn) {
   return c;
 }
 
+// The penalties above are cost units a node or a shape, set on technologies whose second routing
+// layer's pitch is 200 to 400 DBU (the ISPD designs). Where the pitch is finer (OpenROAD's asap7 gcd,
+// DEF units of 1,000 a micron: 45), a DBU of wire counts kCostPitch / pitch units, rounded (wireUnit:
+// 4 there), so that a penalty spans about as many tracks as at 200 DBU. Counted in DBU, one use
+// penalty (8,000) was worth 178 tracks of wire there: the searches flooded their regions before they
+// would pay one, and that gcd (416 nets) took 46 s where it takes 11 s with the unit (loop/README.md).
+constexpr int64_t kCostPitch = 200;
+
 // `c` for a technology whose second routing layer has pitch `pitch` (DBU; 0: unknown).
 inline MazeCosts pitchCosts(MazeCosts c, int64_t pitch) {
-  if (pitch > 0 && c.viaPitches > 0) c.viaCost = std::max(c.viaCost, c.viaPitches * pitch);
+  c.wireUnit = pitch > 0 && pitch < kCostPitch ? std::max<int64_t>(1, (kCostPitch + pitch / 2) / pitch) : 1;
+  if (pitch > 0 && c.viaPitches > 0) c.viaCost = std::max(c.viaCost, c.viaPitches * pitch * c.wireUnit);
   return c;
 }
 
