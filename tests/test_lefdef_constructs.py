@@ -274,9 +274,10 @@ END NETS
 
 
 def test_a_taper_segment_of_a_rule_net_keeps_the_default_width(tmp_path):
-    # TAPER: that layer's wires of the path, up to its next via, at the layer's width (60); the
-    # rest of the net at the rule's width. The writer gives the TAPER back; a net without a rule
-    # reads TAPER as its default width anyway.
+    # TAPER: that layer's wires of the path, up to its next via, at the layer's width (60), and
+    # that via drawn to the default rule too; the rest of the net at the rule's width. The writer
+    # gives the TAPER back (the via on a path of its own); a net without a rule reads TAPER as its
+    # default width anyway.
     body = """NONDEFAULTRULES 1 ;
 - wide + LAYER M1 WIDTH 200 + LAYER M2 WIDTH 180 ;
 END NONDEFAULTRULES
@@ -296,7 +297,8 @@ END NETS
     db.write_def(str(out))
     text = out.read_text()
     assert "+ ROUTED M1 TAPER ( 1000 1000 ) ( 3000 1000 )\n    NEW M2 ( 3000 1000 ) ( 3000 2000 )" in text
-    assert text.count("TAPER") == 1
+    assert "NEW M1 TAPER ( 3000 1000 ) V12" in text
+    assert text.count("TAPER") == 2
     again = _engine.load([str(tmp_path / "t.lef")], str(out), "")
     assert again.net_routing(0)["wires"] == db.net_routing(0)["wires"]
 

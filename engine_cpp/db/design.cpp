@@ -80,6 +80,13 @@ const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer) {
   return rule < 0 ? nullptr : design.ndrs[rule].find(layer);
 }
 
+bool taperedWire(const Tech& tech, const Design& design, int ndr, const RouteWire& w) {
+  if (ndr < 0 || size_t(ndr) >= design.ndrs.size() || !w.layer.valid()) return false;
+  const NdrLayer* l = design.ndrs[ndr].find(w.layer);
+  const Dbu standard = tech.layer(w.layer).width;
+  return l != nullptr && l->width != standard && (w.width > 0 ? w.width : standard) == standard;
+}
+
 void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out) {
   if (shape.polygon.empty()) {
     out.push_back(t.apply(shape.rect));

@@ -124,12 +124,16 @@ struct RouteWire {
 struct RouteVia {
   ViaRef via;
   Point at;  // DBU
+  // DEF TAPER: on a path drawn to the layers' default rule though the net has a NONDEFAULTRULE
+  // (no rule spacing around its metal).
+  bool taper = false;
 };
 
 // A DEF "RECT ( dx1 dy1 dx2 dy2 )" patch in a routed path, already made absolute.
 struct RoutePatch {
   LayerId layer;
   Rect rect;  // DBU
+  bool taper = false;  // on a DEF TAPER path (RouteVia::taper)
 };
 
 struct NetRouting {
@@ -266,6 +270,10 @@ bool routeWireRect(const Tech& tech, const RouteWire& wire, Rect& out);
 // The entry of net n's NONDEFAULTRULE for `layer`, or nullptr (the net has no rule, or its rule
 // leaves the layer to its defaults; n outside the regular nets: nullptr).
 const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer);
+// A wire of a net of a NONDEFAULTRULE drawn at its layer's default width where the rule names
+// another (DEF writes and reads it "TAPER"): the default rule holds around it, not the net's.
+// ndr: the net's Net::ndr (-1: no rule, never tapered).
+bool taperedWire(const Tech& tech, const Design& design, int ndr, const RouteWire& wire);
 
 // Appends a macro shape placed by `t` as rects (a POLYGON cut into slabs).
 void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out);

@@ -40,6 +40,7 @@ struct Entry {
   bool fixed;
   int32_t link = -1;  // CheckZone links: same value >= 0, one conductor
   int32_t src = -1;   // index among the input shapes
+  bool taper = false;  // DrcShape::taper
 };
 
 // Builds one layer: the shapes (duplicates as one), index, seeds, components. shapeOf (when given)
@@ -50,15 +51,17 @@ void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& 
   std::sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
     return std::make_tuple(key(a), a.fixed) < std::make_tuple(key(b), b.fixed);
   });
-  // Identical duplicates are one shape, fixed only if every copy is.
+  // Identical duplicates are one shape, fixed (or tapered) only if every copy is.
   std::vector<std::pair<int32_t, int32_t>> links;  // (link, shape)
   for (size_t i = 0; i < entries.size(); ++i) {
     if (!ls.rects.empty() && ls.rects.back() == entries[i].rect && ls.nets.back() == entries[i].net) {
       ls.fixed.back() = ls.fixed.back() && entries[i].fixed;
+      ls.taper.back() = ls.taper.back() && entries[i].taper;
     } else {
       ls.rects.push_back(entries[i].rect);
       ls.nets.push_back(entries[i].net);
       ls.fixed.push_back(entries[i].fixed);
+      ls.taper.push_back(entries[i].taper);
     }
     const int32_t shape = int32_t(ls.rects.size()) - 1;
     if (entries[i].link >= 0) links.push_back({entries[i].link, shape});
@@ -160,7 +163,7 @@ std::vector<std::vector<Entry>> entriesByLayer(const Tech& tech, const std::vect
     if (t != LayerType::Routing && t != LayerType::Cut) continue;
     if (s.rect.xhi <= s.rect.xlo || s.rect.yhi <= s.rect.ylo) continue;  // no area
     byLayer[*s.layer].push_back({s.rect, s.net < 0 ? -1 : s.net, isFixedOrigin(s.origin),
-                                 links.empty() ? -1 : links[i], int32_t(i)});
+                                 links.empty() ? -1 : links[i], int32_t(i), s.taper});
   }
   return byLayer;
 }

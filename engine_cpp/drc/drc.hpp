@@ -25,6 +25,9 @@ struct DrcShape {
   Rect rect;            // DBU
   int32_t net = -1;     // conductor id; < 0 = obstruction (conflicts with every net)
   ShapeOrigin origin = ShapeOrigin::Wire;
+  // Regular routing of a net of a NONDEFAULTRULE drawn to the default rule (DEF TAPER: taperedWire,
+  // RouteVia::taper, RoutePatch::taper): the rule's SPACING does not hold around it.
+  bool taper = false;
 };
 
 struct Marker {
@@ -41,8 +44,10 @@ struct DrcOptions {
   std::optional<Rect> window;     // DBU: report only markers whose box intersects it
   bool obsAsMinWidth = true;      // LEF USEMINSPACING OBS ON (the LEF default)
   bool mergeMarkers = true;       // merge same-kind markers whose boxes touch
-  // NONDEFAULTRULE spacing: ndrSpacing[layer id][net id], DBU, the least gap a net's metal needs
-  // on that layer besides the layer's own rules (0 = none); empty when no net has a rule.
+  // NONDEFAULTRULE spacing: ndrSpacing[layer id][net id], DBU, the least gap a net's routing needs
+  // on that layer besides the layer's own rules (0 = none); empty when no net has a rule. It holds
+  // around the net's routing only: not around its pins (fixed shapes) nor its tapered shapes
+  // (DrcShape::taper), as OpenROAD's checker reads the rule.
   std::vector<std::vector<Dbu>> ndrSpacing;
   int threads = 1;                // layers checked at once (the markers do not depend on it)
 };

@@ -65,6 +65,7 @@ struct LayerShapes {
   std::vector<Rect> rects;        // DBU, sorted canonically
   std::vector<int32_t> nets;      // per shape; < 0 = obstruction
   std::vector<uint8_t> fixed;     // per shape: 1 = pin / OBS / special net
+  std::vector<uint8_t> taper;     // per shape: 1 = tapered routing (DrcShape::taper)
   std::vector<uint8_t> seed;      // per shape: 1 = near the window (pairs start here)
   ShapeIndex index;               // over rects (queryExcept: the other nets' only)
   // Connectivity: same-net shapes touching along a segment (not just a

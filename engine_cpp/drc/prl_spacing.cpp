@@ -15,6 +15,7 @@
 #include <algorithm>
 
 #include "drc/layer_shapes.hpp"
+#include "geom/polygon.hpp"
 
 namespace xroute::drc {
 
@@ -49,15 +50,33 @@ void checkPrlSpacing(const LayerShapes& ls, const DrcOptions& options, MarkerSin
   for (Dbu s : l.prlTable.spacing) maxSpace = std::max(maxSpace, s);
   for (const SpacingRule& r : l.spacings)
     if (!r.sameNet) maxSpace = std::max(maxSpace, r.space);
-  // A NONDEFAULTRULE's SPACING: the gap its net's metal needs on this layer, whichever net is beside it.
+  // A NONDEFAULTRULE's SPACING: the gap its net's routing needs on this layer, whichever net is beside
+  // it; not around the net's pins (fixed) nor its tapered routing (DrcOptions::ndrSpacing).
   const std::vector<Dbu>* ndr = size_t(*ls.layer) < options.ndrSpacing.size() && !options.ndrSpacing[*ls.layer].empty()
                                     ? &options.ndrSpacing[*ls.layer]
                                     : nullptr;
-  auto ndrOf = [&](int32_t i) {
-    const int32_t n = ls.nets[i];
-    return ndr != nullptr && n >= 0 && size_t(n) < ndr->size() ? (*ndr)[n] : Dbu(0);
-  };
-  if (ndr != nullptr) maxSpace = std::max(maxSpace, *std::max_element(ndr->begin(), ndr->end()));
+  // Per shape: the rule's gap (0: none). Routing that lies wholly on the net's own pins adds no
+  // metal to them: OpenROAD's checker judges the union of a net's metal by its maximal rectangles,
+  // and those of a pin with a via pad inside it are the pin's own (fixed) ones.
+  std::vector<Dbu> ndrNeed;
+  if (ndr != nullptr) {
+    ndrNeed.assign(ls.size(), 0);
+    std::vector<Rect> left, next;
+    for (size_t i = 0; i < ls.size(); ++i) {
+      const int32_t n = ls.nets[i];
+      if (n < 0 || size_t(n) >= ndr->size() || (*ndr)[n] <= 0 || ls.fixed[i] || ls.taper[i]) continue;
+      left.assign(1, ls.rects[i]);
+      ls.index.query(ls.rects[i], [&](int32_t j) {
+        if (left.empty() || ls.nets[j] != n || !ls.fixed[j]) return;
+        next.clear();
+        for (const Rect& r : left) subtractRect(r, ls.rects[j], next);
+        left.swap(next);
+      });
+      if (!left.empty()) ndrNeed[i] = (*ndr)[n];
+    }
+    maxSpace = std::max(maxSpace, *std::max_element(ndr->begin(), ndr->end()));
+  }
+  auto ndrOf = [&](int32_t i) { return ndrNeed.empty() ? Dbu(0) : ndrNeed[i]; };
   if (maxSpace <= 0) return;
   const Dbu minWidth = l.minWidth > 0 ? l.minWidth : l.width;
 

@@ -28,12 +28,12 @@ class Collector {
   std::vector<DrcShape> run();  // pins, obstructions, special routing, regular routing, in that order
 
  private:
-  void add(LayerId layer, const Rect& r, int32_t net, ShapeOrigin origin) {
-    if (layer.valid()) out_.push_back({layer, r, net, origin});
+  void add(LayerId layer, const Rect& r, int32_t net, ShapeOrigin origin, bool taper = false) {
+    if (layer.valid()) out_.push_back({layer, r, net, origin, taper});
   }
   void addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin);
   void addObstructions(const Component& c);
-  void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin);
+  void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin, bool taper = false);
   void addComponentPin(int32_t comp, int32_t pin, int32_t net);
   void addIoPin(int32_t io, int32_t net);
   void addNetPins();            // pins of regular and special nets
@@ -85,9 +85,9 @@ void Collector::addObstructions(const Component& c) {
   }
 }
 
-void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin) {
+void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin, bool taper) {
   if (!ref.valid()) return;
-  for (const ViaShape& s : design_.via(tech_, ref).shapes) add(s.layer, s.rect.translated(at), net, origin);
+  for (const ViaShape& s : design_.via(tech_, ref).shapes) add(s.layer, s.rect.translated(at), net, origin, taper);
 }
 
 void Collector::addComponentPin(int32_t comp, int32_t pin, int32_t net) {
@@ -239,13 +239,15 @@ void Collector::addRegularRouting() {
   const int32_t nets = int32_t(design_.nets.size());
   // Regular routing: wires extend by half width unless told otherwise.
   for (int32_t n = 0; n < nets; ++n) {
-    const NetRouting& r = design_.nets[n].routing;
+    const Net& net = design_.nets[n];
+    const NetRouting& r = net.routing;
+    const bool rule = net.ndr >= 0;
     for (const RouteWire& w : r.wires) {
       Rect rect;
-      if (routeWireRect(tech_, w, rect)) add(w.layer, rect, n, ShapeOrigin::Wire);
+      if (routeWireRect(tech_, w, rect)) add(w.layer, rect, n, ShapeOrigin::Wire, taperedWire(tech_, design_, net.ndr, w));
     }
-    for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via);
-    for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire);
+    for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via, rule && v.taper);
+    for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire, rule && p.taper);
   }
 }
 

@@ -369,7 +369,8 @@ void DefParser::readRegularWiring(Net& net) {
     PathCursor cur;
     cur.layer = routingLayerAt(lex_.next());
     // TAPER: this layer's wires of the path (up to its next via) at the layer's default width,
-    // not the net's NONDEFAULTRULE width (0 = the width the net's rule implies).
+    // not the net's NONDEFAULTRULE width (0 = the width the net's rule implies); that via and the
+    // path's RECT patches are drawn to the default rule too (RouteVia::taper, RoutePatch::taper).
     Dbu width = 0;
     while (true) {
       if (lex_.accept("TAPER")) {
@@ -414,7 +415,7 @@ void DefParser::readRegularWiring(Net& net) {
         lex_.expect(")");
         const Point a{cur.at.x + x1, cur.at.y + y1}, b{cur.at.x + x2, cur.at.y + y2};  // each term within kMaxDbu
         checkCorners(rectTok.line, {x1, y1}, {x2, y2}, "RECT");
-        r.patches.push_back({cur.layer, Rect::fromCorners(a, b)});
+        r.patches.push_back({cur.layer, Rect::fromCorners(a, b), width != 0});
         requireInRange(rectTok.line, r.patches.back().rect, "RECT");
         cur.emitted = true;
       } else if (is(t, "VIRTUAL")) {
@@ -432,7 +433,7 @@ void DefParser::readRegularWiring(Net& net) {
         const Token viaTok = lex_.next();
         const ViaRef ref = readPathVia(viaTok, cur.havePoint, "NETS");
         requireViaInRange(viaTok.line, ref, cur.at);
-        r.vias.push_back({ref, cur.at});
+        r.vias.push_back({ref, cur.at, width != 0});
         cur.layer = layerAfterVia(viaTok, ref, cur.layer);
         width = 0;
         cur.emitted = true;

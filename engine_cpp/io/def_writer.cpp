@@ -253,15 +253,6 @@ class DefWriter {
     out_ << "END NONDEFAULTRULES\n\n";
   }
 
-  // A wire of a net of a NONDEFAULTRULE drawn at the layer's default width where the rule names
-  // another: DEF writes it "TAPER" (a net's regular wiring has its rule's width otherwise).
-  bool tapered(const Net& n, const RouteWire& w) const {
-    if (n.ndr < 0 || !w.layer.valid()) return false;
-    const NdrLayer* l = d_.ndrs[n.ndr].find(w.layer);
-    const Dbu standard = tech_.layer(w.layer).width;
-    return l != nullptr && l->width != standard && (w.width > 0 ? w.width : standard) == standard;
-  }
-
   void writeNets() {
     out_ << "NETS " << static_cast<int64_t>(d_.nets.size()) << " ;\n";
     for (size_t i = 0; i < d_.nets.size(); ++i) {
@@ -285,7 +276,7 @@ class DefWriter {
       bool first = true;
       for (const RouteWire& w : n.routing.wires) {
         startPath(first);
-        out_ << layer(w.layer) << (tapered(n, w) ? " TAPER " : " ");
+        out_ << layer(w.layer) << (taperedWire(tech_, d_, n.ndr, w) ? " TAPER " : " ");
         writeEnd(w.from, w.extFrom);
         out_ << ' ';
         writeEnd(w.to, w.extTo);
@@ -293,11 +284,12 @@ class DefWriter {
       for (const RouteVia& v : n.routing.vias) {
         startPath(first);
         const Via& via = d_.via(tech_, v.via);
-        out_ << layer(viaPathLayer(via)) << ' ' << v.at << ' ' << via.name;
+        out_ << layer(viaPathLayer(via)) << (n.ndr >= 0 && v.taper ? " TAPER " : " ") << v.at << ' ' << via.name;
       }
       for (const RoutePatch& p : n.routing.patches) {
         startPath(first);
-        out_ << layer(p.layer) << ' ' << Point{p.rect.xlo, p.rect.ylo} << " RECT ( 0 0 " << p.rect.width() << ' '
+        out_ << layer(p.layer) << (n.ndr >= 0 && p.taper ? " TAPER " : " ") << Point{p.rect.xlo, p.rect.ylo}
+             << " RECT ( 0 0 " << p.rect.width() << ' '
              << p.rect.height() << " )";
       }
       out_ << "\n ;\n";

@@ -175,16 +175,17 @@ std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::v
     LayerId layer;
     Rect rect;
     int32_t fixed;  // index into ctx_.fixedShapes (a pin), or -1 (routing)
+    bool taper = false;
   };
   std::vector<Item> items;
   std::vector<Rect> rects;
   std::vector<int32_t> keep;
   for (int32_t n : candidates) {
     routing.clear();
-    netRoutingShapes(tech, ctx_.design, ctx_.design.nets[n].routing, routing);
+    netRoutingShapes(tech, ctx_.design, ctx_.design.nets[n].routing, routing, ctx_.design.nets[n].ndr);
     items.clear();
     for (const NetShape& s : routing)
-      if (s.layer.valid() && layerIn[*s.layer]) items.push_back({s.layer, s.rect, -1});
+      if (s.layer.valid() && layerIn[*s.layer]) items.push_back({s.layer, s.rect, -1, s.taper});
     for (int32_t p = netFixedStart_[n]; p < netFixedStart_[n + 1]; ++p) {
       const DrcShape& s = ctx_.fixedShapes[netFixed_[p]];
       if (s.layer.valid() && layerIn[*s.layer]) items.push_back({s.layer, s.rect, netFixed_[p]});
@@ -214,7 +215,7 @@ std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::v
           takeFixed(it.fixed);
           continue;
         }
-        shapes.push_back({layer, it.rect, n, ShapeOrigin::Wire});
+        shapes.push_back({layer, it.rect, n, ShapeOrigin::Wire, it.taper});
         // A fixed conductor's shapes under the routing, for the rules that ask whether a wire touches it.
         ctx_.fixedIndex.query(it.rect, [&](int32_t j) {
           if (ctx_.fixedShapes[j].layer == layer) takeFixed(j);

@@ -104,9 +104,10 @@ std::vector<Marker> RegionRouter::check() const {
   std::vector<NetShape> ns;
   auto add = [&](int32_t net, const NetRouting& r, ShapeOrigin origin) {
     ns.clear();
-    netRoutingShapes(im.ctx.tech, im.ctx.design, r, ns);
+    const int ndr = net >= 0 && size_t(net) < im.ctx.design.nets.size() ? im.ctx.design.nets[net].ndr : -1;
+    netRoutingShapes(im.ctx.tech, im.ctx.design, r, ns, ndr);
     for (const NetShape& s : ns) {
-      if (s.rect.overlaps(win)) shapes.push_back({s.layer, s.rect, net, origin});
+      if (s.rect.overlaps(win)) shapes.push_back({s.layer, s.rect, net, origin, s.taper});
     }
   };
   std::vector<int32_t> nets = im.ctx.netsNear(win);

@@ -25,11 +25,14 @@ namespace xroute {
 struct NetShape {
   LayerId layer;
   Rect rect;  // DBU
+  bool taper = false;  // drawn to the default rule though the net has a rule (DrcShape::taper)
 };
 
 // The shapes of a net's routing: wires (extended by half width unless an
-// extension is given), via shapes at their positions, patches.
-void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out);
+// extension is given), via shapes at their positions, patches. ndr: the net's
+// rule (Net::ndr), for the taper flags; -1: none tapered.
+void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out,
+                      int ndr = -1);
 
 // The maze's costs for a run on this design: guideCosts, then pitchCosts at the scorer's pitch
 // (verify/scoring.hpp scorerPitch).
