@@ -27,7 +27,8 @@ OutOption = Annotated[
 RegionSizeOption = Annotated[
     int | None,
     typer.Option("--region-size",
-                 help="Region side in GCells (0: auto, 10 or more while the regions' grids stay small). Default: 0.",
+                 help="Region side in GCells (0: auto, 10 or more while the regions' grids stay small, "
+                      "down to 5 where they are large at 10). Default: 0.",
                  show_default=False),
 ]
 IterationsOption = Annotated[

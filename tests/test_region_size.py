@@ -1,5 +1,5 @@
 """The default region size (region_size 0): 10 GCells, or more while most regions' grids stay within a node
-budget and the region does not yet cover the die."""
+budget and the region does not yet cover the die; fewer, down to 5, while they are over it at 10."""
 
 from __future__ import annotations
 
@@ -9,15 +9,17 @@ from pathlib import Path
 import pytest
 
 from conftest import contest_found
+from xroute import _engine
 from xroute.config import load_config
+from xroute.defaults import LEAST_REGION_GCELLS, REGION_GRID_NODES
 from xroute.design import load_design
 from xroute.errors import XrouteError
 from xroute.router import RouteArgumentError, region_size_for, route_design, router_settings
 
 
-def generated(tmp_path: Path, split: int, cells: int = 120) -> Path:
+def generated(tmp_path: Path, split: int, cells: int = 120, merge: int = 1) -> Path:
     """A generated design (GCells of 5.7 x 5.6 um; 120 cells: 6 x 6 GCells, 2,000 cells: 24 x 24) with
-    every GCell cut into split x split; its DEF's path."""
+    every GCell cut into split x split, or merge x merge GCells made one; its DEF's path."""
     from xroute.testcases.generator import make_testcase
 
     folder = make_testcase(cells, 3, tmp_path / "small_gcells")
@@ -26,8 +28,8 @@ def generated(tmp_path: Path, split: int, cells: int = 120) -> Path:
 
     def finer(m: re.Match[str]) -> str:
         axis, start, count, step = m.group(1), int(m.group(2)), int(m.group(3)), int(m.group(4))
-        assert step % split == 0
-        return f"GCELLGRID {axis} {start} DO {(count - 1) * split + 1} STEP {step // split} ;"
+        assert step % split == 0 and (count - 1) % merge == 0
+        return f"GCELLGRID {axis} {start} DO {(count - 1) * split // merge + 1} STEP {step * merge // split} ;"
 
     text, n = re.subn(r"GCELLGRID ([XY]) (\d+) DO (\d+) STEP (\d+) ;", finer, text)
     assert n == 2
@@ -52,6 +54,20 @@ def test_the_default_region_stops_where_it_covers_the_die(tmp_path: Path) -> Non
     # 120 cells: 6 x 6 GCells, so 10 (the least) covers the die; cut in four, 12 x 12 GCells
     assert region_size_for(load(generated(tmp_path / "a", 1)), 0) == 10
     assert region_size_for(load(generated(tmp_path / "b", 2)), 0) == 12
+
+
+def test_the_default_region_shrinks_where_ten_gcells_are_over_the_budget(tmp_path: Path) -> None:
+    # 2,000 cells with 3 x 3 GCells made one: 8 GCells across, so 10 cover the whole die, whose grid
+    # is over the budget (17 of the small GCells are the most that stay within it): 5 (15 small)
+    design = load(generated(tmp_path, 1, cells=2000, merge=3))
+    size = region_size_for(design, 0)
+
+    def nodes(s: int) -> float:
+        return _engine.region_grid_nodes(design.engine, s)
+
+    assert nodes(10) > REGION_GRID_NODES
+    assert size == LEAST_REGION_GCELLS == 5
+    assert nodes(5) <= REGION_GRID_NODES < nodes(6)
 
 
 def test_a_run_at_the_default_routes_with_the_resolved_region(tmp_path: Path) -> None:

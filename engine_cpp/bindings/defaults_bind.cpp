@@ -19,6 +19,7 @@ void bindDefaults(nb::module_& m) {
   nb::dict d;
   d["region_size"] = router.regionSize;  // 0: auto (autoRegionSize)
   d["region_gcells"] = kRegionGCells;
+  d["least_region_gcells"] = kLeastRegionGCells;
   d["region_grid_nodes"] = kRegionGridNodes;
   d["iterations"] = router.iterations;
   d["max_iterations"] = kMaxIterations;

@@ -180,13 +180,25 @@ int autoRegionSizeOf(const Database& db) {
   return autoRegionSize(makeGCellGrid(db.design, tracks), tracks, access.points, kMaxRegionSize);
 }
 
+// regionGridNodes of regions `size` GCells a side (loop/regions.hpp).
+double regionGridNodesOf(const Database& db, int size) {
+  if (size < 1 || size > kMaxRegionSize) throw nb::value_error("size must be in 1..1000");
+  const TrackSet tracks = buildTracks(db.tech, db.design);
+  const PinAccessTable access = computePinAccess(db.tech, db.design, tracks, PinAccessSettings{});
+  return regionGridNodes(makeGCellGrid(db.design, tracks), tracks, access.points, size);
+}
+
 }  // namespace
 
 void bindRouter(nb::module_& m) {
+  m.def("region_grid_nodes", &regionGridNodesOf, "db"_a, "size"_a,
+        "The upper quartile, over the regions of `size` GCells a side (offset 0) that hold an access point, of "
+        "a region grid's nodes a layer (lines in x times lines in y), as auto_region_size weighs them.");
   m.def("auto_region_size", &autoRegionSizeOf, "db"_a,
         "GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in "
         "four regions' grids (lines at every track and access point in the region) stay within "
-        "DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die. Computes the design's "
+        "DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die; or fewer, down to "
+        "DEFAULTS['least_region_gcells'], while they are over it at the first. Computes the design's "
         "pin access (the default access points per pin, as a run does).");
   nb::list columns;
   for (const char* c : kFeatureColumns) columns.append(c);

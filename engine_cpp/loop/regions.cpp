@@ -43,6 +43,12 @@ double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std:
 int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
                    int maxSize) {
   int size = std::clamp(kRegionGCells, 1, maxSize);
+  // Fine tracks over large GCells (asap7, sky130): shrink while this size's grids are over the budget.
+  const int least = std::min(size, kLeastRegionGCells);
+  if (size > least && regionGridNodes(grid, tracks, terminals, size) > kRegionGridNodes) {
+    while (size > least && regionGridNodes(grid, tracks, terminals, size) > kRegionGridNodes) --size;
+    return size;
+  }
   // Grow while the next size's grid stays within the budget and this one leaves the die uncovered.
   while (size < maxSize && (size < grid.nx() || size < grid.ny()) &&
          regionGridNodes(grid, tracks, terminals, size + 1) <= kRegionGridNodes)

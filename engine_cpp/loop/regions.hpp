@@ -19,6 +19,10 @@ namespace xroute {
 // measurement (15 GCells on ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3).
 inline constexpr int kRegionGCells = 10;
 inline constexpr double kRegionGridNodes = 90000;
+// Where kRegionGCells' grids are over the budget (fine tracks over large GCells: OpenROAD's gcd on
+// asap7 and on sky130hs, 234,304 and 216,361 nodes a layer), the default shrinks to the largest size
+// within it, down to kLeastRegionGCells.
+inline constexpr int kLeastRegionGCells = 5;
 
 // The upper quartile over the regions of `size` GCells a side (offset 0) that hold a terminal of a
 // region's grid nodes a layer: the lines in x times those in y, at its edges, every layer's tracks
@@ -27,8 +31,8 @@ double regionGridNodes(const GCellGrid& grid, const TrackSet& tracks, const std:
                        int size);
 
 // GCells per region side of the default region: from kRegionGCells up while the next size's
-// regionGridNodes stays within kRegionGridNodes and the region does not yet cover the die; in
-// 1..maxSize.
+// regionGridNodes stays within kRegionGridNodes and the region does not yet cover the die; or, when
+// kRegionGCells' is over it, down while it is, to kLeastRegionGCells; in 1..maxSize.
 int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vector<AccessPoint>& terminals,
                    int maxSize);
 

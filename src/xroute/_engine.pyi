@@ -670,9 +670,14 @@ class IterationPlan:
 
     __hash__: None = None
 
+def region_grid_nodes(db: Database, size: int) -> float:
+    """
+    The upper quartile, over the regions of `size` GCells a side (offset 0) that hold an access point, of a region grid's nodes a layer (lines in x times lines in y), as auto_region_size weighs them.
+    """
+
 def auto_region_size(db: Database) -> int:
     """
-    GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in four regions' grids (lines at every track and access point in the region) stay within DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die. Computes the design's pin access (the default access points per pin, as a run does).
+    GCells per region side of a run whose region_size is 0: DEFAULTS['region_gcells'], or more while three in four regions' grids (lines at every track and access point in the region) stay within DEFAULTS['region_grid_nodes'] nodes a layer and a region does not cover the die; or fewer, down to DEFAULTS['least_region_gcells'], while they are over it at the first. Computes the design's pin access (the default access points per pin, as a run does).
     """
 
 POLICY_FEATURES: tuple = ...

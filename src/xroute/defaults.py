@@ -11,7 +11,8 @@ from xroute import _engine
 _D: dict = dict(_engine.DEFAULTS)
 
 REGION_SIZE: int = int(_D["region_size"])  # GCells per region side; 0: auto (xroute.router.region_size_for)
-REGION_GCELLS: int = int(_D["region_gcells"])  # the auto region's side, GCells at least
+REGION_GCELLS: int = int(_D["region_gcells"])  # the auto region's side, GCells, unless over the node budget
+LEAST_REGION_GCELLS: int = int(_D["least_region_gcells"])  # the auto region's side, GCells at least
 # ... and larger while three in four regions' grids stay within this many nodes a layer
 REGION_GRID_NODES: float = float(_D["region_grid_nodes"])
 ITERATIONS: int = int(_D["iterations"])  # iteration limit; the flow stops earlier at zero violations

@@ -197,7 +197,9 @@ def region_size_for(design: Design, region_size: int = 0) -> int:
     """GCells per region side of a run with ``region_size`` on ``design``: itself, or for 0 the engine's
     choice: ``defaults.REGION_GCELLS`` GCells, or more while three in four regions' grids stay within
     ``defaults.REGION_GRID_NODES`` nodes a layer and a region does not cover the die (15 GCells on
-    ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3)."""
+    ispd18_test1, 16 on ispd19_test1, 10 on ispd19_test3); or fewer, down to
+    ``defaults.LEAST_REGION_GCELLS``, while they are over it at 10 (fine tracks over large GCells:
+    6 on OpenROAD's gcd on asap7 and on sky130hs)."""
     return int(region_size) if region_size else int(_engine().auto_region_size(design.engine))
 
 
