@@ -137,7 +137,7 @@ def route_one(name: str, lefs: list[Path], def_path: Path | None, guide: Path | 
     """Route one design (files, or a testcase name when def_path is None) and judge the written DEF."""
     cmd = [sys.executable, "-m", "xroute", "route", "--threads", str(args.threads), "--out", str(out)]
     if def_path is None:
-        cmd.insert(4, name)
+        cmd.append(name)
     else:
         cmd += ["--def", str(def_path)] + [a for lef in lefs for a in ("--lef", str(lef))]
         if guide is not None:

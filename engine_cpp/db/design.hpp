@@ -275,6 +275,23 @@ const NdrLayer* netRuleLayer(const Design& design, int32_t net, LayerId layer);
 // ndr: the net's Net::ndr (-1: no rule, never tapered).
 bool taperedWire(const Tech& tech, const Design& design, int ndr, const RouteWire& wire);
 
+// Every shape of regular routing, in order: its wires (routeWireRect), its vias' shapes, its RECT
+// patches, as fn(layer, rect, isVia, taper). taper: drawn to the default rule though the net has
+// one (ndr: the net's Net::ndr; -1: nothing tapered).
+template <class Fn>
+void forEachRoutingShape(const Tech& tech, const Design& design, const NetRouting& routing, int ndr, Fn&& fn) {
+  const bool rule = ndr >= 0;
+  for (const RouteWire& w : routing.wires) {
+    Rect r;
+    if (routeWireRect(tech, w, r)) fn(w.layer, r, false, taperedWire(tech, design, ndr, w));
+  }
+  for (const RouteVia& v : routing.vias) {
+    if (!v.via.valid()) continue;
+    for (const ViaShape& s : design.via(tech, v.via).shapes) fn(s.layer, s.rect.translated(v.at), true, rule && v.taper);
+  }
+  for (const RoutePatch& p : routing.patches) fn(p.layer, p.rect, false, rule && p.taper);
+}
+
 // Appends a macro shape placed by `t` as rects (a POLYGON cut into slabs).
 void placedShapeRects(const MacroShape& shape, const Transform& t, std::vector<Rect>& out);
 

@@ -33,7 +33,7 @@ class Collector {
   }
   void addMacroShape(const MacroShape& s, const Transform& t, int32_t net, ShapeOrigin origin);
   void addObstructions(const Component& c);
-  void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin, bool taper = false);
+  void addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin);
   void addComponentPin(int32_t comp, int32_t pin, int32_t net);
   void addIoPin(int32_t io, int32_t net);
   void addNetPins();            // pins of regular and special nets
@@ -85,9 +85,9 @@ void Collector::addObstructions(const Component& c) {
   }
 }
 
-void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin, bool taper) {
+void Collector::addVia(const ViaRef& ref, Point at, int32_t net, ShapeOrigin origin) {
   if (!ref.valid()) return;
-  for (const ViaShape& s : design_.via(tech_, ref).shapes) add(s.layer, s.rect.translated(at), net, origin, taper);
+  for (const ViaShape& s : design_.via(tech_, ref).shapes) add(s.layer, s.rect.translated(at), net, origin);
 }
 
 void Collector::addComponentPin(int32_t comp, int32_t pin, int32_t net) {
@@ -239,15 +239,10 @@ void Collector::addRegularRouting() {
   const int32_t nets = int32_t(design_.nets.size());
   // Regular routing: wires extend by half width unless told otherwise.
   for (int32_t n = 0; n < nets; ++n) {
-    const Net& net = design_.nets[n];
-    const NetRouting& r = net.routing;
-    const bool rule = net.ndr >= 0;
-    for (const RouteWire& w : r.wires) {
-      Rect rect;
-      if (routeWireRect(tech_, w, rect)) add(w.layer, rect, n, ShapeOrigin::Wire, taperedWire(tech_, design_, net.ndr, w));
-    }
-    for (const RouteVia& v : r.vias) addVia(v.via, v.at, n, ShapeOrigin::Via, rule && v.taper);
-    for (const RoutePatch& p : r.patches) add(p.layer, p.rect, n, ShapeOrigin::Wire, rule && p.taper);
+    forEachRoutingShape(tech_, design_, design_.nets[n].routing, design_.nets[n].ndr,
+                        [&](LayerId layer, const Rect& rect, bool via, bool taper) {
+                          add(layer, rect, n, via ? ShapeOrigin::Via : ShapeOrigin::Wire, taper);
+                        });
   }
 }
 

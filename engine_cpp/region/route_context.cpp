@@ -8,16 +8,8 @@ namespace xroute {
 
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out,
                       int ndr) {
-  const bool rule = ndr >= 0;
-  for (const RouteWire& w : routing.wires) {
-    Rect r;
-    if (routeWireRect(tech, w, r)) out.push_back({w.layer, r, taperedWire(tech, design, ndr, w)});
-  }
-  for (const RouteVia& v : routing.vias) {
-    for (const ViaShape& s : design.via(tech, v.via).shapes)
-      out.push_back({s.layer, s.rect.translated(v.at), rule && v.taper});
-  }
-  for (const RoutePatch& p : routing.patches) out.push_back({p.layer, p.rect, rule && p.taper});
+  forEachRoutingShape(tech, design, routing, ndr,
+                      [&](LayerId layer, const Rect& rect, bool, bool taper) { out.push_back({layer, rect, taper}); });
 }
 
 MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design) {
