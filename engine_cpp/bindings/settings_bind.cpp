@@ -163,6 +163,8 @@ void bindMazeCosts(nb::module_& m) {
       .field("reserve_penalty", &MazeCosts::reservePenalty, "Entering another net's access point or boundary terminal.")
       .field("landing_penalty", &MazeCosts::landingPenalty,
              "Entering the landing above another net's access point while that net is unrouted.")
+      .field("sole_landing_penalty", &MazeCosts::soleLandingPenalty,
+             "Entering the landing above the only via access point of another unrouted net's pin.")
       .field("crossing_pull", &MazeCosts::crossingPull, "Per DBU a free crossing lies off the range of the pins beyond it.")
       .finish();
 }

@@ -30,6 +30,7 @@ enum NodeFlag : uint8_t {
   kLanding = 8,   // right above an access point: where its via lands (may be off-track)
   kAccessVia = 16,  // an access point whose via up pin access checked against fixed shapes
   kReleased = 32,   // a landing whose net is routed here: other nets' wires pass it freely
+  kSoleLanding = 64,  // a landing above the only access point of its pin that offers a via up
 };
 
 inline constexpr int32_t kOwnerNone = -1;   // no shape claims the node

@@ -254,6 +254,9 @@ void RegionRouter::Impl::markTerminals(NetState& ns) {
   }
   for (const TermSpec& s : ns.terms) {
     if (s.pinRef < 0) continue;
+    int vias = 0;  // the pin's points that offer a via up
+    for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap)
+      vias += (ap->dirs & kAccessUp) && ap->z + 1 < g.nz();
     for (const AccessPoint* ap = ctx.access.begin(s.pinRef); ap != ctx.access.end(s.pinRef); ++ap) {
       const int32_t v = nodeAt(ap->at, ap->z);
       if (v >= 0) {
@@ -265,7 +268,7 @@ void RegionRouter::Impl::markTerminals(NetState& ns) {
         g.flags[v] |= kAccessVia;
         const int32_t above = nodeAt(ap->at, ap->z + 1);
         if (above >= 0) {
-          g.flags[above] |= kLanding;
+          g.flags[above] |= vias == 1 ? kLanding | kSoleLanding : kLanding;
           g.reserveLanding(above, ns.task.net);
         }
       }

@@ -166,7 +166,8 @@ int64_t Search::wireNodeCost(int32_t v) const {
   }
   if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
   const int32_t reserved = g_.reservedNet(v);
-  if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased)) cost += c_.landingPenalty;
+  if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased))
+    cost += (g_.flags[v] & kSoleLanding) ? std::max(c_.landingPenalty, c_.soleLandingPenalty) : c_.landingPenalty;
   // The landing of the net's own access via: pin access checked the via's metal there exactly; a
   // wire reaching it ends on that metal, and the nodes it passed paid their own footprint. The
   // footprint's estimate for a wire along the track (beside a wide stripe, a long parallel run)
@@ -195,7 +196,8 @@ int64_t Search::viaNodeCost(int32_t v) const {
   }
   if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
   const int32_t reserved = g_.reservedNet(v);
-  if (reserved >= 0 && reserved != net_.net) cost += c_.landingPenalty;
+  if (reserved >= 0 && reserved != net_.net)
+    cost += (g_.flags[v] & kSoleLanding) ? std::max(c_.landingPenalty, c_.soleLandingPenalty) : c_.landingPenalty;
   // Above the net's own access point, pin access has checked the via
   // exactly; the footprint's bloated estimate would only forbid it.
   const int32_t fo = g_.viaFixedOwner[v];

@@ -48,6 +48,13 @@ struct MazeCosts {
   // 2,000: 292,280; 6,000: 293,144; 20,000 before) and on ispd19_test1, a little worse on ispd19_test3
   // (loop/README.md): the detours it forced on the nets routed first cost more than the markers it spared.
   int64_t landingPenalty = 0;
+  // Entering the landing above the one access point of another unrouted net's pin that offers a
+  // via up (kSoleLanding): a wire there leaves that pin no way up but a short or a metal-1 detour.
+  // OpenROAD's aes on Nangate45 (small metal-1 pins, one via point on two pins in three): 0.71
+  // first-pass violations a net -> 0.43, 897 s -> 547 s, 1 violation left -> 0 (2 threads);
+  // contest score ispd18_test1 290,154 -> 290,251, ispd19_test1 419,737 -> 417,440
+  // (loop/README.md).
+  int64_t soleLandingPenalty = 8000;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
   // Cost units per DBU of a step's wire length and of the A* estimate's distance: set by pitchCosts,
   // 1 where the second routing layer's pitch is kCostPitch or more. crossingPull stays per DBU.
