@@ -97,6 +97,15 @@ def print_read_warnings(design: Design) -> None:
                    "(xroute info lists them all)", err=True)
 
 
+def print_unmodelled_rules(design: Design) -> None:
+    """One ``warning:`` line on stderr for each rule the LEF states that neither the router nor the
+    checker models (:meth:`Design.unmodelled_rules`), with its layers: the route is made and checked
+    without it."""
+    for r in design.unmodelled_rules():
+        typer.echo(f"warning: {r['rule']} on {', '.join(r['layers'])}: not modelled (routed and checked "
+                   "without it; see xroute check's not-checked list)", err=True)
+
+
 @contextlib.contextmanager
 def json_output(active: bool) -> Iterator[Callable[[Any], None]]:
     """A context for a command's work that yields the function printing its JSON document. When

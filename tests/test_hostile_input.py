@@ -162,6 +162,25 @@ def test_odd_but_routable_input_is_a_warning_listed_by_info(runner: CliRunner, t
     assert data["warnings"] >= 1 and any("reach past the die area" in w for w in data["warning_messages"])
 
 
+def test_a_rule_nothing_models_is_read_and_warned_once_by_route(runner: CliRunner, tmp_path: Path) -> None:
+    # MINSTEP on both metal layers: read, one warning line naming the rule and its layers, and the
+    # route made. MINWIDTH (every layer of the demo states it) is read by the router: no warning.
+    paths = demo_inputs(tmp_path, lef=sub(r"^  MINWIDTH 0.0700 ;", "  MINWIDTH 0.0700 ;\n  MINSTEP 0.05 ;", count=2))
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["route", *design_args(paths), "--out", str(out), "--iterations", "1", "--quiet"])
+    assert result.exit_code in (0, 1), result.output + result.stderr
+    warned = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+    assert warned == ["warning: MINSTEP on Metal1, Metal2: not modelled (routed and checked without it; "
+                      "see xroute check's not-checked list)"]
+    assert (out / "demo.routed.def").is_file()
+    # A bad output folder (a file) is still the one error line: the warning comes after that check.
+    (tmp_path / "taken").write_text("")
+    result = runner.invoke(app, ["route", *design_args(paths), "--out", str(tmp_path / "taken"), "--quiet"])
+    assert result.exit_code == 2 and "Traceback" not in result.output + result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), lines
+
+
 # ----------------------------------------------------------------------------- DIEAREA (was 7 segfaults, 2 SIGFPE)
 DIE = {
     "zero width": ("( 0 0 ) ( 0 61600 )", "DIEAREA has zero width"),

@@ -563,21 +563,20 @@ def test_a_routed_pins_unused_via_landings_stop_costing_other_nets(tmp_path: Pat
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
-@pytest.mark.parametrize("sole", [None, 0])
-def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path, sole: int | None) -> None:
+@pytest.mark.parametrize("sole", [8000, 0])
+def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path, sole: int) -> None:
     # u1's pin (PIN1, a 60 x 60 M1 square at (500, 1100)) has one access point with a via up; u5's
     # (the tall bar, y 1470..1930) has three, at y 1500, 1700 and 1900. Every landing above them on
     # the M2 track x = 500 is reserved for its net (flags 9: on track, landing); u1's alone is also
     # its pin's sole landing (+ 64). n2 (pins at (500, 300) and (500, 2500)) would run over all of
-    # them: a step onto the sole landing costs the sole-landing penalty (sole None: the engine's
-    # default; 0: none), the others nothing more. Routed before n1 with the default, n2 leaves the
-    # node to n1's via; n1 and n3 then route and the region has no violation.
+    # them: a step onto the sole landing costs the sole-landing penalty (0, the engine's default:
+    # nothing), the others nothing more. Routed before n1 with a penalty, n2 leaves the node to n1's
+    # via; n1 and n3 then route and the region has no violation. Without, n2 runs over it.
     tall = macro("TALL", 0.2, 0.6, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.53))]))
     comps = {"u1": (400, 1000), "u2": (2400, 1000), "u3": (400, 200), "u4": (400, 2400),
              "u5": (400, 1400, "TALL"), "u6": (2400, 2000)}
     d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"], "n3": ["u5", "u6"]}, macros=tall)
-    costs = _engine.MazeCosts() if sole is None else _engine.MazeCosts(sole_landing_penalty=sole)
-    assert _engine.MazeCosts().sole_landing_penalty > 0
+    costs = _engine.MazeCosts(sole_landing_penalty=sole)
     region = _engine.RoutingSession(d.engine, costs=costs).open_region((0, 0, 4000, 4000))
     free = _engine.RoutingSession(d.engine, costs=_engine.MazeCosts(sole_landing_penalty=0)).open_region((0, 0, 4000, 4000))
     g = region.grid()
@@ -595,7 +594,7 @@ def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path
     assert extra == [costs.sole_landing_penalty, 0, 0, 0]
     region.route_net(1)
     assert (int(g["routed_net"][1, landings[0], xs.index(500)]) == 1) == (sole == 0)  # n2 on the sole landing
-    if sole is None:
+    if sole:
         region.route_net(0)
         region.route_net(2)
         assert region.metrics()["violations"] == 0

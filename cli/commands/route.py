@@ -24,6 +24,7 @@ from xroute.cli.console import (
     json_output,
     load_design_args,
     print_read_warnings,
+    print_unmodelled_rules,
     stdout_console,
 )
 from xroute.cli.options import (
@@ -195,6 +196,7 @@ def _route(cfg: XrouteConfig, rs: RunSettings, mode: str, console: Console,
         out = Path(cfg.output.out_dir)
     out_dir = out if out is not None else Path("out") / safe_stem(design.name)  # as printed
     write_dir = make_output_folder(cwd / out_dir)  # fail before routing, not after
+    print_unmodelled_rules(design)  # here, not at reading: a bad argument's error stays one line
     if design.global_route_stats is not None and mode in ("rich", "lines"):
         typer.echo(f"no route guide for {design.name}: guides from the built-in global router "
                    f"({global_route_summary(design.global_route_stats)})")

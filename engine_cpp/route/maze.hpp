@@ -50,11 +50,13 @@ struct MazeCosts {
   int64_t landingPenalty = 0;
   // Entering the landing above the one access point of another unrouted net's pin that offers a
   // via up (kSoleLanding): a wire there leaves that pin no way up but a short or a metal-1 detour.
-  // OpenROAD's aes on Nangate45 (small metal-1 pins, one via point on two pins in three): 0.71
-  // first-pass violations a net -> 0.43, 897 s -> 547 s, 1 violation left -> 0 (2 threads);
-  // contest score ispd18_test1 290,154 -> 290,251, ispd19_test1 419,737 -> 417,440
+  // 0 by default: at 8,000 (2 threads, 2026-11-29) OpenROAD's aes on Nangate45 (small metal-1 pins,
+  // one via point on two pins in three) went from 0.71 first-pass violations a net to 0.43, 897 s to
+  // 547 s, and from 1 violation left after 16 iterations to 0 after 7, and ispd19_test1's contest
+  // score from 419,737 to 417,440; but aes on asap7 ended at 2 CornerSpacing markers after 16
+  // iterations (0 after 15 without) and ispd19_test3 at 1 CutSpacing after 16 (0 after 10)
   // (loop/README.md).
-  int64_t soleLandingPenalty = 8000;
+  int64_t soleLandingPenalty = 0;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
   // Cost units per DBU of a step's wire length and of the A* estimate's distance: set by pitchCosts,
   // 1 where the second routing layer's pitch is kCostPitch or more. crossingPull stays per DBU.

@@ -16,6 +16,9 @@ import numpy as np
 
 from xroute.errors import InputError
 
+# Rules in Design.unjudged_rules() that the router reads although no marker judges them.
+ROUTER_ONLY_RULES = frozenset({"MINWIDTH"})
+
 
 def _engine():
     from xroute import _engine as engine  # compiled module; imported on first use
@@ -102,6 +105,11 @@ class Design:
         for layer, rule in self._db.unjudged_rules():
             by_rule.setdefault(rule, []).append(layer)
         return [{"rule": rule, "layers": layers} for rule, layers in by_rule.items()]
+
+    def unmodelled_rules(self) -> list[dict[str, Any]]:
+        """:meth:`unjudged_rules` less those the router reads (MINWIDTH sizes its pin access and
+        wires): the rules neither the router nor the checker models, as ``xroute route`` warns of them."""
+        return [r for r in self.unjudged_rules() if r["rule"] not in ROUTER_ONLY_RULES]
 
     def warnings(self) -> list[str]:
         """Odd but readable things the readers found (LEF then DEF), one 'file:line: message' each."""
