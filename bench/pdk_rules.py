@@ -21,13 +21,12 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from real_designs import ensure_files, read_manifest  # noqa: E402
+from real_designs import add_source_args, ensure_files, read_manifest  # noqa: E402
 
 
 def stated_rules(design) -> list[dict]:
@@ -75,10 +74,7 @@ def counts(rules: list[dict]) -> dict[str, int]:
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--manifest", type=Path, default=HERE / "real_designs.tsv")
-    ap.add_argument("--root", type=Path, default=Path(os.environ.get(
-        "XROUTE_REAL_DESIGNS", Path.home() / ".cache" / "xroute" / "real_designs")))
-    ap.add_argument("--git-dir", type=Path, default=None)
+    add_source_args(ap)
     ap.add_argument("--contest", default="", help="comma-separated testcase names (their technologies)")
     ap.add_argument("--json", type=Path, default=None)
     args = ap.parse_args(argv)

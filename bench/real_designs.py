@@ -176,12 +176,17 @@ def fmt(row: dict) -> str:
             f"{1000 * row['wall_s'] / nets:.1f} | {row['peak_rss_mb']:,.0f} | {named} |")
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_source_args(ap: argparse.ArgumentParser) -> None:
+    """--manifest, --root and --git-dir: where the manifest's files are found (ensure_files)."""
     ap.add_argument("--manifest", type=Path, default=HERE / "real_designs.tsv")
     ap.add_argument("--root", type=Path, default=Path(os.environ.get(
         "XROUTE_REAL_DESIGNS", Path.home() / ".cache" / "xroute" / "real_designs")))
     ap.add_argument("--git-dir", type=Path, default=None)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_source_args(ap)
     ap.add_argument("--only", default="", help="comma-separated ids")
     ap.add_argument("--contest", default="", help="comma-separated testcase names routed in the same run")
     ap.add_argument("--threads", type=int, default=2)
