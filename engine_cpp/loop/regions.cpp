@@ -46,7 +46,8 @@ int autoRegionSize(const GCellGrid& grid, const TrackSet& tracks, const std::vec
   // Fine tracks over large GCells (asap7, sky130): shrink while this size's grids are over the budget.
   const int least = std::min(size, kLeastRegionGCells);
   if (size > least && regionGridNodes(grid, tracks, terminals, size) > kRegionGridNodes) {
-    while (size > least && regionGridNodes(grid, tracks, terminals, size) > kRegionGridNodes) --size;
+    do --size;
+    while (size > least && regionGridNodes(grid, tracks, terminals, size) > kRegionGridNodes);
     return size;
   }
   // Grow while the next size's grid stays within the budget and this one leaves the die uncovered.

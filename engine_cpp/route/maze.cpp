@@ -46,6 +46,11 @@ class Search {
  private:
   int64_t wireNodeCost(int32_t v) const;
   int64_t viaNodeCost(int32_t v) const;
+  // Entering v, a landing reserved for another net's access via: the sole-landing penalty where it
+  // is its pin's only via point (kSoleLanding) and larger, else the landing penalty.
+  int64_t landingCost(int32_t v) const {
+    return (g_.flags[v] & kSoleLanding) ? std::max(c_.landingPenalty, c_.soleLandingPenalty) : c_.landingPenalty;
+  }
   int64_t guideFactor(int32_t v) const {
     return (net_.inGuide && !(*net_.inGuide)[v]) ? c_.outOfGuideFactor : 1;
   }
@@ -166,8 +171,7 @@ int64_t Search::wireNodeCost(int32_t v) const {
   }
   if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
   const int32_t reserved = g_.reservedNet(v);
-  if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased))
-    cost += (g_.flags[v] & kSoleLanding) ? std::max(c_.landingPenalty, c_.soleLandingPenalty) : c_.landingPenalty;
+  if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased)) cost += landingCost(v);
   // The landing of the net's own access via: pin access checked the via's metal there exactly; a
   // wire reaching it ends on that metal, and the nodes it passed paid their own footprint. The
   // footprint's estimate for a wire along the track (beside a wide stripe, a long parallel run)
@@ -196,8 +200,7 @@ int64_t Search::viaNodeCost(int32_t v) const {
   }
   if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
   const int32_t reserved = g_.reservedNet(v);
-  if (reserved >= 0 && reserved != net_.net)
-    cost += (g_.flags[v] & kSoleLanding) ? std::max(c_.landingPenalty, c_.soleLandingPenalty) : c_.landingPenalty;
+  if (reserved >= 0 && reserved != net_.net) cost += landingCost(v);
   // Above the net's own access point, pin access has checked the via
   // exactly; the footprint's bloated estimate would only forbid it.
   const int32_t fo = g_.viaFixedOwner[v];
