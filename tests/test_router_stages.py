@@ -563,7 +563,7 @@ def test_a_routed_pins_unused_via_landings_stop_costing_other_nets(tmp_path: Pat
     assert d.engine.check_drc(skip_fixed_pairs=False) == []
 
 
-@pytest.mark.parametrize("sole", [8000, 0])
+@pytest.mark.parametrize("sole", [8000, 0, -1])
 def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path, sole: int) -> None:
     # u1's pin (PIN1, a 60 x 60 M1 square at (500, 1100)) has one access point with a via up; u5's
     # (the tall bar, y 1470..1930) has three, at y 1500, 1700 and 1900. Every landing above them on
@@ -571,7 +571,8 @@ def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path
     # its pin's sole landing (+ 64). n2 (pins at (500, 300) and (500, 2500)) would run over all of
     # them: a step onto the sole landing costs the sole-landing penalty (0, the engine's default:
     # nothing), the others nothing more. Routed before n1 with a penalty, n2 leaves the node to n1's
-    # via; n1 and n3 then route and the region has no violation. Without, n2 runs over it.
+    # via; n1 and n3 then route and the region has no violation. Without, n2 runs over it. -1 (the
+    # default) is 8,000 here: five of the six pins have one via point.
     tall = macro("TALL", 0.2, 0.6, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.53))]))
     comps = {"u1": (400, 1000), "u2": (2400, 1000), "u3": (400, 200), "u4": (400, 2400),
              "u5": (400, 1400, "TALL"), "u6": (2400, 2000)}
@@ -591,10 +592,36 @@ def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path
         return int(step_costs[2])
 
     extra = [north_step_cost(region, y) - north_step_cost(free, y) for y in landings]
-    assert extra == [costs.sole_landing_penalty, 0, 0, 0]
+    assert extra == [8000 if sole else 0, 0, 0, 0]
     region.route_net(1)
     assert (int(g["routed_net"][1, landings[0], xs.index(500)]) == 1) == (sole == 0)  # n2 on the sole landing
     if sole:
         region.route_net(0)
         region.route_net(2)
         assert region.metrics()["violations"] == 0
+
+
+def test_the_sole_landing_penalty_is_off_where_most_pins_have_more_via_points(tmp_path: Path) -> None:
+    # The same three nets with u2, u3, u4 and u6 tall too: two pins in six have one via point, so the
+    # default (-1) charges nothing on u1's sole landing; 8,000 set by hand still does.
+    tall = macro("TALL", 0.2, 0.6, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.53))]))
+    comps = {"u1": (400, 1000), "u2": (2400, 1000, "TALL"), "u3": (400, 200), "u4": (400, 2400, "TALL"),
+             "u5": (400, 1400, "TALL"), "u6": (2400, 2000, "TALL")}
+    d = drawn(tmp_path, comps, {"n1": ["u1", "u2"], "n2": ["u3", "u4"], "n3": ["u5", "u6"]}, macros=tall)
+    box = (0, 0, 4000, 4000)
+    auto = _engine.RoutingSession(d.engine).open_region(box)
+    free = _engine.RoutingSession(d.engine, costs=_engine.MazeCosts(sole_landing_penalty=0)).open_region(box)
+    charged = _engine.RoutingSession(d.engine, costs=_engine.MazeCosts(sole_landing_penalty=8000)).open_region(box)
+    g = auto.grid()
+    xs, ys = list(g["xs"]), list(g["ys"])
+    nx, ny = len(xs), len(ys)
+    y = ys.index(1100)
+    assert int(g["flags"][1, y, xs.index(500)]) == 73  # u1's landing: still its pin's sole landing
+
+    def north_step_cost(r: Any) -> int:
+        nodes, step_costs = r.moves(1, (1 * ny + y - 1) * nx + xs.index(500))
+        assert nodes[2] == (1 * ny + y) * nx + xs.index(500)
+        return int(step_costs[2])
+
+    assert north_step_cost(auto) == north_step_cost(free)
+    assert north_step_cost(charged) - north_step_cost(free) == 8000

@@ -164,7 +164,8 @@ void bindMazeCosts(nb::module_& m) {
       .field("landing_penalty", &MazeCosts::landingPenalty,
              "Entering the landing above another net's access point while that net is unrouted.")
       .field("sole_landing_penalty", &MazeCosts::soleLandingPenalty,
-             "Entering the landing above the only via access point of another unrouted net's pin.")
+             "Entering the landing above the only via access point of another unrouted net's pin; -1 "
+             "(the default): 8000 where at least half the design's net pins have one via point, else 0.")
       .field("crossing_pull", &MazeCosts::crossingPull, "Per DBU a free crossing lies off the range of the pins beyond it.")
       .finish();
 }

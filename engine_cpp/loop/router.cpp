@@ -76,7 +76,7 @@ class Flow {
         planner_(planner), ctx_(tech, design, s.threads, s.accessPointsPerPin), check_(ctx_, checkOptions()) {
     if (s_.regionSize <= 0)
       s_.regionSize = autoRegionSize(ctx_.gcells, ctx_.tracks, ctx_.access.points, kMaxRegionSize);
-    s_.costs = designCosts(s_.costs, tech, design);
+    s_.costs = designCosts(s_.costs, ctx_);
   }
 
   // The design's routing is empty (routeDesign cleared it before the context was made).

@@ -16,7 +16,7 @@ std::vector<Region> RoutingSession::regions(int size, int offset) const {
 
 std::unique_ptr<SessionRegion> RoutingSession::openRegion(const Rect& box, int iteration) {
   auto r = std::make_unique<SessionRegion>();
-  r->task = makeStandaloneTask(*ctx_, box, regionsOpened_++, iteration, designCosts(costs_, db_.tech, db_.design),
+  r->task = makeStandaloneTask(*ctx_, box, regionsOpened_++, iteration, designCosts(costs_, *ctx_),
                                r->plan);
   r->owned = std::make_unique<RegionRouter>(*ctx_, r->task, &r->plan);
   r->router = r->owned.get();

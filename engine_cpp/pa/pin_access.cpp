@@ -419,4 +419,16 @@ PinAccessTable computePinAccess(const Tech& tech, const Design& design, const Tr
   return table;
 }
 
+double soleViaShare(const PinAccessTable& table) {
+  const int32_t refs = int32_t(table.start.size()) - 1;
+  if (refs <= 0) return 0.0;
+  int32_t sole = 0;
+  for (int32_t r = 0; r < refs; ++r) {
+    const int32_t vias = int32_t(std::count_if(table.begin(r), table.end(r),
+                                               [](const AccessPoint& p) { return (p.dirs & kAccessUp) != 0; }));
+    sole += vias == 1;
+  }
+  return double(sole) / refs;
+}
+
 }  // namespace xroute

@@ -67,4 +67,7 @@ struct PinAccessTable {
 PinAccessTable computePinAccess(const Tech& tech, const Design& design, const TrackSet& tracks,
                                 const PinAccessSettings& settings);
 
+// The share of pin refs whose points offer a via up at exactly one of them (0 without pin refs).
+double soleViaShare(const PinAccessTable& table);
+
 }  // namespace xroute

@@ -12,8 +12,9 @@ void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& 
                       [&](LayerId layer, const Rect& rect, bool, bool taper) { out.push_back({layer, rect, taper}); });
 }
 
-MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design) {
-  return pitchCosts(guideCosts(costs, design.guidesBuiltIn), scorerPitch(tech));
+MazeCosts designCosts(const MazeCosts& costs, const RouteContext& ctx) {
+  return soleLandingCosts(pitchCosts(guideCosts(costs, ctx.design.guidesBuiltIn), scorerPitch(ctx.tech)),
+                          soleViaShare(ctx.access));
 }
 
 RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPointsPerPin) : tech(t), design(d) {

@@ -34,10 +34,6 @@ struct NetShape {
 void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& routing, std::vector<NetShape>& out,
                       int ndr = -1);
 
-// The maze's costs for a run on this design: guideCosts, then pitchCosts at the scorer's pitch
-// (verify/scoring.hpp scorerPitch).
-MazeCosts designCosts(const MazeCosts& costs, const Tech& tech, const Design& design);
-
 struct RouteContext {
   RouteContext(const Tech& tech, Design& design, int threads, int accessPointsPerPin = kAccessPointsPerPin);
 
@@ -72,5 +68,9 @@ struct RouteContext {
   int32_t gcellX(Dbu x) const;
   int32_t gcellY(Dbu y) const;
 };
+
+// The maze's costs for a run on this design: guideCosts, pitchCosts at the scorer's pitch
+// (verify/scoring.hpp scorerPitch), and soleLandingCosts at the share of the pins with one via point.
+MazeCosts designCosts(const MazeCosts& costs, const RouteContext& ctx);
 
 }  // namespace xroute

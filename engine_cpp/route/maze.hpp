@@ -50,18 +50,33 @@ struct MazeCosts {
   int64_t landingPenalty = 0;
   // Entering the landing above the one access point of another unrouted net's pin that offers a
   // via up (kSoleLanding): a wire there leaves that pin no way up but a short or a metal-1 detour.
-  // 0 by default: at 8,000 (2 threads, 2026-11-29) OpenROAD's aes on Nangate45 (small metal-1 pins,
-  // one via point on two pins in three) went from 0.71 first-pass violations a net to 0.43, 897 s to
-  // 547 s, and from 1 violation left after 16 iterations to 0 after 7, and ispd19_test1's contest
-  // score from 419,737 to 417,440; but aes on asap7 ended at 2 CornerSpacing markers after 16
-  // iterations (0 after 15 without) and ispd19_test3 at 1 CutSpacing after 16 (0 after 10)
-  // (loop/README.md).
-  int64_t soleLandingPenalty = 0;
+  // kAutoSoleLanding (the default): kSoleLandingPenalty where at least kSoleLandingShare of the
+  // design's net pins have one via point, else 0 (soleLandingCosts).
+  int64_t soleLandingPenalty = -1;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
   // Cost units per DBU of a step's wire length and of the A* estimate's distance: set by pitchCosts,
   // 1 where the second routing layer's pitch is kCostPitch or more. crossingPull stays per DBU.
   int64_t wireUnit = 1;
 };
+
+// soleLandingPenalty's automatic value. Where most pins have one via point (Nangate45's small metal-1
+// pins under a metal-2 pitch wider than they are: 64% of gcd's net pins, 67% of aes's), a wire over
+// such a landing leaves the pin a short, and the penalty pays: at 8,000 (2 threads, 2026-11-29)
+// OpenROAD's aes on Nangate45 went from 0.71 first-pass violations a net to 0.43, 897 s to 547 s,
+// and from 1 violation left after 16 iterations to 0 after 7. Where fewer do (every ISPD design
+// here: 24-46%; asap7 4-7%; sky130 4-43%) it stays 0: charged there, aes on asap7 ended at 2
+// CornerSpacing markers after 16 iterations (0 after 15 without) and ispd19_test3 at 1 CutSpacing
+// marker (0 after 10), and ispd18_test1's contest score went up 0.03% (loop/README.md).
+inline constexpr int64_t kAutoSoleLanding = -1;
+inline constexpr int64_t kSoleLandingPenalty = 8000;
+inline constexpr double kSoleLandingShare = 0.5;
+
+// `c` with an automatic soleLandingPenalty resolved for a design where `soleShare` of the net pins
+// have one access point that offers a via up.
+inline MazeCosts soleLandingCosts(MazeCosts c, double soleShare) {
+  if (c.soleLandingPenalty < 0) c.soleLandingPenalty = soleShare >= kSoleLandingShare ? kSoleLandingPenalty : 0;
+  return c;
+}
 
 // `c` for a design whose guides are the built-in global router's (builtIn) or a guide file's.
 inline MazeCosts guideCosts(MazeCosts c, bool builtIn) {

@@ -285,7 +285,7 @@ def check_shapes(db: Database, shapes: Annotated[NDArray[numpy.int32], dict(shap
 class MazeCosts:
     """The maze's costs (cost units: DBU of wire), as in route/maze.hpp."""
 
-    def __init__(self, *, via_cost: int = 1200, via_pitches: int = 4, wrong_way_factor: int = 4, out_of_guide_factor: int = 3, built_in_guide_factor: int = 1, fixed_penalty: int = 400000, use_penalty: int = 8000, marker_unit: int = 1, bottom_layer_factor: int = 1, reserve_penalty: int = 20000, landing_penalty: int = 0, sole_landing_penalty: int = 0, crossing_pull: int = 2) -> None:
+    def __init__(self, *, via_cost: int = 1200, via_pitches: int = 4, wrong_way_factor: int = 4, out_of_guide_factor: int = 3, built_in_guide_factor: int = 1, fixed_penalty: int = 400000, use_penalty: int = 8000, marker_unit: int = 1, bottom_layer_factor: int = 1, reserve_penalty: int = 20000, landing_penalty: int = 0, sole_landing_penalty: int = -1, crossing_pull: int = 2) -> None:
         """Each field by its keyword; a field left out has the engine's default."""
 
     @property
@@ -374,7 +374,7 @@ class MazeCosts:
     @property
     def sole_landing_penalty(self) -> int:
         """
-        Entering the landing above the only via access point of another unrouted net's pin.
+        Entering the landing above the only via access point of another unrouted net's pin; -1 (the default): 8000 where at least half the design's net pins have one via point, else 0.
         """
 
     @sole_landing_penalty.setter
