@@ -18,7 +18,8 @@ routed DEF is judged by ``python -m xroute check``. Printed per design: nets, fi
 (um) and vias, the whole process's wall seconds, milliseconds per net, the router's peak RSS, and the
 rules the LEFs state that the checker does not judge. ``--contest`` routes contest testcases by name
 in the same run (ispd18_test1, ispd19_test3: the per-net yardsticks). OpenROAD's own routed DEFs of a
-placement (manifest column ``openroad``) are judged by ``xroute check`` too and printed beside ours.
+placement (manifest column ``openroad``) are judged by ``xroute check`` too and printed beside ours,
+with our wire and vias over theirs (``wire_ratio``, ``via_ratio`` in the JSON).
 Exit status 1 when a route fails or leaves violations or opens.
 """
 
@@ -233,9 +234,14 @@ def main(argv: list[str] | None = None) -> int:
     for res in results:
         for o in res.get("openroad", []):
             types = ", ".join(f"{k} {v}" for k, v in (o.get("violations_by_type") or {}).items() if v) or "-"
+            ratio = ""
+            if o.get("wirelength_um") and o.get("vias") and res.get("wirelength_um") is not None:
+                o["wire_ratio"] = round(res["wirelength_um"] / o["wirelength_um"], 4)
+                o["via_ratio"] = round(res["vias"] / o["vias"], 4)
+                ratio = f"; ours / OpenROAD's: wire {o['wire_ratio']:.3f}, vias {o['via_ratio']:.3f}"
             print(f"OpenROAD's {o['def']} by xroute check: {o['violations']} violations ({types}), "
                   f"{o['opens']} opens, {o['wirelength_um']} um, {o['vias']} vias (ours: {res.get('violations')}, "
-                  f"{res.get('wirelength_um')} um, {res.get('vias')} vias)")
+                  f"{res.get('wirelength_um')} um, {res.get('vias')} vias{ratio})")
     if args.json:
         args.json.write_text(json.dumps({"date": time.strftime("%Y-%m-%d"), "threads": args.threads,
                                          "results": results}, indent=1) + "\n")
