@@ -161,7 +161,11 @@ def test_a_wire_into_the_nets_own_access_via_landing_pays_no_wire_footprint(tmp_
     east = 4
     nets = region.candidates[:, 0].tolist()
     costs = _engine.MazeCosts()
-    for net, expected in ((0, 800), (1, 800 + costs.landing_penalty + costs.fixed_penalty)):
+    # Each pin here has one via point, so the landing is also its pin's sole landing (flag 64) and
+    # the default charges other nets the sole-landing penalty there: 8,000 (soleLandingCosts).
+    assert g["flags"][1, ys.index(1500), xs.index(500)] & 64
+    landing_cost = max(costs.landing_penalty, 8000)
+    for net, expected in ((0, 800), (1, 800 + landing_cost + costs.fixed_penalty)):
         neighbours, step = region.moves(nets.index(net), node(300, 1500, 1))
         assert (neighbours[east], step[east]) == (landing, expected), net
 
