@@ -569,10 +569,10 @@ def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path
     # (the tall bar, y 1470..1930) has three, at y 1500, 1700 and 1900. Every landing above them on
     # the M2 track x = 500 is reserved for its net (flags 9: on track, landing); u1's alone is also
     # its pin's sole landing (+ 64). n2 (pins at (500, 300) and (500, 2500)) would run over all of
-    # them: a step onto the sole landing costs the sole-landing penalty (0, the engine's default:
-    # nothing), the others nothing more. Routed before n1 with a penalty, n2 leaves the node to n1's
-    # via; n1 and n3 then route and the region has no violation. Without, n2 runs over it. -1 (the
-    # default) is 8,000 here: five of the six pins have one via point.
+    # them: a step onto the sole landing costs the sole-landing penalty, the others nothing more.
+    # Routed before n1 with a penalty, n2 leaves the node to n1's via; n1 and n3 then route and the
+    # region has no violation. Without (0), n2 runs over it. -1 (the default) is 8,000 here: five of
+    # the six pins have one via point.
     tall = macro("TALL", 0.2, 0.6, pin("A", "INOUT", [("M1", (0.07, 0.07, 0.13, 0.53))]))
     comps = {"u1": (400, 1000), "u2": (2400, 1000), "u3": (400, 200), "u4": (400, 2400),
              "u5": (400, 1400, "TALL"), "u6": (2400, 2000)}
