@@ -40,7 +40,8 @@ def test_route_json_parses_and_matches_the_file(runner: CliRunner, testcase, tmp
     data = json.loads(result.stdout)
     assert data == json.loads((tmp_path / f"{SAMPLE4}.metrics.json").read_text())
     assert data["settings"] == {"region_size": 4, "iterations": 3, "threads": 2, "seed": 1, "schedule": None,
-                                "repair_rounds": 2, "policy": "heuristic", "schedule_policy": "rule"}
+                                "repair_rounds": 2, "policy": "heuristic", "schedule_policy": "rule",
+                                "sole_landing_penalty": 0}
     assert 1 <= len(data["iterations"]) <= 3
     assert data["final"]["open_nets"] == 0 and data["final"]["nets"] == nets_of(SAMPLE4)
 

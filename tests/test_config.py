@@ -160,7 +160,7 @@ def test_route_config_values_and_flag_overrides(runner: CliRunner, testcase, tmp
     assert result.exit_code == 0, result.stdout + result.stderr
     settings = json.loads(result.stdout)["settings"]
     assert settings == {"region_size": 3, "iterations": 2, "threads": 1, "seed": 9, "schedule": None, "repair_rounds": 0,
-                        "policy": "random", "schedule_policy": "rule"}
+                        "policy": "random", "schedule_policy": "rule", "sole_landing_penalty": 0}
     assert (tmp_path / "out" / f"{SAMPLE}.metrics.json").is_file()
 
 

@@ -90,7 +90,8 @@ def test_metrics_json_agrees_with_the_reread_def(routed_samples, name: str) -> N
     assert data == outputs.metrics
     assert data["design"] == design.name and data["policy"] == "heuristic"
     assert data["settings"] == {"region_size": region_size_for(design, 0), "iterations": 16, "threads": 1, "seed": 1,
-                                "schedule": None, "repair_rounds": 0, "policy": "heuristic", "schedule_policy": "rule"}
+                                "schedule": None, "repair_rounds": 0, "policy": "heuristic", "schedule_policy": "rule",
+                                "sole_landing_penalty": 0}
     assert [it["iteration"] for it in data["iterations"]] == list(range(len(result.iterations)))
     for it in data["iterations"]:
         assert set(it) == {"iteration", "region_size", "offset", "regions", "net_routes", "unreached", "wirelength_dbu",

@@ -599,6 +599,9 @@ def test_the_landing_above_a_pins_only_via_point_costs_other_nets(tmp_path: Path
         region.route_net(0)
         region.route_net(2)
         assert region.metrics()["violations"] == 0
+    # The whole flow reports the penalty it used, the default resolved.
+    used = _engine.route(d.engine, settings=_engine.RouterSettings(costs=costs))["sole_landing_penalty"]
+    assert used == (8000 if sole else 0)
 
 
 def test_the_sole_landing_penalty_is_off_where_most_pins_have_more_via_points(tmp_path: Path) -> None:
@@ -625,3 +628,4 @@ def test_the_sole_landing_penalty_is_off_where_most_pins_have_more_via_points(tm
 
     assert north_step_cost(auto) == north_step_cost(free)
     assert north_step_cost(charged) - north_step_cost(free) == 8000
+    assert _engine.route(d.engine)["sole_landing_penalty"] == 0

@@ -170,6 +170,7 @@ nb::dict route(Database& db, const RouterSettings* settings, const std::string& 
   nb::dict result;
   result["iterations"] = its;
   result["policy"] = policyFn.is_none() && policyNext.is_none() ? policy : std::string("python");
+  result["sole_landing_penalty"] = out.costs.soleLandingPenalty;
   return result;
 }
 
@@ -224,5 +225,6 @@ void bindRouter(nb::module_& m) {
       "the reports of the iterations done and the rule's plan; the iteration runs the plan it returns (stop: end "
       "the run, from iteration 1 on; search_budget B >= 1: the victims search with that budget in this iteration; "
       "a field out of the engine's limits is a RouteArgumentError). "
-      "Returns {'iterations': [report, ...]}; a report's plan is its IterationPlan's to_dict().");
+      "Returns {'iterations': [report, ...], 'policy': name, 'sole_landing_penalty': the maze's, as the run "
+      "resolved it}; a report's plan is its IterationPlan's to_dict().");
 }

@@ -82,6 +82,7 @@ class Flow {
   // The design's routing is empty (routeDesign cleared it before the context was made).
   RouteOutcome run() {
     RouteOutcome out;
+    out.costs = s_.costs;
     const int iterations = std::clamp(s_.iterations, 1, kMaxIterations);
     for (int it = 0; it < iterations; ++it) {
       IterationPlan rule = rulePlan(s_, it);

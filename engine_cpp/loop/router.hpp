@@ -126,6 +126,7 @@ using IterationPlanner = std::function<IterationPlan(const std::vector<Iteration
 struct RouteOutcome {
   std::vector<IterationReport> iterations;
   std::vector<Marker> markers;     // of the final state
+  MazeCosts costs;                 // the run's maze costs, designCosts applied (automatic values resolved)
 };
 
 // Called after every region batch: (iteration so far, regions done, regions with work).

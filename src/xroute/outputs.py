@@ -179,6 +179,7 @@ def _write_staged(design: Design, result: RouteResult, out: Path, stage: Path, s
             "schedule": [list(step) for step in result.settings.schedule] if result.settings.schedule else None,
             "policy": result.policy,
             "schedule_policy": result.schedule_policy,
+            "sole_landing_penalty": result.sole_landing_penalty,  # -1 (automatic) resolved
         },
         "policy": result.policy,
         "iterations": [r.to_dict() for r in result.iterations],

@@ -169,6 +169,8 @@ class RouteResult:
     policy_calls: int = 0  # calls of a Python policy's order() (one per region with candidates)
     schedule_policy: str = "rule"  # the schedule policy's name (xroute.schedule)
     seed: int = 1  # route_design's seed
+    # The maze's sole-landing penalty the run used (settings' -1, automatic, resolved for the design).
+    sole_landing_penalty: int | None = None
 
     @property
     def final(self) -> IterationReport:
@@ -377,4 +379,5 @@ def route_design(
         policy_calls=callback.calls if callback is not None else 0,
         schedule_policy=schedule_policy.name if schedule_policy is not None else "rule",
         seed=seed,
+        sole_landing_penalty=int(out["sole_landing_penalty"]),
     )
