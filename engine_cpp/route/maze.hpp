@@ -50,7 +50,7 @@ struct MazeCosts {
   int64_t landingPenalty = 0;
   // Entering the landing above the one access point of another unrouted net's pin that offers a
   // via up (kSoleLanding): a wire there leaves that pin no way up but a short or a metal-1 detour.
-  // kAutoSoleLanding (the default): kSoleLandingPenalty where at least kSoleLandingShare of the
+  // -1 (the default, automatic): kSoleLandingPenalty where at least kSoleLandingShare of the
   // design's net pins have one via point, else 0 (soleLandingCosts).
   int64_t soleLandingPenalty = -1;
   int64_t crossingPull = 2;        // per DBU a free crossing lies off the range of the pins beyond it
@@ -64,10 +64,9 @@ struct MazeCosts {
 // such a landing leaves the pin a short, and the penalty pays: at 8,000 (2 threads, 2026-11-29)
 // OpenROAD's aes on Nangate45 went from 0.71 first-pass violations a net to 0.43, 897 s to 547 s,
 // and from 1 violation left after 16 iterations to 0 after 7. Where fewer do (every ISPD design
-// here: 24-46%; asap7 4-7%; sky130 4-43%) it stays 0: charged there, aes on asap7 ended at 2
+// here: 18-46%; asap7 4-7%; sky130 4-43%) it stays 0: charged there, aes on asap7 ended at 2
 // CornerSpacing markers after 16 iterations (0 after 15 without) and ispd19_test3 at 1 CutSpacing
 // marker (0 after 10), and ispd18_test1's contest score went up 0.03% (loop/README.md).
-inline constexpr int64_t kAutoSoleLanding = -1;
 inline constexpr int64_t kSoleLandingPenalty = 8000;
 inline constexpr double kSoleLandingShare = 0.5;
 
