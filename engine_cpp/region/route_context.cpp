@@ -14,7 +14,7 @@ void netRoutingShapes(const Tech& tech, const Design& design, const NetRouting& 
 
 MazeCosts designCosts(const MazeCosts& costs, const RouteContext& ctx) {
   return soleLandingCosts(pitchCosts(guideCosts(costs, ctx.design.guidesBuiltIn), scorerPitch(ctx.tech)),
-                          soleViaShare(ctx.access));
+                          ctx.soleShare);
 }
 
 RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPointsPerPin) : tech(t), design(d) {
@@ -25,6 +25,7 @@ RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPoin
   pas.threads = std::max(1, threads);
   pas.maxPointsPerPin = std::max(1, accessPointsPerPin);
   access = computePinAccess(tech, design, tracks, pas);
+  soleShare = soleViaShare(access);
   gcells = makeGCellGrid(design, tracks);
 
   pinNet.assign(design.pinRefs.size(), -1);

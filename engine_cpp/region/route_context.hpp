@@ -43,6 +43,7 @@ struct RouteContext {
   ViaSet vias;
   FootprintRules rules;
   PinAccessTable access;
+  double soleShare = 0;              // soleViaShare(access): read by designCosts
   GCellGrid gcells;
   std::vector<int32_t> pinNet;      // per pinRef: its net id
   std::vector<DrcShape> fixedShapes;  // pins, OBS, special nets (DRC net ids: regular nets keep their id)
@@ -70,7 +71,7 @@ struct RouteContext {
 };
 
 // The maze's costs for a run on this design: guideCosts, pitchCosts at the scorer's pitch
-// (verify/scoring.hpp scorerPitch), and soleLandingCosts at the share of the pins with one via point.
+// (verify/scoring.hpp scorerPitch), and soleLandingCosts at soleShare.
 MazeCosts designCosts(const MazeCosts& costs, const RouteContext& ctx);
 
 }  // namespace xroute
