@@ -83,6 +83,22 @@ class RegionGrid {
   // The next existing node from n against layer's preferred direction
   // (dir = +1 / -1), or -1. Wrong-way edges go there.
   int32_t wrongWayNeighbour(int32_t n, int dir) const;
+  // The same from the node at (x, y, z), which move to the neighbour's.
+  int32_t wrongWayNeighbour(int& x, int& y, int z, int dir) const {
+    const int n = nx();
+    if (horizontal(z)) {
+      for (y += dir; y >= 0 && y < ny(); y += dir) {
+        const int32_t m = index(x, y, z);
+        if (flags[m]) return m;
+      }
+    } else {
+      const int32_t row = (z * ny() + y) * n;
+      for (x += dir; x >= 0 && x < n; x += dir) {
+        if (flags[row + x]) return row + x;
+      }
+    }
+    return -1;
+  }
 
   // Per node (size nx*ny*nz; kGridBytesPerNode in all):
   NodeArray<uint8_t> flags;          // NodeFlag bits; 0 = the node does not exist

@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
-#include <queue>
-#include <tuple>
+#include <type_traits>
 #include <utility>
 
 namespace xroute {
@@ -23,8 +22,77 @@ static_assert(bytesPerNode<decltype(MazeWorkspace::cost), decltype(MazeWorkspace
 // equal-cost paths a net gets changes the nets after it: with the heuristic's layer term, the node
 // index alone (lower layers first) measured 0.75% worse on ispd18_test1 (contest score 294,050
 // against 291,944) and the higher cost so far first 0.5% worse (293,405).
-using OpenEntry = std::tuple<int64_t, int64_t, int32_t>;
-using OpenList = std::priority_queue<OpenEntry, std::vector<OpenEntry>, std::greater<>>;
+// The open list: a 4-ary heap over the workspace's storage (kept between rounds and nets). It pops
+// the least entry as a binary heap would, with half the levels to sift through and no allocation
+// per round. Packed, an entry is 16 bytes: the estimate, then the heuristic's complement (a lower
+// cost so far is a higher heuristic at the same estimate), then the node, compared as one 128-bit
+// number; that needs the heuristic to fit in 32 bits (Search::run checks the region's bound), else
+// the entries are MazeOpenEntry.
+template <bool kPacked>
+class OpenList {
+ public:
+  using Entry = std::conditional_t<kPacked, MazeOpenKey, MazeOpenEntry>;
+  explicit OpenList(std::vector<Entry>& heap) : h_(heap) { h_.clear(); }
+  bool empty() const { return h_.empty(); }
+  // estimate - cost (the heuristic) is at least 0, and below 2^32 when packed.
+  void push(int64_t estimate, int64_t cost, int32_t node) {
+    Entry e;
+    if constexpr (kPacked) {
+      const uint64_t high = uint64_t(estimate) ^ (uint64_t(1) << 63);  // signed order as unsigned
+      const uint64_t low = (uint64_t(0xFFFFFFFFu - uint32_t(estimate - cost)) << 32) | uint32_t(node);
+      e = (MazeOpenKey(high) << 64) | low;
+    } else {
+      e = MazeOpenEntry{estimate, cost, node};
+    }
+    size_t i = h_.size();
+    h_.push_back(e);
+    while (i > 0) {
+      const size_t p = (i - 1) / 4;
+      if (!less(e, h_[p])) break;
+      h_[i] = h_[p];
+      i = p;
+    }
+    h_[i] = e;
+  }
+  // Removes the least entry and returns its node.
+  int32_t pop() {
+    const int32_t top = nodeOf(h_[0]);
+    const Entry last = h_.back();
+    h_.pop_back();
+    const size_t n = h_.size();
+    if (n == 0) return top;
+    size_t i = 0;
+    while (true) {
+      const size_t c = 4 * i + 1;
+      if (c >= n) break;
+      size_t best = c;
+      const size_t end = std::min(c + 4, n);
+      for (size_t k = c + 1; k < end; ++k)
+        if (less(h_[k], h_[best])) best = k;
+      if (!less(h_[best], last)) break;
+      h_[i] = h_[best];
+      i = best;
+    }
+    h_[i] = last;
+    return top;
+  }
+
+ private:
+  static int32_t nodeOf(const Entry& e) {
+    if constexpr (kPacked) return static_cast<int32_t>(static_cast<uint32_t>(e));
+    else return e.node;
+  }
+  static bool less(const Entry& a, const Entry& b) {
+    if constexpr (kPacked) {
+      return a < b;
+    } else {
+      if (a.estimate != b.estimate) return a.estimate < b.estimate;
+      if (a.cost != b.cost) return a.cost < b.cost;
+      return a.node < b.node;
+    }
+  }
+  std::vector<Entry>& h_;
+};
 
 // A terminal node of the net being routed: its terminal and the cost of ending there.
 struct TerminalSlot {
@@ -39,7 +107,8 @@ class Search {
 
   int run(std::vector<std::vector<int32_t>>& paths);
 
-  // Every edge leaving u: fn(v, step cost, direction) with direction a MazeDirection.
+  // Every edge leaving u: fn(v, step cost, direction, v's point, v's layer) with direction a
+  // MazeDirection.
   template <class Fn>
   void forEachEdge(int32_t u, Fn&& fn) const;
 
@@ -73,8 +142,10 @@ class Search {
     if (own(v) && !(g_.accessExits(v) & kBack[dir])) cost += c_.fixedPenalty;
     return cost;
   }
-  int64_t heuristic(int32_t v) const;
+  // At the node at point p on layer z.
+  int64_t heuristic(Point p, int z) const;
   // One round: from the tree to the nearest unreached terminal node, or -1.
+  template <bool kPacked>
   int32_t searchRound(const std::vector<int32_t>& sources, bool withExitCost);
   // Joined terminals (one conductor: a pin, the end of kept routing) with a node
   // on the tree are reached and bring all their nodes along, whether a path hit
@@ -90,7 +161,8 @@ class Search {
     }
     return false;
   }
-  void relax(int32_t u, int32_t v, int64_t step, OpenList& open);
+  template <class Open>
+  void relax(int32_t u, int32_t v, int64_t step, Point q, int z, Open& open);
 
   const RegionGrid& g_;
   const MazeCosts& c_;
@@ -117,46 +189,51 @@ class Search {
 template <class Fn>
 void Search::forEachEdge(int32_t u, Fn&& fn) const {
   const int nx = g_.nx(), ny = g_.ny(), nz = g_.nz();
-  const int x = g_.xOf(u), y = g_.yOf(u), z = g_.zOf(u);
-  const Point p = g_.point(u);
+  const int32_t plane = nx * ny;
+  const int z = u / plane;
+  const int y = (u - z * plane) / nx;
+  const int x = u - z * plane - y * nx;
+  const Point p{g_.xs()[x], g_.ys()[y]};
   const bool h = g_.horizontal(z);
   // Along the preferred direction (both ends on the track).
   if (g_.flags[u] & kOnTrack) {
     for (int d = -1; d <= 1; d += 2) {
       const int xx = h ? x + d : x, yy = h ? y : y + d;
       if (xx < 0 || xx >= nx || yy < 0 || yy >= ny) continue;
-      const int32_t v = g_.index(xx, yy, z);
+      const int32_t v = h ? u + d : u + d * nx;
       if (!(g_.flags[v] & kOnTrack)) continue;
-      const Point q = g_.point(v);
+      const Point q{g_.xs()[xx], g_.ys()[yy]};
       const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
       const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
       fn(v, wireGuideLength(len, u, v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir),
-         dir);
+         dir, q, z);
     }
   }
   // Against it, to the next existing node.
   for (int d = -1; d <= 1; d += 2) {
-    const int32_t v = g_.wrongWayNeighbour(u, d);
+    int xx = x, yy = y;
+    const int32_t v = g_.wrongWayNeighbour(xx, yy, z, d);
     if (v < 0) continue;
-    const Point q = g_.point(v);
+    const Point q{g_.xs()[xx], g_.ys()[yy]};
     const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
     const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
     fn(v, wireGuideLength(len, u, v) * c_.wrongWayFactor * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
               exitCost(u, v, dir),
-       dir);
+       dir, q, z);
   }
   // Vias.
   for (int d = -1; d <= 1; d += 2) {
     const int zz = z + d;
     if (zz < 0 || zz >= nz) continue;
-    const int32_t v = g_.index(x, y, zz);
+    const int32_t v = u + d * plane;
     if (!g_.flags[v]) continue;
     const int32_t lower = d > 0 ? u : v;
     int64_t cut = 0;
     if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
       cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
     }
-    fn(v, c_.viaCost * viaGuideFactor(u, v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown);
+    fn(v, c_.viaCost * viaGuideFactor(u, v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown, p,
+       zz);
   }
 }
 
@@ -214,9 +291,7 @@ int64_t Search::viaNodeCost(int32_t v) const {
 // its length in wire units, a via at least viaCost). It is consistent, so the search stays exact; the layer term
 // cuts the nodes expanded (2 threads, paired runs, median wall: ispd18_test1 0.89x of 17.1 s,
 // ispd19_test1 0.91x of 121.7 s).
-int64_t Search::heuristic(int32_t v) const {
-  const Point p = g_.point(v);
-  const int z = g_.zOf(v);
+int64_t Search::heuristic(Point p, int z) const {
   int64_t best = kInf;
   for (size_t t = 0; t < termBox_.size(); ++t) {
     if (reached_[t]) continue;
@@ -230,7 +305,8 @@ int64_t Search::heuristic(int32_t v) const {
   return best == kInf ? 0 : best;
 }
 
-void Search::relax(int32_t u, int32_t v, int64_t step, OpenList& open) {
+template <class Open>
+void Search::relax(int32_t u, int32_t v, int64_t step, Point q, int z, Open& open) {
   if (closed(v)) return;
   int64_t nc = ws_.cost[u] + step;
   const int32_t k = ws_.terminalSlot[v];
@@ -239,31 +315,34 @@ void Search::relax(int32_t u, int32_t v, int64_t step, OpenList& open) {
   ws_.visit[v] = ws_.stamp;
   ws_.cost[v] = nc;
   ws_.parent[v] = u;
-  open.push({nc + heuristic(v), nc, v});
+  open.push(nc + heuristic(q, z), nc, v);
 }
 
+template <bool kPacked>
 int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCost) {
   if (ws_.stamp >= std::numeric_limits<uint32_t>::max() - 2) {  // stamps used up: start again
     std::fill(ws_.visit.begin(), ws_.visit.end(), 0);
     ws_.stamp = 0;
   }
   ws_.stamp += 2;
-  OpenList open;
+  OpenList<kPacked> open([this]() -> auto& {
+    if constexpr (kPacked) return ws_.packedOpen;
+    else return ws_.open;
+  }());
   for (int32_t s : sources) {
     ws_.visit[s] = ws_.stamp;
     ws_.cost[s] = withExitCost ? exitCostAt(s) : 0;
     ws_.parent[s] = -1;
-    open.push({ws_.cost[s] + heuristic(s), ws_.cost[s], s});
+    open.push(ws_.cost[s] + heuristic(g_.point(s), g_.zOf(s)), ws_.cost[s], s);
   }
   while (!open.empty()) {
-    const int32_t u = std::get<2>(open.top());
-    open.pop();
+    const int32_t u = open.pop();
     if (closed(u)) continue;
     ws_.visit[u] = ws_.stamp + 1;
     const int32_t t = terminalOf(u);
     if (t >= 0 && !reached_[t]) return u;
 
-    forEachEdge(u, [&](int32_t v, int64_t step, int) { relax(u, v, step, open); });
+    forEachEdge(u, [&](int32_t v, int64_t step, int, Point q, int z) { relax(u, v, step, q, z, open); });
   }
   return -1;
 }
@@ -331,6 +410,11 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
     }
     if (net_.terminals[t].nodes.empty()) reached_[t] = 1;  // nothing to reach
   }
+  // The heuristic's largest value in this region: the box's half perimeter and a via a layer.
+  const Rect& box = g_.box();
+  const double bound = (double(box.xhi) - box.xlo + double(box.yhi) - box.ylo) * double(c_.wireUnit) +
+                       double(g_.nz()) * double(c_.viaCost);
+  const bool packed = c_.wireUnit >= 0 && c_.viaCost >= 0 && bound < double(0xFFFFFFFFu);
   ++ws_.treeStamp;
   std::vector<int32_t> tree;
   // The first terminal with nodes starts the tree.
@@ -347,7 +431,8 @@ int Search::run(std::vector<std::vector<int32_t>>& paths) {
     }
     bool firstRound = true;
     while (std::find(reached_.begin(), reached_.end(), 0) != reached_.end()) {
-      const int32_t hit = searchRound(tree, firstRound && alternatives);
+      const bool withExit = firstRound && alternatives;
+      const int32_t hit = packed ? searchRound<true>(tree, withExit) : searchRound<false>(tree, withExit);
       if (hit < 0) break;
       std::vector<int32_t> path;
       for (int32_t v = hit; v >= 0; v = ws_.parent[v]) path.push_back(v);
@@ -379,7 +464,7 @@ void mazeMoves(const RegionGrid& grid, const MazeCosts& costs, const MazeNet& ne
                std::array<MazeMove, kMoveCount>& out) {
   MazeWorkspace unused;
   out.fill(MazeMove{});
-  Search(grid, costs, net, unused).forEachEdge(node, [&](int32_t v, int64_t step, int dir) {
+  Search(grid, costs, net, unused).forEachEdge(node, [&](int32_t v, int64_t step, int dir, Point, int) {
     out[dir] = MazeMove{v, step};
   });
 }

@@ -123,7 +123,21 @@ struct MazeNet {
 };
 
 // Reusable search buffers (one per thread), per node of the region's grid.
+// An entry of the search's open list: least estimate first, then least cost so far, then node.
+struct MazeOpenEntry {
+  int64_t estimate;  // cost so far plus the heuristic
+  int64_t cost;
+  int32_t node;
+};
+
+// The same order packed into one number (route/maze.cpp's OpenList).
+using MazeOpenKey = unsigned __int128;
+
 struct MazeWorkspace {
+  // The open list's storage, reused by every search round: packed, or not where the heuristic can
+  // exceed 32 bits.
+  std::vector<MazeOpenKey> packedOpen;
+  std::vector<MazeOpenEntry> open;
   NodeArray<int64_t> cost;
   NodeArray<int32_t> parent;
   // Search round r (stamps 2r, 2r + 1): 2r = cost / parent valid, 2r + 1 = expanded too.
