@@ -125,21 +125,22 @@ class RegionGrid {
   // At a landing right above an access point: the net whose via it is kept for (kOwnerMixed when
   // several), else kOwnerNone.
   int32_t reservedNet(int32_t n) const { return sparse(n).reserved; }
-  void setAccess(int32_t n, int32_t net, int32_t pin);  // pin < 0 keeps the pin there
-  void addAccessExits(int32_t n, uint8_t exits);
-  void reserveLanding(int32_t n, int32_t net);
-
- private:
+  // The fields above at once: net, pin, reserved and exits (the defaults where none is set).
   struct Sparse {
     int32_t net = -1;
     int32_t pin = -1;
     int32_t reserved = kOwnerNone;
     uint8_t exits = kAnyExit;
   };
-  static constexpr uint8_t kSparseFlags = kAccess | kTerminal | kLanding;
-  static const Sparse kNoSparse;
   // The search asks at every step: the flag test stays inline, the lookup runs at flagged nodes only.
   const Sparse& sparse(int32_t n) const { return (flags[n] & kSparseFlags) ? lookup(n) : kNoSparse; }
+  void setAccess(int32_t n, int32_t net, int32_t pin);  // pin < 0 keeps the pin there
+  void addAccessExits(int32_t n, uint8_t exits);
+  void reserveLanding(int32_t n, int32_t net);
+
+ private:
+  static constexpr uint8_t kSparseFlags = kAccess | kTerminal | kLanding;
+  static const Sparse kNoSparse;
   const Sparse& lookup(int32_t n) const;
 
   Rect box_;                   // DBU

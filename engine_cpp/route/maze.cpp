@@ -100,6 +100,8 @@ struct TerminalSlot {
   int64_t exitCost;
 };
 
+using Sparse = RegionGrid::Sparse;
+
 class Search {
  public:
   Search(const RegionGrid& g, const MazeCosts& c, const MazeNet& net, MazeWorkspace& ws)
@@ -113,8 +115,9 @@ class Search {
   void forEachEdge(int32_t u, Fn&& fn) const;
 
  private:
-  int64_t wireNodeCost(int32_t v) const;
-  int64_t viaNodeCost(int32_t v) const;
+  // sv: v's sparse fields.
+  int64_t wireNodeCost(int32_t v, const Sparse& sv) const;
+  int64_t viaNodeCost(int32_t v, const Sparse& sv) const;
   // Entering v, a landing reserved for another net's access via: the sole-landing penalty where it
   // is its pin's only via point (kSoleLanding) and larger, else the landing penalty.
   int64_t landingCost(int32_t v) const {
@@ -130,16 +133,16 @@ class Search {
     return len * (guideFactor(u) + guideFactor(v)) / 2;
   }
   int64_t viaGuideFactor(int32_t u, int32_t v) const { return std::max(guideFactor(u), guideFactor(v)); }
-  bool own(int32_t v) const { return g_.accessNet(v) == net_.net; }
   // A planar step u -> v in direction `dir` leaves u that way and v the
   // opposite way: at the net's own access points, a way pin access did not
   // find legal (its stub that way adds a marker) costs like a fixed shape.
-  int64_t exitCost(int32_t u, int32_t v, int dir) const {
+  // su, sv: u's and v's sparse fields.
+  int64_t exitCost(const Sparse& su, const Sparse& sv, int dir) const {
     static constexpr uint8_t kOut[kMoveCount] = {0, 0, 8, 16, 2, 4};   // AccessDir bit leaving that way
     static constexpr uint8_t kBack[kMoveCount] = {0, 0, 16, 8, 4, 2};  // ... and arriving from it
     int64_t cost = 0;
-    if (own(u) && !(g_.accessExits(u) & kOut[dir])) cost += c_.fixedPenalty;
-    if (own(v) && !(g_.accessExits(v) & kBack[dir])) cost += c_.fixedPenalty;
+    if (su.net == net_.net && !(su.exits & kOut[dir])) cost += c_.fixedPenalty;
+    if (sv.net == net_.net && !(sv.exits & kBack[dir])) cost += c_.fixedPenalty;
     return cost;
   }
   // At the node at point p on layer z.
@@ -184,6 +187,11 @@ class Search {
   std::vector<TerminalSlot> slots_;  // per node of a terminal (terminalSlot): the first terminal naming it
   std::vector<Rect> termBox_;        // per terminal, DBU
   std::vector<std::pair<int, int>> termLayers_;  // per terminal, its nodes' lowest and highest layer
+  struct LiveTerminal {
+    Rect box;
+    int zlo, zhi;
+  };
+  std::vector<LiveTerminal> live_;  // the round's unreached terminals with nodes: box and layers
 };
 
 template <class Fn>
@@ -195,6 +203,7 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
   const int x = u - z * plane - y * nx;
   const Point p{g_.xs()[x], g_.ys()[y]};
   const bool h = g_.horizontal(z);
+  const Sparse& su = g_.sparse(u);
   // Along the preferred direction (both ends on the track).
   if (g_.flags[u] & kOnTrack) {
     for (int d = -1; d <= 1; d += 2) {
@@ -205,7 +214,8 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
       const Point q{g_.xs()[xx], g_.ys()[yy]};
       const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
       const int dir = h ? (d > 0 ? kMoveEast : kMoveWest) : (d > 0 ? kMoveNorth : kMoveSouth);
-      fn(v, wireGuideLength(len, u, v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) + exitCost(u, v, dir),
+      const Sparse& sv = g_.sparse(v);
+      fn(v, wireGuideLength(len, u, v) * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v, sv) + exitCost(su, sv, dir),
          dir, q, z);
     }
   }
@@ -217,8 +227,9 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     const Point q{g_.xs()[xx], g_.ys()[yy]};
     const int64_t len = (std::abs(int64_t(q.x) - p.x) + std::abs(int64_t(q.y) - p.y)) * c_.wireUnit;
     const int dir = h ? (d > 0 ? kMoveNorth : kMoveSouth) : (d > 0 ? kMoveEast : kMoveWest);
-    fn(v, wireGuideLength(len, u, v) * c_.wrongWayFactor * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v) +
-              exitCost(u, v, dir),
+    const Sparse& sv = g_.sparse(v);
+    fn(v, wireGuideLength(len, u, v) * c_.wrongWayFactor * (z == 0 ? c_.bottomLayerFactor : 1) + wireNodeCost(v, sv) +
+              exitCost(su, sv, dir),
        dir, q, z);
   }
   // Vias.
@@ -227,27 +238,29 @@ void Search::forEachEdge(int32_t u, Fn&& fn) const {
     if (zz < 0 || zz >= nz) continue;
     const int32_t v = u + d * plane;
     if (!g_.flags[v]) continue;
+    const Sparse& sv = g_.sparse(v);
     const int32_t lower = d > 0 ? u : v;
+    const Sparse& sl = d > 0 ? su : sv;
     int64_t cut = 0;
-    if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && !own(lower)) {
+    if (g_.cutUse[lower] && g_.cutUseOwner[lower] != net_.net && sl.net != net_.net) {
       cut = int64_t(g_.cutUse[lower]) * c_.usePenalty;
     }
-    fn(v, c_.viaCost * viaGuideFactor(u, v) + viaNodeCost(u) + viaNodeCost(v) + cut, d > 0 ? kMoveUp : kMoveDown, p,
-       zz);
+    fn(v, c_.viaCost * viaGuideFactor(u, v) + viaNodeCost(u, su) + viaNodeCost(v, sv) + cut, d > 0 ? kMoveUp : kMoveDown,
+       p, zz);
   }
 }
 
-int64_t Search::wireNodeCost(int32_t v) const {
+int64_t Search::wireNodeCost(int32_t v, const Sparse& sv) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (net_.ruleWire) cost += (*net_.ruleWire)[v];
-  if (own(v)) {
+  if (sv.net == net_.net) {
     // The net's own access point: pin access checked it against fixed
     // shapes only; other nets' routing (their access vias) still counts.
     if (g_.wireUse[v] && g_.wireUseOwner[v] != net_.net) cost += int64_t(g_.wireUse[v]) * c_.usePenalty;
     return cost;
   }
-  if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
-  const int32_t reserved = g_.reservedNet(v);
+  if (sv.net >= 0) cost += c_.reservePenalty;
+  const int32_t reserved = sv.reserved;
   if (reserved >= 0 && reserved != net_.net && !(g_.flags[v] & kReleased)) cost += landingCost(v);
   // The landing of the net's own access via: pin access checked the via's metal there exactly; a
   // wire reaching it ends on that metal, and the nodes it passed paid their own footprint. The
@@ -260,14 +273,14 @@ int64_t Search::wireNodeCost(int32_t v) const {
   return cost;
 }
 
-int64_t Search::viaNodeCost(int32_t v) const {
+int64_t Search::viaNodeCost(int32_t v, const Sparse& sv) const {
   int64_t cost = int64_t(g_.markerCost[v]) * c_.markerUnit;
   if (net_.ruleVia) cost += (*net_.ruleVia)[v];
   if (net_.accessVia && (g_.flags[v] & kAccessVia)) {
     for (const auto& [node, extra] : *net_.accessVia)
       if (node == v) cost += extra;
   }
-  if (own(v)) {
+  if (sv.net == net_.net) {
     if (g_.viaUse[v] && g_.viaUseOwner[v] != net_.net) cost += int64_t(g_.viaUse[v]) * c_.usePenalty;
     // Pin access checked the via only where it offers one (kAccessVia); a
     // via at a point it left planar-only meets the footprint like any via.
@@ -275,8 +288,8 @@ int64_t Search::viaNodeCost(int32_t v) const {
     if (!(g_.flags[v] & kAccessVia) && fo != kOwnerNone && fo != net_.net) cost += c_.fixedPenalty;
     return cost;
   }
-  if (g_.accessNet(v) >= 0) cost += c_.reservePenalty;
-  const int32_t reserved = g_.reservedNet(v);
+  if (sv.net >= 0) cost += c_.reservePenalty;
+  const int32_t reserved = sv.reserved;
   if (reserved >= 0 && reserved != net_.net) cost += landingCost(v);
   // Above the net's own access point, pin access has checked the via
   // exactly; the footprint's bloated estimate would only forbid it.
@@ -293,13 +306,11 @@ int64_t Search::viaNodeCost(int32_t v) const {
 // ispd19_test1 0.91x of 121.7 s).
 int64_t Search::heuristic(Point p, int z) const {
   int64_t best = kInf;
-  for (size_t t = 0; t < termBox_.size(); ++t) {
-    if (reached_[t]) continue;
-    const Rect& b = termBox_[t];
+  for (const LiveTerminal& t : live_) {
+    const Rect& b = t.box;
     const int64_t dx = p.x < b.xlo ? b.xlo - p.x : (p.x > b.xhi ? p.x - b.xhi : 0);
     const int64_t dy = p.y < b.ylo ? b.ylo - p.y : (p.y > b.yhi ? p.y - b.yhi : 0);
-    const auto [zlo, zhi] = termLayers_[t];
-    const int64_t dz = z < zlo ? zlo - z : (z > zhi ? z - zhi : 0);
+    const int64_t dz = z < t.zlo ? t.zlo - z : (z > t.zhi ? z - t.zhi : 0);
     best = std::min(best, (dx + dy) * c_.wireUnit + dz * c_.viaCost);
   }
   return best == kInf ? 0 : best;
@@ -325,6 +336,9 @@ int32_t Search::searchRound(const std::vector<int32_t>& sources, bool withExitCo
     ws_.stamp = 0;
   }
   ws_.stamp += 2;
+  live_.clear();
+  for (size_t t = 0; t < termBox_.size(); ++t)
+    if (!reached_[t]) live_.push_back({termBox_[t], termLayers_[t].first, termLayers_[t].second});
   OpenList<kPacked> open([this]() -> auto& {
     if constexpr (kPacked) return ws_.packedOpen;
     else return ws_.open;
