@@ -1,6 +1,7 @@
 #include "route/maze.hpp"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <limits>
 #include <type_traits>
@@ -22,44 +23,47 @@ static_assert(bytesPerNode<decltype(MazeWorkspace::cost), decltype(MazeWorkspace
 // equal-cost paths a net gets changes the nets after it: with the heuristic's layer term, the node
 // index alone (lower layers first) measured 0.75% worse on ispd18_test1 (contest score 294,050
 // against 291,944) and the higher cost so far first 0.5% worse (293,405).
-// The open list: a 4-ary heap over the workspace's storage (kept between rounds and nets). It pops
-// the least entry as a binary heap would, with half the levels to sift through and no allocation
-// per round. Packed, an entry is 16 bytes: the estimate, then the heuristic's complement (a lower
-// cost so far is a higher heuristic at the same estimate), then the node, compared as one 128-bit
-// number; that needs the heuristic to fit in 32 bits (Search::run checks the region's bound), else
-// the entries are MazeOpenEntry.
+//
+// A radix heap on the estimate over the workspace's storage (MazeOpenStorage, kept between rounds
+// and nets): `least_` is a 4-ary heap, in the whole order, of the entries whose estimate is at most
+// `last_` (the least estimate seen when it was last refilled); bucket b holds those above it whose
+// highest bit that differs from `last_` is bit b. When `least_` runs dry, the lowest bucket's least
+// estimate becomes `last_` and its entries move down (those at `last_` into the heap). Entries above
+// `last_` are never less than any in the heap, so it pops the least entry of all, as one heap
+// would; with a consistent heuristic the estimates popped never fall, so each entry moves down a
+// few buckets at most instead of sifting through a heap of every open node. An estimate below
+// `last_` (costs that make the heuristic inconsistent) joins the heap and still pops in order.
+// Packed, an entry is 16 bytes: the estimate, then the heuristic's complement (a lower cost so far
+// is a higher heuristic at the same estimate), then the node, compared as one 128-bit number; that
+// needs the heuristic to fit in 32 bits (Search::run checks the region's bound), else the entries
+// are MazeOpenEntry.
 template <bool kPacked>
 class OpenList {
  public:
   using Entry = std::conditional_t<kPacked, MazeOpenKey, MazeOpenEntry>;
-  explicit OpenList(std::vector<Entry>& heap) : h_(heap) { h_.clear(); }
-  bool empty() const { return h_.empty(); }
+  explicit OpenList(MazeOpenStorage<Entry>& storage) : least_(storage.least), buckets_(storage.buckets) {
+    least_.clear();
+    for (std::vector<Entry>& b : buckets_) b.clear();
+  }
+  bool empty() const { return least_.empty() && mask_ == 0; }
   // estimate - cost (the heuristic) is at least 0, and below 2^32 when packed.
   void push(int64_t estimate, int64_t cost, int32_t node) {
     Entry e;
     if constexpr (kPacked) {
-      const uint64_t high = uint64_t(estimate) ^ (uint64_t(1) << 63);  // signed order as unsigned
       const uint64_t low = (uint64_t(0xFFFFFFFFu - uint32_t(estimate - cost)) << 32) | uint32_t(node);
-      e = (MazeOpenKey(high) << 64) | low;
+      e = (MazeOpenKey(biased(estimate)) << 64) | low;
     } else {
       e = MazeOpenEntry{estimate, cost, node};
     }
-    size_t i = h_.size();
-    h_.push_back(e);
-    while (i > 0) {
-      const size_t p = (i - 1) / 4;
-      if (!less(e, h_[p])) break;
-      h_[i] = h_[p];
-      i = p;
-    }
-    h_[i] = e;
+    place(e);
   }
-  // Removes the least entry and returns its node.
+  // Removes the least entry and returns its node (the list is not empty).
   int32_t pop() {
-    const int32_t top = nodeOf(h_[0]);
-    const Entry last = h_.back();
-    h_.pop_back();
-    const size_t n = h_.size();
+    if (least_.empty()) refill();
+    const int32_t top = nodeOf(least_[0]);
+    const Entry last = least_.back();
+    least_.pop_back();
+    const size_t n = least_.size();
     if (n == 0) return top;
     size_t i = 0;
     while (true) {
@@ -68,16 +72,21 @@ class OpenList {
       size_t best = c;
       const size_t end = std::min(c + 4, n);
       for (size_t k = c + 1; k < end; ++k)
-        if (less(h_[k], h_[best])) best = k;
-      if (!less(h_[best], last)) break;
-      h_[i] = h_[best];
+        if (less(least_[k], least_[best])) best = k;
+      if (!less(least_[best], last)) break;
+      least_[i] = least_[best];
       i = best;
     }
-    h_[i] = last;
+    least_[i] = last;
     return top;
   }
 
  private:
+  static uint64_t biased(int64_t estimate) { return uint64_t(estimate) ^ (uint64_t(1) << 63); }  // order kept
+  static uint64_t keyOf(const Entry& e) {
+    if constexpr (kPacked) return static_cast<uint64_t>(e >> 64);
+    else return biased(e.estimate);
+  }
   static int32_t nodeOf(const Entry& e) {
     if constexpr (kPacked) return static_cast<int32_t>(static_cast<uint32_t>(e));
     else return e.node;
@@ -91,7 +100,43 @@ class OpenList {
       return a.node < b.node;
     }
   }
-  std::vector<Entry>& h_;
+  void place(const Entry& e) {
+    const uint64_t k = keyOf(e);
+    if (k <= last_) {
+      heapPush(e);
+      return;
+    }
+    const int b = 63 - __builtin_clzll(k ^ last_);
+    buckets_[b].push_back(e);
+    mask_ |= uint64_t(1) << b;
+  }
+  void heapPush(const Entry& e) {
+    size_t i = least_.size();
+    least_.push_back(e);
+    while (i > 0) {
+      const size_t p = (i - 1) / 4;
+      if (!less(e, least_[p])) break;
+      least_[i] = least_[p];
+      i = p;
+    }
+    least_[i] = e;
+  }
+  void refill() {
+    const int b = __builtin_ctzll(mask_);
+    std::vector<Entry>& from = buckets_[b];
+    mask_ &= ~(uint64_t(1) << b);
+    uint64_t m = keyOf(from[0]);
+    for (const Entry& e : from) m = std::min(m, keyOf(e));
+    last_ = m;
+    // Every entry lands in a lower bucket than b, or in the heap: `from` is not written meanwhile.
+    for (const Entry& e : from) place(e);
+    from.clear();
+  }
+
+  std::vector<Entry>& least_;
+  std::array<std::vector<Entry>, 64>& buckets_;
+  uint64_t mask_ = 0;  // bit b: buckets_[b] holds entries
+  uint64_t last_ = 0;
 };
 
 // A terminal node of the net being routed: its terminal and the cost of ending there.

@@ -133,11 +133,18 @@ struct MazeOpenEntry {
 // The same order packed into one number (route/maze.cpp's OpenList).
 using MazeOpenKey = unsigned __int128;
 
+// The open list's storage (route/maze.cpp's OpenList): a heap of the least entries and 64 buckets.
+template <class Entry>
+struct MazeOpenStorage {
+  std::vector<Entry> least;
+  std::array<std::vector<Entry>, 64> buckets;
+};
+
 struct MazeWorkspace {
   // The open list's storage, reused by every search round: packed, or not where the heuristic can
   // exceed 32 bits.
-  std::vector<MazeOpenKey> packedOpen;
-  std::vector<MazeOpenEntry> open;
+  MazeOpenStorage<MazeOpenKey> packedOpen;
+  MazeOpenStorage<MazeOpenEntry> open;
   NodeArray<int64_t> cost;
   NodeArray<int32_t> parent;
   // Search round r (stamps 2r, 2r + 1): 2r = cost / parent valid, 2r + 1 = expanded too.
