@@ -22,6 +22,18 @@ inline constexpr size_t kMappedBlockBytes = size_t(1) << 20;  // bytes: a block 
 void* mapBlock(size_t bytes);              // throws std::bad_alloc when the kernel refuses
 void unmapBlock(void* p, size_t bytes) noexcept;
 
+// While one of these lives, a freed block is kept (128 MiB of them at most) and handed to the next
+// request, cut or grown to its size, instead of going back to the kernel: the regions of a batch
+// reuse each other's pages instead of faulting fresh ones in and having the kernel clear them. The
+// last one to go gives every kept block back.
+class BlockReuse {
+ public:
+  BlockReuse();
+  ~BlockReuse();
+  BlockReuse(const BlockReuse&) = delete;
+  BlockReuse& operator=(const BlockReuse&) = delete;
+};
+
 template <class T>
 struct NodeAllocator {
   using value_type = T;

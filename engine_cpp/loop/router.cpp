@@ -12,6 +12,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "grid/node_array.hpp"
 #include "loop/crossings.hpp"
 #include "loop/dangling.hpp"
 #include "loop/incremental_check.hpp"
@@ -348,6 +349,7 @@ class Flow {
   }
 
   std::vector<RegionResult> runBatch(const std::vector<RegionTask>& tasks, const CrossingPlan* plan) {
+    const BlockReuse reuse;  // the regions' arrays reuse each other's pages; all handed back at the end
     std::vector<RegionResult> results(tasks.size());
     const int workers = std::max(1, std::min<int>(s_.threads, static_cast<int>(tasks.size())));
     std::atomic<size_t> next{0};
