@@ -352,14 +352,25 @@ class Flow {
     const BlockReuse reuse;  // the regions' arrays reuse each other's pages; all handed back at the end
     std::vector<RegionResult> results(tasks.size());
     const int workers = std::max(1, std::min<int>(s_.threads, static_cast<int>(tasks.size())));
+    // The threads take the regions with the most terminals first, so that a big region does not
+    // start last and keep one thread busy alone at the batch's end. The results do not depend on
+    // the order: a colour's regions never touch, and they are committed in region order.
+    std::vector<size_t> order(tasks.size());
+    std::vector<size_t> weight(tasks.size(), 0);
+    for (size_t i = 0; i < tasks.size(); ++i) {
+      order[i] = i;
+      for (const RegionNetTask& nt : tasks[i].nets) weight[i] += 1 + nt.pins.size() + nt.crossings.size();
+    }
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return weight[a] > weight[b]; });
     std::atomic<size_t> next{0};
     std::exception_ptr error;
     std::mutex errorMutex;
     auto work = [&]() {
       MazeWorkspace ws;
       while (true) {
-        const size_t i = next.fetch_add(1);
-        if (i >= tasks.size()) return;
+        const size_t k = next.fetch_add(1);
+        if (k >= tasks.size()) return;
+        const size_t i = order[k];
         try {
           results[i] = routeRegion(ctx_, tasks[i], plan, search_ ? *search_ : policy_, ws);
         } catch (...) {
