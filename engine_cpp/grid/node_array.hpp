@@ -1,6 +1,7 @@
 // Per-node arrays of a region grid and of the maze's search (NodeArray<T>):
 // std::vector with an allocator that maps a block of 1 MiB or more straight
-// from the kernel and gives it back when freed.
+// from the kernel and gives it back when freed (inside a BlockReuse scope:
+// when the scope ends).
 //
 // Why: a region's arrays are tens of MB and live for one region. Through
 // malloc, glibc raises its mmap threshold after the first such block is
