@@ -126,21 +126,4 @@ NodeType RegionGrid::nodeType(int32_t n) const {
   return NodeType::Normal;
 }
 
-int32_t RegionGrid::wrongWayNeighbour(int32_t n, int dir) const {
-  const int z = zOf(n);
-  int x = xOf(n), y = yOf(n);
-  if (horizontal(z)) {
-    for (y += dir; y >= 0 && y < ny(); y += dir) {
-      const int32_t m = index(x, y, z);
-      if (flags[m]) return m;
-    }
-  } else {
-    for (x += dir; x >= 0 && x < nx(); x += dir) {
-      const int32_t m = index(x, y, z);
-      if (flags[m]) return m;
-    }
-  }
-  return -1;
-}
-
 }  // namespace xroute

@@ -80,10 +80,8 @@ class RegionGrid {
   bool exists(int32_t n) const { return flags[n] != 0; }
   NodeType nodeType(int32_t n) const;
 
-  // The next existing node from n against layer's preferred direction
-  // (dir = +1 / -1), or -1. Wrong-way edges go there.
-  int32_t wrongWayNeighbour(int32_t n, int dir) const;
-  // The same from the node at (x, y, z), which move to the neighbour's.
+  // The next existing node from the node at (x, y, z) against layer z's preferred direction
+  // (dir = +1 / -1), or -1; x and y move to the neighbour's. Wrong-way edges go there.
   int32_t wrongWayNeighbour(int& x, int& y, int z, int dir) const {
     const int n = nx();
     if (horizontal(z)) {

@@ -122,7 +122,6 @@ struct MazeNet {
   const std::vector<std::pair<int32_t, int64_t>>* accessVia = nullptr;
 };
 
-// Reusable search buffers (one per thread), per node of the region's grid.
 // An entry of the search's open list: least estimate first, then least cost so far, then node.
 struct MazeOpenEntry {
   int64_t estimate;  // cost so far plus the heuristic
@@ -140,6 +139,7 @@ struct MazeOpenStorage {
   std::array<std::vector<Entry>, 64> buckets;
 };
 
+// Reusable search buffers (one per thread), per node of the region's grid.
 struct MazeWorkspace {
   // The open list's storage, reused by every search round: packed, or not where the heuristic can
   // exceed 32 bits.
