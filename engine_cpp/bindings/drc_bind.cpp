@@ -6,12 +6,14 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <tuple>
 
 #include "db/database.hpp"
 #include "bindings/marker_list.hpp"
+#include "drc/design_check.hpp"
 #include "drc/drc.hpp"
 
 namespace nb = nanobind;
@@ -85,20 +87,26 @@ void bindDrc(nb::module_& m) {
   nb::class_<Database> cls = nb::borrow<nb::class_<Database>>(nb::type<Database>());
   cls.def(
       "check_drc",
-      [](const Database& db, bool skip_fixed_pairs, std::optional<std::tuple<int, int, int, int>> window) {
+      [](const Database& db, bool skip_fixed_pairs, std::optional<std::tuple<int, int, int, int>> window,
+         int64_t band_shapes, int threads) {
+        if (band_shapes < 0) throw nb::value_error("band_shapes must be >= 0");
         std::vector<Marker> markers;
         {
           nb::gil_scoped_release release;
           DrcOptions options = makeOptions(skip_fixed_pairs, window);
           options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);  // the nets' NONDEFAULTRULE spacing
-          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design), std::move(options));
+          options.bandShapes = band_shapes;
+          options.threads = std::max(1, threads);
+          markers = checkDesign(db.tech, db.design, options);
         }
         return markerList(db.tech, markers);
       },
-      "skip_fixed_pairs"_a = true, "window"_a = nb::none(),
+      "skip_fixed_pairs"_a = true, "window"_a = nb::none(), "band_shapes"_a = kCheckBandShapes, "threads"_a = 1,
       "Design-rule check of the whole design (pins, OBS, blockages, special and regular routing).\n"
       "Net ids in the markers: regular nets 0..nets-1, special nets next, then pins on no net;\n"
-      "-1 = obstruction. Same marker dicts as check_shapes.");
+      "-1 = obstruction. Same marker dicts as check_shapes. band_shapes: a design of more shapes\n"
+      "is checked in horizontal bands of about this many (0: at once; not with skip_fixed_pairs off\n"
+      "or a window); threads: layers checked at once. Neither changes the markers.");
   cls.def(
       "drc_shapes",
       [](const Database& db) {

@@ -214,6 +214,9 @@ void bindRouterSettings(nb::module_& m) {
       .field("partial_check_share", &RouterSettings::partialCheckShare,
              "After the first iteration, an iteration that changed at most this share of the nets is checked again "
              "only where it changed (the same markers as a whole check); 0: every check is whole.")
+      .field("check_band_shapes", &RouterSettings::checkBandShapes,
+             "A whole-design check of more shapes than this runs in horizontal bands of about this many (the "
+             "same markers, less memory); 0: at once.")
       .finish();
 }
 

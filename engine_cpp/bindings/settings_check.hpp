@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "errors/engine_errors.hpp"
@@ -31,6 +32,7 @@ inline void checkSettings(const RouterSettings& s) {
   requireIn("late_search_budget", s.lateSearchBudget, 0, kMaxSearchBudget);
   if (!(s.partialCheckShare >= 0 && s.partialCheckShare <= 1))  // NaN too
     throw SettingError("partial_check_share must be in 0..1, got " + std::to_string(s.partialCheckShare));
+  requireIn("check_band_shapes", s.checkBandShapes, 0, std::numeric_limits<int64_t>::max());
   for (const ScheduleStep& step : s.schedule) {
     requireIn("schedule: region size", step.regionSize, 1, kMaxRegionSize);
     requireIn("schedule: offset", step.offset, 0, step.regionSize - 1);

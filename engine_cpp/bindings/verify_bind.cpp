@@ -10,6 +10,7 @@
 
 #include "bindings/marker_list.hpp"
 #include "db/database.hpp"
+#include "drc/design_check.hpp"
 #include "drc/drc.hpp"
 #include "verify/connectivity.hpp"
 #include "verify/drc_report.hpp"
@@ -134,7 +135,7 @@ void bindCheckRouting(DatabaseClass& cls) {
           options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);
           options.threads = threads;
           std::vector<std::string> names;
-          markers = checkShapes(db.tech, collectDesignShapes(db.tech, db.design, &names), options);
+          markers = checkDesign(db.tech, db.design, options, &names);
           if (!report_path.empty()) writeDrcReport(report_path, db.tech, markers, names);  // the same markers
         }
         const int dbu = db.design.dbuPerMicron > 0 ? db.design.dbuPerMicron : db.tech.dbuPerMicron;
@@ -192,12 +193,11 @@ void bindDrcReport(DatabaseClass& cls) {
         {
           nb::gil_scoped_release release;
           std::vector<std::string> names;
-          std::vector<DrcShape> shapes = collectDesignShapes(db.tech, db.design, &names);
           DrcOptions options;
           options.skipFixedPairs = skip_fixed_pairs;
           options.ndrSpacing = ndrSpacingByNet(db.tech, db.design);  // as check_routing judges
           options.threads = threads;
-          const std::vector<Marker> markers = checkShapes(db.tech, std::move(shapes), options);
+          const std::vector<Marker> markers = checkDesign(db.tech, db.design, options, &names);
           writeDrcReport(path, db.tech, markers, names);
           counts = countMarkers(markers);
         }

@@ -334,6 +334,33 @@ void CheckZone::add(LayerId layer, const Rect& rect) {
                        Dbu(area_.ylo + (y1 + 1) * side)});
 }
 
+CheckZone CheckZone::rows(Dbu ylo, Dbu yhi) const {
+  CheckZone part;
+  part.area_ = area_;
+  part.side_ = side_;
+  part.nx_ = nx_;
+  part.ny_ = ny_;
+  part.cells_.resize(cells_.size());
+  part.rects_.resize(rects_.size());
+  part.reach_ = reach_;
+  part.netCount_ = netCount_;
+  part.netFlag_.resize(netFlag_.size());
+  part.minAreaByBox_ = minAreaByBox_;
+  for (size_t l = 0; l < rects_.size(); ++l) {
+    for (const Rect& r : rects_[l]) {
+      int x0, x1, y0, y1;
+      if (!cellRange(l, r, x0, x1, y0, y1)) {  // off the grid: no cell, the layer checked in every part
+        part.rects_[l].push_back(r);
+        continue;
+      }
+      // A cell-aligned rect of add(): its upper edges are the next cells' lower ones.
+      const Rect clipped{r.xlo, std::max(r.ylo, ylo), r.xhi - 1, std::min(r.yhi - 1, yhi)};
+      if (clipped.ylo <= clipped.yhi) part.add(LayerId(static_cast<int32_t>(l)), clipped);
+    }
+  }
+  return part;
+}
+
 void CheckZone::addNet(int32_t net, LayerId layer) {
   if (net < 0 || size_t(net) >= netCount_) return;
   if (anyNet_.empty()) anyNet_.assign(netCount_, 0);
@@ -356,7 +383,7 @@ bool CheckZone::near(LayerId layer, const Rect& rect, Dbu margin) const {
 }
 
 bool CheckZone::judges(const Marker& m) const {
-  if (m.type == MarkerType::MinArea) return judgesNet(m.net1, m.layer);
+  if (m.type == MarkerType::MinArea && !minAreaByBox_) return judgesNet(m.net1, m.layer);
   return near(m.layer, m.box, 0);
 }
 

@@ -25,7 +25,8 @@ class Collector {
   Collector(const Tech& tech, const Design& design, std::vector<std::string>* names)
       : tech_(tech), design_(design), names_(names) {}
 
-  std::vector<DrcShape> run();  // pins, obstructions, special routing, regular routing, in that order
+  // Pins, obstructions, special routing, regular routing (unless not `routing`), in that order.
+  std::vector<DrcShape> run(bool routing = true);
 
  private:
   void add(LayerId layer, const Rect& r, int32_t net, ShapeOrigin origin, bool taper = false) {
@@ -106,7 +107,7 @@ void Collector::addIoPin(int32_t io, int32_t net) {
   for (const IoPinShape& s : p.shapes) add(s.layer, t.apply(s.rect), net, ShapeOrigin::Pin);
 }
 
-std::vector<DrcShape> Collector::run() {
+std::vector<DrcShape> Collector::run(bool routing) {
   compPinDone_.resize(design_.components.size());
   for (size_t c = 0; c < design_.components.size(); ++c)
     compPinDone_[c].assign(tech_.macros[*design_.components[c].macro].pins.size(), 0);
@@ -116,7 +117,7 @@ std::vector<DrcShape> Collector::run() {
   addUnconnectedPins();
   addBlockages();
   addSpecialRouting();
-  addRegularRouting();
+  if (routing) addRegularRouting();
   return std::move(out_);
 }
 
@@ -266,6 +267,10 @@ std::vector<std::vector<Dbu>> ndrSpacingByNet(const Tech& tech, const Design& de
 
 std::vector<DrcShape> collectDesignShapes(const Tech& tech, const Design& design, std::vector<std::string>* netNames) {
   return Collector(tech, design, netNames).run();
+}
+
+std::vector<DrcShape> collectFixedShapes(const Tech& tech, const Design& design, std::vector<std::string>* netNames) {
+  return Collector(tech, design, netNames).run(false);
 }
 
 }  // namespace xroute

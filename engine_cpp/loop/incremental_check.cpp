@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <tuple>
 
-#include "geom/union_find.hpp"
 #include "region/region_marks.hpp"
 
 namespace xroute {
@@ -13,38 +12,17 @@ namespace {
 auto shapeKey(const NetShape& s) { return std::make_tuple(*s.layer, s.rect.xlo, s.rect.ylo, s.rect.xhi, s.rect.yhi); }
 bool shapeLess(const NetShape& a, const NetShape& b) { return shapeKey(a) < shapeKey(b); }
 
-// The conductors of one net's rects on one layer, as the checker joins them (sharesSegment):
-// a root per rect.
-std::vector<int32_t> conductorsOf(const std::vector<Rect>& rects) {
-  std::vector<int32_t> order(rects.size());
-  for (size_t i = 0; i < rects.size(); ++i) order[i] = static_cast<int32_t>(i);
-  UnionFind uf(rects.size());
-  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return rects[a].xlo < rects[b].xlo; });
-  for (size_t i = 0; i < order.size(); ++i)
-    for (size_t j = i + 1; j < order.size() && rects[order[j]].xlo <= rects[order[i]].xhi; ++j)
-      if (sharesSegment(rects[order[i]], rects[order[j]])) uf.unite(order[i], order[j]);
-  std::vector<int32_t> root(rects.size());
-  for (size_t i = 0; i < rects.size(); ++i) root[i] = uf.find(static_cast<int32_t>(i));
-  return root;
-}
-
 }  // namespace
 
 IncrementalCheck::IncrementalCheck(const RouteContext& ctx, DrcOptions options)
     : ctx_(ctx), options_(std::move(options)), kept_(ctx.design.nets.size(), 0) {
   area_ = ctx_.design.dieArea;
   for (const DrcShape& s : ctx_.fixedShapes) area_.expandToInclude(s.rect);
-  const int32_t nets = static_cast<int32_t>(ctx_.design.nets.size());
-  netFixedStart_.assign(nets + 1, 0);
-  for (const DrcShape& s : ctx_.fixedShapes)
-    if (s.net >= 0 && s.net < nets) ++netFixedStart_[s.net + 1];
-  for (int32_t n = 0; n < nets; ++n) netFixedStart_[n + 1] += netFixedStart_[n];
-  netFixed_.resize(netFixedStart_[nets]);
-  std::vector<int32_t> fill(netFixedStart_.begin(), netFixedStart_.end() - 1);
-  for (size_t i = 0; i < ctx_.fixedShapes.size(); ++i) {
-    const int32_t n = ctx_.fixedShapes[i].net;
-    if (n >= 0 && n < nets) netFixed_[fill[n]++] = static_cast<int32_t>(i);
-  }
+  shapesByNet(ctx_.fixedShapes, ctx_.design.nets.size(), netFixedStart_, netFixed_);
+}
+
+FixedShapeView IncrementalCheck::fixedView() {
+  return FixedShapeView{&ctx_.fixedShapes, &ctx_.fixedIndex, &netFixedStart_, &netFixed_, &fixedConductor_};
 }
 
 void IncrementalCheck::forget() {
@@ -55,9 +33,11 @@ void IncrementalCheck::forget() {
 
 std::vector<Marker> IncrementalCheck::full() {
   forget();
-  std::vector<DrcShape> shapes = collectDesignShapes(ctx_.tech, ctx_.design);
-  lastShapes_ = static_cast<int64_t>(shapes.size());
-  unmerged_ = checkShapesUnmerged(ctx_.tech, std::move(shapes), options_);
+  const FixedShapeView fixed = fixedView();
+  DesignCheckStats stats;
+  unmerged_ = checkDesignUnmerged(ctx_.tech, ctx_.design, options_, &fixed, nullptr, &stats);
+  lastShapes_ = stats.shapes;
+  bandCuts_ = stats.cuts;
   return finishMarkers(unmerged_, options_);
 }
 
@@ -115,7 +95,7 @@ void IncrementalCheck::changeZone(CheckZone& zone) {
         const DrcShape& s = ctx_.fixedShapes[netFixed_[p]];
         if (s.layer == layer) rects.push_back(s.rect), changed.push_back(0);
       }
-      const std::vector<int32_t> root = conductorsOf(rects);
+      const std::vector<int32_t> root = sameNetConductors(rects);
       std::vector<std::pair<int32_t, Rect>> boxes;  // (root, rect) of each rect of a conductor with a change
       std::vector<int32_t> hit;
       for (size_t r = 0; r < rects.size(); ++r)
@@ -124,6 +104,10 @@ void IncrementalCheck::changeZone(CheckZone& zone) {
       for (size_t r = 0; r < rects.size(); ++r)
         if (std::binary_search(hit.begin(), hit.end(), root[r])) boxes.push_back({root[r], rects[r]});
       std::sort(boxes.begin(), boxes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      if (!boxes.empty()) {
+        const Rect& first = boxes.front().second;
+        changed_.push_back({n, layer, static_cast<Dbu>((int64_t(first.ylo) + first.yhi) / 2)});
+      }
       for (size_t q = 0; q < boxes.size();) {
         Rect box = boxes[q].second;
         size_t e = q + 1;
@@ -135,117 +119,55 @@ void IncrementalCheck::changeZone(CheckZone& zone) {
   }
 }
 
-// The shapes the zone's markers depend on, on each layer with a zone: every shape within twice
-// the reach of a zone cell, with the whole conductor it belongs to (routing and pins), and on a
-// layer where a net changed, all of that net's metal; the fixed shapes there and under that
-// routing, each linked to its conductor of fixed shapes (a special net's rail that leaves the zone
-// stays one conductor).
-std::vector<DrcShape> IncrementalCheck::zoneShapes(const CheckZone& zone, std::vector<int32_t>& links) const {
-  const Tech& tech = ctx_.tech;
-  const int32_t nets = static_cast<int32_t>(ctx_.design.nets.size());
-  std::vector<uint8_t> fixedIn(ctx_.fixedShapes.size(), 0), layerIn(tech.layers.size(), 0);
-  std::vector<int32_t> candidates, fixedList;
-  auto near = [&](LayerId layer, const Rect& r) { return zone.near(layer, r, 2 * zone.reach(layer)); };
-  auto takeFixed = [&](int32_t j) {
-    if (!fixedIn[j]) fixedIn[j] = 1, fixedList.push_back(j);
-  };
-  // Candidates: the nets listed in the GCells around the zone, those with pins there, the changed ones.
-  for (size_t l = 0; l < tech.layers.size(); ++l) {
+std::vector<Marker> IncrementalCheck::checkZone(const CheckZone& zone) {
+  // Candidates: the nets listed in the GCells around the zone (zoneShapes adds those with pins there).
+  std::vector<int32_t> near;
+  for (size_t l = 0; l < ctx_.tech.layers.size(); ++l) {
     const LayerId layer(static_cast<int32_t>(l));
-    if (zone.rects(layer).empty()) continue;
-    layerIn[l] = 1;
-    for (const Rect& z : zone.rects(layer)) {
-      const Rect w = grownBox(z, 2 * zone.reach(layer));
-      for (int32_t n : ctx_.netsNear(w)) candidates.push_back(n);
-      ctx_.fixedIndex.query(w, [&](int32_t j) {
-        const DrcShape& s = ctx_.fixedShapes[j];
-        if (s.layer != layer) return;
-        takeFixed(j);
-        if (s.net >= 0 && s.net < nets) candidates.push_back(s.net);
-      });
-    }
+    for (const Rect& z : zone.rects(layer))
+      for (int32_t n : ctx_.netsNear(grownBox(z, 2 * zone.reach(layer)))) near.push_back(n);
   }
-  for (int32_t n : zone.nets()) candidates.push_back(n);
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-
-  std::vector<DrcShape> shapes;
-  std::vector<NetShape> routing;
-  struct Item {
-    LayerId layer;
-    Rect rect;
-    int32_t fixed;  // index into ctx_.fixedShapes (a pin), or -1 (routing)
-    bool taper = false;
-  };
-  std::vector<Item> items;
-  std::vector<Rect> rects;
-  std::vector<int32_t> keep;
-  for (int32_t n : candidates) {
-    routing.clear();
-    netRoutingShapes(tech, ctx_.design, ctx_.design.nets[n].routing, routing, ctx_.design.nets[n].ndr);
-    items.clear();
-    for (const NetShape& s : routing)
-      if (s.layer.valid() && layerIn[*s.layer]) items.push_back({s.layer, s.rect, -1, s.taper});
-    for (int32_t p = netFixedStart_[n]; p < netFixedStart_[n + 1]; ++p) {
-      const DrcShape& s = ctx_.fixedShapes[netFixed_[p]];
-      if (s.layer.valid() && layerIn[*s.layer]) items.push_back({s.layer, s.rect, netFixed_[p]});
-    }
-    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return *a.layer < *b.layer; });
-    for (size_t a = 0; a < items.size();) {
-      const LayerId layer = items[a].layer;
-      size_t b = a;
-      while (b < items.size() && items[b].layer == layer) ++b;
-      // On a layer where the net changed, all of it; elsewhere the conductors with metal near the zone.
-      const bool whole = zone.judgesNet(n, layer);
-      keep.assign(b - a, whole ? 1 : 0);
-      if (!whole && std::any_of(items.begin() + a, items.begin() + b, [&](const Item& it) { return near(layer, it.rect); })) {
-        rects.clear();
-        for (size_t k = a; k < b; ++k) rects.push_back(items[k].rect);
-        const std::vector<int32_t> root = conductorsOf(rects);
-        std::vector<int32_t> nearRoots;
-        for (size_t k = a; k < b; ++k)
-          if (near(layer, items[k].rect)) nearRoots.push_back(root[k - a]);
-        std::sort(nearRoots.begin(), nearRoots.end());
-        for (size_t k = a; k < b; ++k) keep[k - a] = std::binary_search(nearRoots.begin(), nearRoots.end(), root[k - a]);
-      }
-      for (size_t k = a; k < b; ++k) {
-        if (!keep[k - a]) continue;
-        const Item& it = items[k];
-        if (it.fixed >= 0) {
-          takeFixed(it.fixed);
-          continue;
-        }
-        shapes.push_back({layer, it.rect, n, ShapeOrigin::Wire, it.taper});
-        // A fixed conductor's shapes under the routing, for the rules that ask whether a wire touches it.
-        ctx_.fixedIndex.query(it.rect, [&](int32_t j) {
-          if (ctx_.fixedShapes[j].layer == layer) takeFixed(j);
-        });
-      }
-      a = b;
-    }
-  }
-  links.assign(shapes.size(), -1);
-  std::sort(fixedList.begin(), fixedList.end());
-  for (int32_t j : fixedList) {
-    shapes.push_back(ctx_.fixedShapes[j]);
-    links.push_back(fixedConductor_[j]);
-  }
-  return shapes;
+  std::vector<int32_t> links;
+  std::vector<DrcShape> shapes = zoneShapes(ctx_.tech, ctx_.design, fixedView(), zone, std::move(near), links);
+  lastShapes_ += static_cast<int64_t>(shapes.size());
+  return checkShapesUnmerged(ctx_.tech, std::move(shapes), options_, &zone, links);
 }
 
 std::vector<Marker> IncrementalCheck::update(double maxShare) {
   CheckZone zone(ctx_.tech, options_, ctx_.design.nets.size(), area_);
+  changed_.clear();
   changeZone(zone);
   // When many nets changed, gathering the shapes near them costs more than a whole check.
   if (double(zone.nets().size()) > maxShare * double(ctx_.design.nets.size())) return full();
   forget();
   lastShapes_ = 0;
   if (!zone.empty()) {
-    if (fixedConductor_.size() != ctx_.fixedShapes.size()) fixedConductor_ = conductorIds(ctx_.tech, ctx_.fixedShapes);
-    std::vector<int32_t> links;
-    std::vector<DrcShape> shapes = zoneShapes(zone, links);
-    lastShapes_ = static_cast<int64_t>(shapes.size());
-    std::vector<Marker> fresh = checkShapesUnmerged(ctx_.tech, std::move(shapes), options_, &zone, links);
+    std::vector<Marker> fresh;
+    const size_t bands = bandCuts_.size() > 2 ? bandCuts_.size() - 1 : 1;
+    if (bands > 1) {
+      // The whole check ran in bands: so does the zone's, each changed net's MinArea markers judged
+      // in one band, where a rect of one of its changed conductors lies. A band without a zone
+      // cell is left out.
+      for (size_t b = 0; b < bands; ++b) {
+        CheckZone part = zone.rows(bandCuts_[b], bandCuts_[b + 1]);
+        bool any = false;
+        for (const ChangedNet& c : changed_) {
+          const size_t at = std::upper_bound(bandCuts_.begin() + 1, bandCuts_.end() - 1, c.y) - (bandCuts_.begin() + 1);
+          if (at == b) part.addNet(c.net, c.layer), any = true;
+        }
+        for (size_t l = 0; l < ctx_.tech.layers.size() && !any; ++l) any = !part.rects(LayerId(static_cast<int32_t>(l))).empty();
+        if (!any) continue;
+        std::vector<Marker> found = checkZone(part);
+        fresh.insert(fresh.end(), found.begin(), found.end());
+      }
+      auto key = [](const Marker& m) {
+        return std::make_tuple(m.type, *m.layer, m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi, m.net1, m.net2);
+      };
+      std::sort(fresh.begin(), fresh.end(), [&](const Marker& a, const Marker& c) { return key(a) < key(c); });
+      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+    } else {
+      fresh = checkZone(zone);
+    }
     std::erase_if(unmerged_, [&](const Marker& m) { return zone.judges(m); });
     unmerged_.insert(unmerged_.end(), fresh.begin(), fresh.end());
   }

@@ -10,12 +10,14 @@
 // markers outside the zone stay.
 // A marker depends only on shapes within reach of its box, or for MinArea on its own conductor, so
 // the result is the whole check's; tests compare the two on every iteration of routed designs.
+// On a design whose whole check ran in bands (drc/design_check.hpp), the zone is judged in the same
+// bands, one at a time.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-
+#include "drc/design_check.hpp"
 #include "drc/drc.hpp"
 #include "region/route_context.hpp"
 
@@ -39,15 +41,24 @@ class IncrementalCheck {
  private:
   void forget();  // no net remembered
   void changeZone(CheckZone& zone);
-  std::vector<DrcShape> zoneShapes(const CheckZone& zone, std::vector<int32_t>& links) const;
+  FixedShapeView fixedView();  // ctx_'s fixed shapes, with this check's lists of them
+  // The zone's markers from the shapes near it (unmerged); adds the shapes looked at to lastShapes_.
+  std::vector<Marker> checkZone(const CheckZone& zone);
 
   const RouteContext& ctx_;
   DrcOptions options_;
   Rect area_;                            // DBU: the die and every fixed shape
-  std::vector<int32_t> fixedConductor_;  // per ctx_.fixedShapes: conductorIds over them (at the first partial check)
+  std::vector<int32_t> fixedConductor_;  // per ctx_.fixedShapes: fixedConductorIds over them (when first needed)
   std::vector<int32_t> netFixedStart_;   // regular net n's pin shapes: netFixed_[start[n] .. start[n+1])
   std::vector<int32_t> netFixed_;        // indices into ctx_.fixedShapes
   std::vector<Marker> unmerged_;         // the last check's markers before merging
+  std::vector<Dbu> bandCuts_;            // the last whole check's band rows (DesignCheckStats::cuts)
+  struct ChangedNet {
+    int32_t net;
+    LayerId layer;
+    Dbu y;  // DBU: the middle of a rect of one of its changed conductors
+  };
+  std::vector<ChangedNet> changed_;      // the nets of the last changeZone, by layer
   std::vector<uint8_t> kept_;            // per net: its shapes are in old_
   std::vector<int32_t> keptNets_;
   std::vector<std::vector<NetShape>> old_;  // per net of keptNets_, in that order

@@ -73,6 +73,9 @@ struct RouterSettings {
   // every check is whole. On ispd19_test1 (2 threads) a partial check after 17% of the nets changed
   // cost about a whole one, after 37% 1.6 times one, after 8% 0.4.
   double partialCheckShare = 0.15;
+  // A whole check of more shapes than this runs in bands of about this many (DrcOptions::bandShapes,
+  // drc/design_check.hpp): the same markers, a fraction of the memory on a large design. 0: at once.
+  int64_t checkBandShapes = kCheckBandShapes;
 };
 
 // What one iteration runs with, chosen before it starts: by the flow's rule (the settings' schedule,

@@ -33,9 +33,7 @@ RouteContext::RouteContext(const Tech& t, Design& d, int threads, int accessPoin
     for (int32_t r = design.netPinStart[n]; r < design.netPinStart[n + 1]; ++r) pinNet[r] = static_cast<int32_t>(n);
   }
 
-  for (DrcShape& s : collectDesignShapes(tech, design)) {
-    if (isFixedOrigin(s.origin)) fixedShapes.push_back(s);
-  }
+  fixedShapes = collectFixedShapes(tech, design);
   std::vector<Rect> rects;
   rects.reserve(fixedShapes.size());
   for (const DrcShape& s : fixedShapes) rects.push_back(s.rect);

@@ -174,11 +174,13 @@ class Database:
     def compare(self, other: Database, max_diffs: int = 20) -> list[str]:
         """Differences between two designs (empty list = equal)."""
 
-    def check_drc(self, skip_fixed_pairs: bool = True, window: tuple[int, int, int, int] | None = None) -> list:
+    def check_drc(self, skip_fixed_pairs: bool = True, window: tuple[int, int, int, int] | None = None, band_shapes: int = 2000000, threads: int = 1) -> list:
         """
         Design-rule check of the whole design (pins, OBS, blockages, special and regular routing).
         Net ids in the markers: regular nets 0..nets-1, special nets next, then pins on no net;
-        -1 = obstruction. Same marker dicts as check_shapes.
+        -1 = obstruction. Same marker dicts as check_shapes. band_shapes: a design of more shapes
+        is checked in horizontal bands of about this many (0: at once; not with skip_fixed_pairs off
+        or a window); threads: layers checked at once. Neither changes the markers.
         """
 
     def drc_shapes(self) -> list:
@@ -416,7 +418,7 @@ class MazeCosts:
 class RouterSettings:
     """The routing run's settings, as in loop/router.hpp."""
 
-    def __init__(self, *, region_size: int = 0, iterations: int = 16, threads: int = 1, schedule: list[tuple[int, int]] = [], costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000, rip_neighbours_of_persistent: bool = True, late_search_markers: int = 50, late_search_budget: int = 4, trim_dangling: bool = True, partial_check_share: float = 0.15) -> None:
+    def __init__(self, *, region_size: int = 0, iterations: int = 16, threads: int = 1, schedule: list[tuple[int, int]] = [], costs: MazeCosts = ..., use_penalty_step: int = 4000, access_points_per_pin: int = 6, marker_penalty: int = 3000, history_penalty: int = 1000, stop_at_zero: bool = True, repair_rounds: int = 0, first_repair_rounds: int = 0, repair_penalty: int = 3000, rip_neighbours_of_persistent: bool = True, late_search_markers: int = 50, late_search_budget: int = 4, trim_dangling: bool = True, partial_check_share: float = 0.15, check_band_shapes: int = 2000000) -> None:
         """Each field by its keyword; a field left out has the engine's default."""
 
     @property
@@ -559,7 +561,16 @@ class RouterSettings:
     @partial_check_share.setter
     def partial_check_share(self, arg: float, /) -> None: ...
 
-    def replace(self, *, region_size: int = ..., iterations: int = ..., threads: int = ..., schedule: list[tuple[int, int]] = ..., costs: MazeCosts = ..., use_penalty_step: int = ..., access_points_per_pin: int = ..., marker_penalty: int = ..., history_penalty: int = ..., stop_at_zero: bool = ..., repair_rounds: int = ..., first_repair_rounds: int = ..., repair_penalty: int = ..., rip_neighbours_of_persistent: bool = ..., late_search_markers: int = ..., late_search_budget: int = ..., trim_dangling: bool = ..., partial_check_share: float = ...) -> RouterSettings:
+    @property
+    def check_band_shapes(self) -> int:
+        """
+        A whole-design check of more shapes than this runs in horizontal bands of about this many (the same markers, less memory); 0: at once.
+        """
+
+    @check_band_shapes.setter
+    def check_band_shapes(self, arg: int, /) -> None: ...
+
+    def replace(self, *, region_size: int = ..., iterations: int = ..., threads: int = ..., schedule: list[tuple[int, int]] = ..., costs: MazeCosts = ..., use_penalty_step: int = ..., access_points_per_pin: int = ..., marker_penalty: int = ..., history_penalty: int = ..., stop_at_zero: bool = ..., repair_rounds: int = ..., first_repair_rounds: int = ..., repair_penalty: int = ..., rip_neighbours_of_persistent: bool = ..., late_search_markers: int = ..., late_search_budget: int = ..., trim_dangling: bool = ..., partial_check_share: float = ..., check_band_shapes: int = ...) -> RouterSettings:
         """A copy with the fields given by keyword changed."""
 
     def to_dict(self) -> dict:
