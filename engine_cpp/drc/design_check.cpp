@@ -47,7 +47,6 @@ std::vector<int32_t> sameNetConductors(const std::vector<Rect>& rects) {
   return root;
 }
 
-
 std::vector<int32_t> fixedConductorIds(const Tech& tech, const std::vector<DrcShape>& shapes) {
   std::vector<int32_t> ids(shapes.size(), -1);
   // The shapes that may join others (a net, positive area, a checked layer), by layer and net.
