@@ -27,17 +27,6 @@ def test_bands_give_the_whole_checks_markers(name: str) -> None:
         assert design.engine.check_drc(band_shapes=band, threads=2) == whole, band
 
 
-def test_fixed_pairs_and_windows_are_checked_at_once() -> None:
-    # Bands would judge fixed-only markers from part of a rail; those checks run whole.
-    design = prepare_design(available("ispd18_sample2")[0])
-    route_design(design, settings=RouterSettings(**FIRST_PASS))
-    engine = design.engine
-    assert engine.check_drc(skip_fixed_pairs=False, band_shapes=300) == engine.check_drc(skip_fixed_pairs=False,
-                                                                                           band_shapes=0)
-    die = (0, 0, 40_000, 40_000)
-    assert engine.check_drc(window=die, band_shapes=300) == engine.check_drc(window=die, band_shapes=0)
-
-
 def routed(name: str, tmp: Path, band_shapes: int, share: float, region_size: int = 5) -> tuple[bytes, list, list[int]]:
     design = prepare_design(name)
     settings = RouterSettings(threads=2, region_size=region_size, check_band_shapes=band_shapes, partial_check_share=share,

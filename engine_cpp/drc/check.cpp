@@ -39,14 +39,11 @@ struct Entry {
   int32_t net;
   bool fixed;
   int32_t link = -1;  // CheckZone links: same value >= 0, one conductor
-  int32_t src = -1;   // index among the input shapes
   bool taper = false;  // DrcShape::taper
 };
 
-// Builds one layer: the shapes (duplicates as one), index, seeds, components. shapeOf (when given)
-// receives, at each entry's src, the index of the shape it became.
-void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& options, const CheckZone* zone,
-                std::vector<int32_t>* shapeOf = nullptr) {
+// Builds one layer: the shapes (duplicates as one), index, seeds, components.
+void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& options, const CheckZone* zone) {
   auto key = [](const Entry& e) { return std::make_tuple(e.rect.xlo, e.rect.ylo, e.rect.xhi, e.rect.yhi, e.net); };
   std::sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
     return std::make_tuple(key(a), a.fixed) < std::make_tuple(key(b), b.fixed);
@@ -65,7 +62,6 @@ void buildLayer(LayerShapes& ls, std::vector<Entry>& entries, const DrcOptions& 
     }
     const int32_t shape = int32_t(ls.rects.size()) - 1;
     if (entries[i].link >= 0) links.push_back({entries[i].link, shape});
-    if (shapeOf != nullptr) (*shapeOf)[entries[i].src] = shape;
   }
   const size_t n = ls.rects.size();
   ls.index = ShapeIndex(ls.rects, ls.nets);
@@ -163,7 +159,7 @@ std::vector<std::vector<Entry>> entriesByLayer(const Tech& tech, const std::vect
     if (t != LayerType::Routing && t != LayerType::Cut) continue;
     if (s.rect.xhi <= s.rect.xlo || s.rect.yhi <= s.rect.ylo) continue;  // no area
     byLayer[*s.layer].push_back({s.rect, s.net < 0 ? -1 : s.net, isFixedOrigin(s.origin),
-                                 links.empty() ? -1 : links[i], int32_t(i), s.taper});
+                                 links.empty() ? -1 : links[i], s.taper});
   }
   return byLayer;
 }
@@ -252,34 +248,20 @@ std::vector<Marker> finishMarkers(std::vector<Marker> markers, const DrcOptions&
   if (options.window) {
     std::erase_if(markers, [&](const Marker& m) { return !m.box.overlaps(*options.window); });
   }
+  sortMarkers(markers);
+  return markers;
+}
+
+void sortMarkers(std::vector<Marker>& markers) {
   auto order = [](const Marker& m) {
     return std::make_tuple(m.type, *m.layer, m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi, m.net1, m.net2);
   };
   std::sort(markers.begin(), markers.end(), [&](const Marker& a, const Marker& b) { return order(a) < order(b); });
   markers.erase(std::unique(markers.begin(), markers.end()), markers.end());
-  return markers;
 }
 
 std::vector<Marker> checkShapes(const Tech& tech, std::vector<DrcShape> shapes, const DrcOptions& options) {
   return finishMarkers(checkShapesUnmerged(tech, std::move(shapes), options), options);
-}
-
-std::vector<int32_t> conductorIds(const Tech& tech, const std::vector<DrcShape>& shapes) {
-  using namespace drc;
-  std::vector<std::vector<Entry>> byLayer = entriesByLayer(tech, shapes, {});
-  std::vector<int32_t> ids(shapes.size(), -1);
-  int32_t offset = 0;
-  std::vector<int32_t> shapeOf(shapes.size(), -1);
-  for (size_t l = 0; l < byLayer.size(); ++l) {
-    if (byLayer[l].empty()) continue;
-    LayerShapes ls;
-    ls.layer = LayerId(int32_t(l));
-    ls.rules = &tech.layers[l];
-    buildLayer(ls, byLayer[l], DrcOptions{}, nullptr, &shapeOf);
-    for (const Entry& e : byLayer[l]) ids[e.src] = offset + ls.comp[shapeOf[e.src]];
-    offset += int32_t(ls.compStart.size()) - 1;
-  }
-  return ids;
 }
 
 CheckZone::CheckZone(const Tech& tech, const DrcOptions& options, size_t nets, const Rect& area)

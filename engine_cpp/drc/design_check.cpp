@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <optional>
-#include <tuple>
+#include <utility>
 
 #include "drc/layer_shapes.hpp"
 #include "geom/union_find.hpp"
@@ -88,12 +88,6 @@ std::vector<int32_t> fixedConductorIds(const Tech& tech, const std::vector<DrcSh
   return ids;
 }
 
-namespace {
-
-Rect grown(const Rect& r, Dbu d) { return Rect{r.xlo - d, r.ylo - d, r.xhi + d, r.yhi + d}; }
-
-}  // namespace
-
 std::vector<DrcShape> zoneShapes(const Tech& tech, const Design& design, const FixedShapeView& fixed,
                                  const CheckZone& zone, std::vector<int32_t> candidates, std::vector<int32_t>& links) {
   const std::vector<DrcShape>& fixedShapes = *fixed.shapes;
@@ -115,7 +109,7 @@ std::vector<DrcShape> zoneShapes(const Tech& tech, const Design& design, const F
     layerIn[l] = 1;
     if (!fixedOn[l]) continue;
     for (const Rect& z : zone.rects(layer)) {
-      fixed.index->query(grown(z, 2 * zone.reach(layer)), [&](int32_t j) {
+      fixed.index->query(drc::expanded(z, 2 * zone.reach(layer)), [&](int32_t j) {
         const DrcShape& s = fixedShapes[j];
         if (s.layer != layer) return;
         takeFixed(j);
@@ -357,12 +351,7 @@ std::vector<Marker> checkDesignUnmerged(const Tech& tech, const Design& design, 
     std::vector<Marker> found = checkShapesUnmerged(tech, std::move(shapes), options, &zone, links);
     markers.insert(markers.end(), found.begin(), found.end());
   }
-  // A marker that touches two bands was found by both.
-  auto key = [](const Marker& m) {
-    return std::make_tuple(m.type, *m.layer, m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi, m.net1, m.net2);
-  };
-  std::sort(markers.begin(), markers.end(), [&](const Marker& a, const Marker& c) { return key(a) < key(c); });
-  markers.erase(std::unique(markers.begin(), markers.end()), markers.end());
+  sortMarkers(markers);  // a marker that touches two bands was found by both
   return markers;
 }
 

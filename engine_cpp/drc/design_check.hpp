@@ -27,7 +27,7 @@ struct FixedShapeView {
   const BoxIndex* index = nullptr;                 // over the shapes' rects, ids = indices
   const std::vector<int32_t>* netStart = nullptr;  // regular net n's shapes: byNet[netStart[n] .. netStart[n + 1])
   const std::vector<int32_t>* byNet = nullptr;
-  std::vector<int32_t>* conductor = nullptr;       // conductorIds over the shapes
+  std::vector<int32_t>* conductor = nullptr;       // fixedConductorIds over the shapes
 };
 
 // Regular net n's shapes among `shapes` (their indices, ascending): byNet[start[n] .. start[n + 1]).
@@ -55,7 +55,7 @@ std::vector<int32_t> sameNetConductors(const std::vector<Rect>& rects);
 
 // Per fixed shape, an id shared by the shapes of one conductor on its layer (same-net shapes joined
 // as the checker joins them; an obstruction alone; -1 for a shape on no checked layer or of no
-// area). Lighter than conductorIds: one net's shapes of one layer are in memory at a time.
+// area): a shape's index, unique across layers. One net's shapes of one layer are held at a time.
 std::vector<int32_t> fixedConductorIds(const Tech& tech, const std::vector<DrcShape>& shapes);
 
 // The shapes the zone's markers depend on, on each layer with a zone: every shape within twice the

@@ -126,9 +126,8 @@ std::vector<Marker> checkShapesUnmerged(const Tech& tech, std::vector<DrcShape> 
                                         const CheckZone* zone = nullptr, const std::vector<int32_t>& links = {});
 // checkShapes's last step: merges touching markers (mergeMarkers), keeps the window's, sorts, dedupes.
 std::vector<Marker> finishMarkers(std::vector<Marker> markers, const DrcOptions& options);
-// Per shape: its conductor (same-net shapes joined on their layer, as the rules join them), an id
-// unique across layers; an obstruction is a conductor of its own, a shape on no checked layer -1.
-std::vector<int32_t> conductorIds(const Tech& tech, const std::vector<DrcShape>& shapes);
+// Sorts markers by (type, layer, box, net1, net2) and drops exact repeats (finishMarkers's order).
+void sortMarkers(std::vector<Marker>& markers);
 
 // Every metal and cut shape of a placed design, with net ids: regular nets
 // [0, nets), special nets [nets, nets + specialNets), then one id per pin on

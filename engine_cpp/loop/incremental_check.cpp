@@ -160,11 +160,7 @@ std::vector<Marker> IncrementalCheck::update(double maxShare) {
         std::vector<Marker> found = checkZone(part);
         fresh.insert(fresh.end(), found.begin(), found.end());
       }
-      auto key = [](const Marker& m) {
-        return std::make_tuple(m.type, *m.layer, m.box.xlo, m.box.ylo, m.box.xhi, m.box.yhi, m.net1, m.net2);
-      };
-      std::sort(fresh.begin(), fresh.end(), [&](const Marker& a, const Marker& c) { return key(a) < key(c); });
-      fresh.erase(std::unique(fresh.begin(), fresh.end()), fresh.end());
+      sortMarkers(fresh);  // a marker that touches two bands was found by both
     } else {
       fresh = checkZone(zone);
     }
