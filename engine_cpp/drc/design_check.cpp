@@ -258,7 +258,6 @@ std::vector<Marker> checkDesignUnmerged(const Tech& tech, const Design& design, 
   auto whole = [&]() {
     std::vector<DrcShape> shapes = collectDesignShapes(tech, design, netNames);
     st.shapes = static_cast<int64_t>(shapes.size());
-    st.bands = 1;
     return checkShapesUnmerged(tech, std::move(shapes), options);
   };
   // Bands judge markers whose shapes are fixed only partly (a rail's MinArea), so not when fixed
@@ -347,7 +346,6 @@ std::vector<Marker> checkDesignUnmerged(const Tech& tech, const Design& design, 
     std::vector<DrcShape> shapes = zoneShapes(tech, design, view, zone, candidates, links);
     local.reset();
     st.shapes += static_cast<int64_t>(shapes.size());
-    ++st.bands;
     std::vector<Marker> found = checkShapesUnmerged(tech, std::move(shapes), options, &zone, links);
     markers.insert(markers.end(), found.begin(), found.end());
   }

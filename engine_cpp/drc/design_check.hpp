@@ -70,8 +70,7 @@ std::vector<DrcShape> zoneShapes(const Tech& tech, const Design& design, const F
 // What a design check looked at.
 struct DesignCheckStats {
   int64_t shapes = 0;  // shapes checked, summed over the bands (a shape near two bands counts twice)
-  int bands = 0;       // 1: the whole design at once
-  std::vector<Dbu> cuts;  // with bands: the bands' rows, bands + 1 y values ascending
+  std::vector<Dbu> cuts;  // with bands: their rows, bands + 1 y values ascending; empty: at once
 };
 
 // checkShapesUnmerged over collectDesignShapes, band by band when the design has more than
